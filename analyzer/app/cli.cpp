@@ -1,0 +1,5 @@
+#include "cli.h"
+
+namespace busdecode {
+int runCli(int, char**) { return 2; }
+}  // namespace busdecode

@@ -1,0 +1,61 @@
+#pragma once
+// A capture source: VCD, CSV (sigrok dense, Saleae, plain), sigrok .sr, or memory.
+// Open parses the header; select() picks the mapped signals; next() streams edges of
+// those signals only, in blocks, so memory stays flat whatever the capture length.
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/edge.h"
+#include "core/time.h"
+
+namespace busdecode {
+
+struct SignalInfo {
+    std::string name;       // last component ("MA", "clk")
+    std::string full_name;  // hierarchical VCD name ("top.enc.clk"), or same as name
+    int width = 1;          // vector width (VCD); 1 for logic lines
+};
+
+// One selected line: a signal, and for vectors the bit within it (-1 = scalar / bit 0).
+struct LineRef {
+    int signal = 0;
+    int bit = -1;
+};
+
+class CaptureReader {
+public:
+    virtual ~CaptureReader() = default;
+    virtual const std::vector<SignalInfo>& signals() const = 0;
+    virtual Timebase timebase() const = 0;
+    virtual std::string formatName() const = 0;  // "vcd", "sigrok-csv", "saleae-csv", ...
+    // Chooses the lines to deliver; Edge::line indexes this list. Call once before next().
+    virtual void select(const std::vector<LineRef>& lines) = 0;
+    // Level of each selected line at the capture start. May read ahead; call after select().
+    virtual std::vector<std::uint8_t> initialLevels() = 0;
+    // First tick of the capture (valid after initialLevels()).
+    virtual Tick startTick() const = 0;
+    // Fills `block` (cleared first) with up to kEdgeBlockSize edges. False at the end.
+    virtual bool next(EdgeBlock& block) = 0;
+    // Last tick of the capture: the last timestamp or sample (valid after next() = false).
+    virtual Tick endTick() const = 0;
+    // Bytes consumed so far and total (0 if unknown), for progress and throughput.
+    virtual std::uint64_t bytesRead() const { return 0; }
+    virtual std::uint64_t bytesTotal() const { return 0; }
+};
+
+struct OpenOptions {
+    double rate_hz = 0;    // --rate: needed by plain CSV without a time column
+    bool follow = false;   // --follow: keep reading a growing file
+};
+
+// Picks the reader by content (and extension as a hint). Throws InputError naming the
+// file (and line) on anything it cannot read. "-" is standard input.
+std::unique_ptr<CaptureReader> openCapture(const std::string& path, const OpenOptions& opts);
+
+// A reader over an in-memory Waveform (tests, generators).
+struct Waveform;
+std::unique_ptr<CaptureReader> memoryReader(const Waveform& w);
+
+}  // namespace busdecode

@@ -1,0 +1,45 @@
+#pragma once
+// A decoder declares itself as data (the libsigrokdecode idea): roles, options with
+// defaults and allowed values, event types. `decode --list`, option validation and
+// automatic role binding all work from this declaration.
+#include <string>
+#include <vector>
+
+namespace busdecode {
+
+struct RoleSpec {
+    std::string name;                  // "clk", "data", ...
+    bool required = true;              // optional roles may stay unbound
+    std::vector<std::string> aliases;  // signal names bound automatically (case-insensitive)
+    std::string help;
+};
+
+struct OptionSpec {
+    enum class Kind { Int, Float, Bool, Choice, String };
+    std::string key;
+    Kind kind = Kind::Int;
+    std::string default_value;         // as text, parsed like a user value
+    std::vector<std::string> choices;  // Choice: the allowed values
+    double min = -1e300, max = 1e300;  // Int/Float: inclusive range
+    std::string help;
+    bool allow_auto = false;  // Int/Float: also accepts the word "auto"
+};
+
+struct EventTypeSpec {
+    std::string type;
+    std::string help;
+    std::vector<std::string> fields;  // field names besides the common ones
+};
+
+struct DecoderInfo {
+    std::string id;  // "ssi"
+    std::string name;
+    std::string description;
+    std::vector<RoleSpec> roles;
+    std::vector<OptionSpec> options;
+    std::vector<EventTypeSpec> events;
+    // At least one of these optional roles must be bound (e.g. uart: rx or tx).
+    std::vector<std::string> need_one_of;
+};
+
+}  // namespace busdecode

@@ -1,0 +1,46 @@
+#pragma once
+// A decoded event: one frame, word, transfer, register access... Protocol faults are
+// events with `errors`, never exceptions.
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "time.h"
+#include "value.h"
+
+namespace busdecode {
+
+struct Field {
+    std::string key;
+    Value value;
+};
+
+struct Event {
+    std::string proto;  // decoder id ("ssi", "bissc", ...)
+    std::string type;   // event kind ("frame", "register", ...)
+    Tick start = 0;
+    Tick end = 0;
+    std::vector<Field> fields;        // in the order they should be printed
+    std::vector<std::string> errors;  // short stable strings ("crc", "short_frame", ...)
+    std::string summary;              // one-line human text, without time and proto
+    std::string instance;             // set by the session: which --proto slot emitted it
+    // Ask the session to call Decoder::correlate() on this event before it is output,
+    // once every other decoder's events up to `end` are known.
+    bool wants_correlation = false;
+
+    Event& set(std::string key, Value v);  // replaces an existing key
+    const Value* get(std::string_view key) const;
+    bool has(std::string_view key) const { return get(key) != nullptr; }
+    Event& error(std::string e);  // adds once
+    bool hasError(std::string_view e) const;
+};
+
+// Where a decoder sends what it decodes.
+class EventSink {
+public:
+    virtual ~EventSink() = default;
+    virtual void onEvent(Event&& e) = 0;
+};
+
+}  // namespace busdecode

@@ -1,0 +1,367 @@
+#include "session.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cctype>
+#include <cmath>
+#include <deque>
+#include <optional>
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include "event_window.h"
+#include "glitch_filter.h"
+#include "registry.h"
+#include "waveform.h"
+
+namespace busdecode {
+
+namespace {
+
+std::string lower(std::string s) {
+    for (auto& c : s) c = char(std::tolower((unsigned char)c));
+    return s;
+}
+
+// Resolves a user's signal reference: full hierarchical name, last component, a CSV
+// column index, or `name[bit]` for one bit of a vector.
+std::optional<LineRef> findSignal(const std::vector<SignalInfo>& sigs, const std::string& ref,
+                                  bool case_insensitive) {
+    auto eq = [&](const std::string& a, const std::string& b) {
+        return case_insensitive ? lower(a) == lower(b) : a == b;
+    };
+    for (int i = 0; i < int(sigs.size()); ++i)
+        if (eq(sigs[i].full_name, ref)) return LineRef{i, -1};
+    for (int i = 0; i < int(sigs.size()); ++i)
+        if (eq(sigs[i].name, ref)) return LineRef{i, -1};
+    // name[bit] selects one bit of a vector
+    auto lb = ref.rfind('[');
+    if (lb != std::string::npos && ref.back() == ']') {
+        auto bit = parseInteger(ref.substr(lb + 1, ref.size() - lb - 2));
+        auto base = findSignal(sigs, ref.substr(0, lb), case_insensitive);
+        if (bit && base && *bit >= 0 && *bit < sigs[base->signal].width)
+            return LineRef{base->signal, int(*bit)};
+    }
+    if (!case_insensitive) {
+        if (auto idx = parseInteger(ref); idx && *idx >= 0 && *idx < std::int64_t(sigs.size()))
+            return LineRef{int(*idx), -1};
+    }
+    return std::nullopt;
+}
+
+std::string signalList(const std::vector<SignalInfo>& sigs) {
+    std::vector<std::string> names;
+    for (const auto& s : sigs)
+        names.push_back(s.width > 1 ? fmt::format("{}[{}]", s.full_name, s.width) : s.full_name);
+    return names.empty() ? "none" : fmt::format("{}", fmt::join(names, ", "));
+}
+
+OptionSpec glitchOption() {
+    OptionSpec o;
+    o.key = "glitch_ns";
+    o.kind = OptionSpec::Kind::Float;
+    o.default_value = "0";
+    o.min = 0;
+    o.help = "ignore pulses shorter than this on every mapped line (ns)";
+    return o;
+}
+
+}  // namespace
+
+std::pair<std::string, std::string> splitScopedKey(const std::string& key) {
+    auto dot = key.find('.');
+    if (dot == std::string::npos) return {"", key};
+    return {key.substr(0, dot), key.substr(dot + 1)};
+}
+
+struct Session::Impl : EventSink {
+    struct Slot {
+        std::string instance;
+        std::unique_ptr<Decoder> decoder;
+        std::vector<int> role_line;  // role index -> selected line, -1 unbound
+        std::optional<GlitchFilter> glitch;
+        DecoderContext ctx;
+    };
+    struct Target {
+        int slot;
+        int role;
+    };
+    struct Pending {
+        Event e;
+        int slot;
+    };
+
+    CaptureReader* reader = nullptr;
+    std::vector<Slot> slots;
+    std::vector<LineRef> lines;
+    std::vector<std::vector<Target>> targets;  // per selected line
+    std::vector<std::uint8_t> levels;
+    std::deque<Pending> pending;
+    EventWindow window;
+    int emitting = -1;
+    Tick now = 0;
+    std::atomic<bool> stop{false};
+    std::vector<OutputSink*>* sinks = nullptr;
+    CaptureFacts* facts = nullptr;
+
+    void onEvent(Event&& e) override {
+        e.instance = slots[emitting].instance;
+        // Insert keeping start order (events mostly arrive in order: search from the back).
+        auto it = pending.end();
+        while (it != pending.begin() && std::prev(it)->e.start > e.start) --it;
+        pending.insert(it, Pending{std::move(e), emitting});
+    }
+
+    Tick watermark() const {
+        Tick w = now;
+        for (const auto& s : slots) {
+            w = std::min(w, s.decoder->watermark(now));
+            if (s.glitch && s.glitch->oldest() != kNoTick) w = std::min(w, s.glitch->oldest());
+        }
+        return w;
+    }
+
+    void output(Pending& p) {
+        if (p.e.wants_correlation) {
+            std::deque<Event> view;
+            for (const auto& q : pending) view.push_back(q.e);
+            window.setPending(&view);
+            slots[p.slot].decoder->correlate(p.e, window);
+            window.setPending(nullptr);
+        }
+        for (auto* s : *sinks) s->onEvent(p.e, *facts);
+        window.remember(p.e, 4096);
+    }
+
+    void release(bool all) {
+        const Tick w = all ? std::numeric_limits<Tick>::max() : watermark();
+        constexpr std::size_t kMaxHeld = 200000;  // bounded memory even if a decoder stalls
+        while (!pending.empty()) {
+            Pending& p = pending.front();
+            const bool forced = pending.size() > kMaxHeld;
+            if (!all && !forced) {
+                if (p.e.start >= w) break;
+                if (p.e.wants_correlation && p.e.end >= w) break;
+            }
+            Pending out = std::move(p);
+            pending.pop_front();
+            output(out);
+        }
+    }
+
+    void deliver(int slot_index, Tick t, int role, bool level) {
+        Slot& s = slots[slot_index];
+        emitting = slot_index;
+        if (!s.glitch) {
+            s.decoder->edge(t, role, level);
+            return;
+        }
+        s.glitch->push(t, role, level, [&](const GlitchFilter::Out& o) {
+            if (o.is_glitch) s.decoder->glitch(o.t, o.role);
+            else s.decoder->edge(o.t, o.role, o.level);
+        });
+    }
+
+    void advanceAll(Tick t) {
+        for (int i = 0; i < int(slots.size()); ++i) {
+            Slot& s = slots[i];
+            emitting = i;
+            if (s.glitch)
+                s.glitch->release(t, [&](const GlitchFilter::Out& o) {
+                    if (o.is_glitch) s.decoder->glitch(o.t, o.role);
+                    else s.decoder->edge(o.t, o.role, o.level);
+                });
+            s.decoder->advance(t);
+        }
+    }
+};
+
+Session::Session(std::vector<DecoderRequest> requests, CaptureReader& reader, std::string file_name)
+    : impl_(std::make_unique<Impl>()) {
+    impl_->reader = &reader;
+    impl_->sinks = &sinks_;
+    impl_->facts = &facts_;
+    facts_.file = std::move(file_name);
+    facts_.format = reader.formatName();
+    facts_.timebase = reader.timebase();
+    if (requests.empty()) throw InputError("no decoder chosen: use --proto NAME (see decode --list)");
+
+    const auto& sigs = reader.signals();
+    std::map<std::string, int> proto_count;
+    for (const auto& r : requests) proto_count[r.proto]++;
+    std::map<std::string, int> proto_seen;
+
+    for (auto& req : requests) {
+        const DecoderFactory* f = Registry::instance().find(req.proto);
+        if (!f) Registry::instance().create(req.proto, {});  // throws the "unknown decoder" error
+        const DecoderInfo& info = f->info();
+        Impl::Slot slot;
+        int n = ++proto_seen[req.proto];
+        slot.instance = proto_count[req.proto] > 1 ? fmt::format("{}#{}", req.proto, n) : req.proto;
+
+        // glitch_ns is handled here for every decoder.
+        double glitch_ns = 0;
+        if (auto it = req.options.find("glitch_ns"); it != req.options.end()) {
+            DecoderInfo gi;
+            gi.id = info.id;
+            gi.options = {glitchOption()};
+            glitch_ns = Options::resolve(gi, {{"glitch_ns", it->second}}).number("glitch_ns");
+            req.options.erase(it);
+        }
+        slot.decoder = f->create(Options::resolve(info, req.options));
+        if (glitch_ns > 0) {
+            Tick w = Tick(std::llround(reader.timebase().fromNs(glitch_ns)));
+            if (w > 0) slot.glitch.emplace(w);
+        }
+
+        for (const auto& [role, _] : req.map) {
+            bool known = false;
+            for (const auto& rs : info.roles) known |= rs.name == role;
+            if (!known) {
+                std::vector<std::string> roles;
+                for (const auto& rs : info.roles) roles.push_back(rs.name);
+                throw InputError(fmt::format("decoder {}: unknown role '{}' in --map (roles: {})",
+                                             info.id, role, fmt::join(roles, ", ")));
+            }
+        }
+        std::vector<LineRef> bound_refs;
+        for (const auto& rs : info.roles) {
+            std::optional<LineRef> ref;
+            if (auto it = req.map.find(rs.name); it != req.map.end()) {
+                ref = findSignal(sigs, it->second, false);
+                if (!ref) ref = findSignal(sigs, it->second, true);
+                if (!ref)
+                    throw InputError(fmt::format(
+                        "decoder {}: --map {}={}: no such signal in the capture (signals: {})",
+                        info.id, rs.name, it->second, signalList(sigs)));
+            } else {
+                std::vector<std::string> names = {rs.name};
+                names.insert(names.end(), rs.aliases.begin(), rs.aliases.end());
+                for (const auto& n2 : names) {
+                    if ((ref = findSignal(sigs, n2, true))) break;
+                }
+                // Never bind one signal to two roles automatically.
+                if (ref)
+                    for (const auto& b : bound_refs)
+                        if (b.signal == ref->signal && b.bit == ref->bit) ref.reset();
+            }
+            if (!ref) {
+                slot.role_line.push_back(-1);
+                if (rs.required)
+                    throw InputError(fmt::format(
+                        "decoder {}: role '{}' is not bound: use --map {}=SIGNAL (signals: {})",
+                        info.id, rs.name, rs.name, signalList(sigs)));
+                continue;
+            }
+            bound_refs.push_back(*ref);
+            int line = -1;
+            for (int i = 0; i < int(impl_->lines.size()); ++i)
+                if (impl_->lines[i].signal == ref->signal && impl_->lines[i].bit == ref->bit) line = i;
+            if (line < 0) {
+                line = int(impl_->lines.size());
+                impl_->lines.push_back(*ref);
+            }
+            slot.role_line.push_back(line);
+            std::string sname = sigs[ref->signal].full_name;
+            if (ref->bit >= 0) sname += fmt::format("[{}]", ref->bit);
+            facts_.bindings.push_back({info.id, slot.instance, rs.name, sname});
+        }
+        if (!info.need_one_of.empty()) {
+            bool any = false;
+            for (std::size_t r = 0; r < info.roles.size(); ++r)
+                for (const auto& name : info.need_one_of)
+                    any |= info.roles[r].name == name && slot.role_line[r] >= 0;
+            if (!any)
+                throw InputError(fmt::format("decoder {}: bind at least one of the roles {} (signals: {})",
+                                             info.id, fmt::join(info.need_one_of, ", "), signalList(sigs)));
+        }
+        facts_.protos.push_back(slot.instance);
+        impl_->slots.push_back(std::move(slot));
+    }
+
+    impl_->targets.resize(impl_->lines.size());
+    for (int s = 0; s < int(impl_->slots.size()); ++s)
+        for (int r = 0; r < int(impl_->slots[s].role_line.size()); ++r)
+            if (impl_->slots[s].role_line[r] >= 0)
+                impl_->targets[impl_->slots[s].role_line[r]].push_back({s, r});
+    reader.select(impl_->lines);
+}
+
+Session::~Session() = default;
+
+void Session::requestStop() { impl_->stop = true; }
+
+void Session::run() {
+    Impl& im = *impl_;
+    CaptureReader& reader = *im.reader;
+    im.levels = reader.initialLevels();
+    facts_.start = reader.startTick();
+    im.now = facts_.start;
+    for (int s = 0; s < int(im.slots.size()); ++s) {
+        auto& slot = im.slots[s];
+        slot.ctx.timebase = reader.timebase();
+        slot.ctx.capture_start = facts_.start;
+        for (int line : slot.role_line) slot.ctx.initial_levels.push_back(line < 0 ? -1 : im.levels[line]);
+        slot.ctx.sink = &im;
+        im.emitting = s;
+        slot.decoder->start(slot.ctx);
+        slot.decoder->setSink(&im);
+    }
+    for (auto* s : sinks_) s->begin(facts_);
+
+    EdgeBlock block;
+    block.edges.reserve(kEdgeBlockSize);
+    while (!im.stop && reader.next(block)) {
+        for (const Edge& e : block.edges) {
+            if (im.levels[e.line] == e.level) continue;  // repeated value, not an edge
+            im.levels[e.line] = e.level;
+            im.now = e.t;
+            ++facts_.edges;
+            for (const auto& tg : im.targets[e.line]) im.deliver(tg.slot, e.t, tg.role, e.level);
+        }
+        if (block.known_until != kNoTick && block.known_until > im.now) im.now = block.known_until;
+        im.advanceAll(im.now);
+        im.release(false);
+    }
+    if (!im.stop) {
+        // Drain the reader's end (a stopped follow has no end tick yet).
+        facts_.end = std::max(reader.endTick(), im.now);
+    } else {
+        facts_.end = im.now;
+    }
+    for (int s = 0; s < int(im.slots.size()); ++s) {
+        auto& slot = im.slots[s];
+        im.emitting = s;
+        if (slot.glitch)
+            slot.glitch->flush([&](const GlitchFilter::Out& o) {
+                if (o.is_glitch) slot.decoder->glitch(o.t, o.role);
+                else slot.decoder->edge(o.t, o.role, o.level);
+            });
+        slot.decoder->advance(facts_.end);
+        slot.decoder->finish(facts_.end);
+    }
+    im.release(true);
+    facts_.bytes = reader.bytesRead();
+    for (auto* s : sinks_) s->end(facts_);
+}
+
+namespace {
+struct CollectSink : OutputSink {
+    std::vector<Event>* out;
+    void onEvent(const Event& e, const CaptureFacts&) override { out->push_back(e); }
+};
+}  // namespace
+
+std::vector<Event> decodeWaveform(const Waveform& w, const std::vector<DecoderRequest>& requests) {
+    auto reader = memoryReader(w);
+    Session s(requests, *reader, "memory");
+    std::vector<Event> events;
+    CollectSink sink;
+    sink.out = &events;
+    s.addSink(&sink);
+    s.run();
+    return events;
+}
+
+}  // namespace busdecode

@@ -1,0 +1,76 @@
+#pragma once
+// A decode pass: binds each requested decoder's roles to capture signals, feeds every
+// decoder the edges of its lines in one merged time-ordered stream (several buses in
+// one pass), applies the glitch filter, releases events in time order and lets
+// decoders correlate with each other's events.
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "capture/capture_reader.h"
+#include "decoder.h"
+#include "event.h"
+
+namespace busdecode {
+
+struct DecoderRequest {
+    std::string proto;                          // decoder id
+    std::map<std::string, std::string> map;     // role -> signal name or index
+    std::map<std::string, std::string> options; // key -> value text (glitch_ns included)
+};
+
+// What the sinks learn about the capture before the first event.
+struct CaptureFacts {
+    std::string file;
+    std::string format;
+    Timebase timebase;
+    Tick start = 0;
+    Tick end = 0;  // known at the end only
+    struct Binding {
+        std::string proto, instance, role, signal;
+    };
+    std::vector<Binding> bindings;
+    std::vector<std::string> protos;  // instance names, in --proto order
+    std::uint64_t edges = 0;          // edges read on the mapped lines
+    std::uint64_t bytes = 0;
+};
+
+// The sinks: text, jsonl, report, LCM. The session calls begin, then onEvent in time
+// order, then end.
+class OutputSink {
+public:
+    virtual ~OutputSink() = default;
+    virtual void begin(const CaptureFacts& facts) { (void)facts; }
+    virtual void onEvent(const Event& e, const CaptureFacts& facts) = 0;
+    virtual void end(const CaptureFacts& facts) { (void)facts; }
+};
+
+class Session {
+public:
+    // Binds roles (throws InputError listing the capture's signals when a role can't be
+    // bound) and validates options (InputError naming decoder, option and valid values).
+    Session(std::vector<DecoderRequest> requests, CaptureReader& reader, std::string file_name = "");
+    ~Session();
+    void addSink(OutputSink* sink) { sinks_.push_back(sink); }
+    // Reads the whole capture (or follows it) and decodes. Input errors throw InputError.
+    void run();
+    // Asks a running follow loop to stop at the next block boundary (signal-safe).
+    void requestStop();
+    const CaptureFacts& facts() const { return facts_; }
+
+    struct Impl;
+
+private:
+    std::unique_ptr<Impl> impl_;
+    std::vector<OutputSink*> sinks_;
+    CaptureFacts facts_;
+};
+
+// Test helper: decodes an in-memory capture and returns the events in output order.
+std::vector<Event> decodeWaveform(const struct Waveform& w, const std::vector<DecoderRequest>& requests);
+
+// Splits "bissc.bits" into ("bissc", "bits") when the prefix names a requested decoder.
+std::pair<std::string, std::string> splitScopedKey(const std::string& key);
+
+}  // namespace busdecode

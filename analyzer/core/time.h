@@ -1,0 +1,36 @@
+#pragma once
+// Capture time: every edge and event is an int64 tick count in the capture's own
+// timebase (VCD timescale unit, or one sample for dense CSV and .sr). Keeping ticks
+// exact means sample indices compare 1:1 with sigrok's expected outputs.
+#include <cstdint>
+#include <limits>
+
+namespace busdecode {
+
+using Tick = std::int64_t;
+inline constexpr Tick kNoTick = std::numeric_limits<Tick>::min();
+
+// One tick lasts num/den seconds (e.g. 1/24'000'000 for a 24 MHz sample, 1/10^10 for
+// a 100 ps VCD timescale). Rational so that neither form loses precision.
+struct Timebase {
+    std::int64_t num = 1;
+    std::int64_t den = 1'000'000'000;
+
+    static Timebase fromSampleRate(std::int64_t hz) { return Timebase{1, hz}; }
+    double secondsPerTick() const { return double(num) / double(den); }
+    double nsPerTick() const { return secondsPerTick() * 1e9; }
+    double ticksPerNs() const { return 1.0 / nsPerTick(); }
+    // Exact for every realistic capture length (128-bit intermediate).
+    std::int64_t toNs(Tick t) const {
+        __int128 v = (__int128)t * num * 1'000'000'000;
+        __int128 q = v / den, r = v % den;
+        if (2 * (r < 0 ? -r : r) >= den) q += (v < 0 ? -1 : 1);  // round half away from zero
+        return (std::int64_t)q;
+    }
+    double toNsF(double ticks) const { return ticks * nsPerTick(); }
+    double fromNs(double ns) const { return ns * ticksPerNs(); }
+    double fromSeconds(double s) const { return s / secondsPerTick(); }
+    double sampleRateHz() const { return double(den) / double(num); }
+};
+
+}  // namespace busdecode

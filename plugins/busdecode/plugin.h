@@ -1,0 +1,23 @@
+#pragma once
+// The decoder plugin interface. A plugin is a Qt plugin (QPluginLoader) whose root
+// object implements DecoderPlugin and hands out decoder factories. The CLI loads every
+// plugin in <binary dir>/plugins, <prefix>/lib/busdecode/plugins and the directories
+// listed in BUSDECODE_PLUGIN_PATH (colon separated). See plugins/example/.
+#include <QtPlugin>
+#include <memory>
+#include <vector>
+
+#include "core/decoder.h"
+
+namespace busdecode {
+
+class DecoderPlugin {
+public:
+    virtual ~DecoderPlugin() = default;
+    virtual std::vector<std::shared_ptr<const DecoderFactory>> factories() const = 0;
+};
+
+}  // namespace busdecode
+
+#define BUSDECODE_PLUGIN_IID "org.busdecode.DecoderPlugin/1.0"
+Q_DECLARE_INTERFACE(busdecode::DecoderPlugin, BUSDECODE_PLUGIN_IID)

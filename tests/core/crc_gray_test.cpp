@@ -1,0 +1,42 @@
+// Shared mechanics against the published vectors of ../shared/PROTOCOLS.md §4.
+#include <gtest/gtest.h>
+
+#include "core/crc.h"
+#include "core/gray.h"
+
+using namespace busdecode;
+
+TEST(BissCrc6, OfficialAndCapturedVectors) {
+    EXPECT_EQ(bissCrc6(0b010011010101, 12), 0x1Cu);                      // V1 AN21
+    EXPECT_EQ(bissCrc6((0x05AC53ull << 2) | 0b00, 26), 0b101111u);        // V2 AN18
+    EXPECT_EQ(bissCrc6((0x0000000ull << 2) | 0b11, 28), 0x3Au);          // V3
+    EXPECT_EQ(bissCrc6((0x3FFFFFFull << 2) | 0b11, 28), 0x22u);          // V4
+    EXPECT_EQ(bissCrc6((0x123456ull << 2) | 0b11, 26), 0x35u);           // V5
+    EXPECT_EQ(bissCrc6((0x0A5Aull << 2) | 0b10, 15), 0x2Bu);             // V6
+    EXPECT_EQ(bissCrc6((0x2AAAAull << 2) | 0b01, 20), 0x2Du);            // V7
+    EXPECT_EQ(bissCrc6((0x12345678ull << 2) | 0b00, 34), 0x00u);         // V8
+}
+
+TEST(BissCrc16, AN21Vector) {
+    BitCrc crc = BitCrc::fromFullPoly(0x190D9, 0, true);
+    for (std::uint8_t b : {0xD9, 0xCF, 0xE0, 0xC0, 0xDA}) crc.pushBits(b, 8);
+    EXPECT_EQ(crc.value(), 0x5F29u);
+}
+
+TEST(BissCrc4, ControlVectors) {
+    EXPECT_EQ(bissCrc4(0b10000000000, 11), 0x6u);
+    EXPECT_EQ(bissCrc4(0x48, 8), 0x3u);
+    EXPECT_EQ(bissCrc4(0x44, 8), 0x4u);
+    EXPECT_EQ(bissCrc4(0x00, 8), 0xFu);
+    EXPECT_EQ(bissCrc4((1u << 10) | 0x7E, 11), 0xFu);
+}
+
+TEST(Gray, ReferencePairs) {
+    EXPECT_EQ(grayToBinary(0x1000), 0x1FFFu);
+    EXPECT_EQ(binaryToGray(0x8000), 0xC000u);
+    EXPECT_EQ(grayToBinary(0x2825), 0x3039u);
+    EXPECT_EQ(binaryToGray(0x1234), 0x1B2Eu);
+    EXPECT_EQ(binaryToGray(0x1579234), 0x1FC5B2Eu);
+    for (std::uint64_t v : {0ull, 1ull, 0xFFFFFFFFFFFFFFFFull, 0x8000000000000000ull, 123456789ull})
+        EXPECT_EQ(grayToBinary(binaryToGray(v)), v);
+}

@@ -1,0 +1,80 @@
+#include "paths.h"
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+#include <sys/wait.h>
+#include <unistd.h>
+
+namespace busdecode::test {
+
+std::string sourceDir() {
+    if (const char* e = std::getenv("BUSDECODE_SOURCE_DIR")) return e;
+    return BUSDECODE_SOURCE_DIR;
+}
+
+std::string sharedCaptures() {
+    if (const char* e = std::getenv("BUSDECODE_SHARED_DIR")) return std::string(e) + "/captures";
+    return sourceDir() + "/../shared/captures";
+}
+
+std::string binDir() {
+    if (const char* e = std::getenv("BUSDECODE_BIN_DIR")) return e;
+    return BUSDECODE_BIN_DIR;
+}
+
+std::string tempDir() {
+    static std::string dir = [] {
+        std::string tmpl = (std::filesystem::temp_directory_path() / "busdecode-test-XXXXXX").string();
+        if (!mkdtemp(tmpl.data())) throw std::runtime_error("mkdtemp failed");
+        return tmpl;
+    }();
+    return dir;
+}
+
+std::string readFile(const std::string& path) {
+    std::ifstream f(path, std::ios::binary);
+    if (!f) throw std::runtime_error("cannot read " + path);
+    std::ostringstream ss;
+    ss << f.rdbuf();
+    return ss.str();
+}
+
+void writeFile(const std::string& path, const std::string& text) {
+    std::ofstream f(path, std::ios::binary);
+    f << text;
+}
+
+std::string shellQuote(const std::string& s) {
+    std::string out = "'";
+    for (char c : s) {
+        if (c == '\'') out += "'\\''";
+        else out += c;
+    }
+    return out + "'";
+}
+
+RunResult runCommand(const std::string& cmdline) {
+    const std::string dir = tempDir();
+    static int counter = 0;
+    const std::string outf = dir + "/run" + std::to_string(++counter) + ".out";
+    const std::string errf = dir + "/run" + std::to_string(counter) + ".err";
+    const std::string full = "( " + cmdline + " ) >" + shellQuote(outf) + " 2>" + shellQuote(errf) + " </dev/null";
+    int st = std::system(full.c_str());
+    RunResult r;
+    r.status = (st != -1 && WIFEXITED(st)) ? WEXITSTATUS(st) : -1;
+    r.out = readFile(outf);
+    r.err = readFile(errf);
+    return r;
+}
+
+RunResult runDecode(const std::vector<std::string>& args) {
+    std::string cmd = shellQuote(binDir() + "/decode");
+    for (const auto& a : args) cmd += " " + shellQuote(a);
+    return runCommand(cmd);
+}
+
+}  // namespace busdecode::test
