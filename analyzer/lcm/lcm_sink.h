@@ -1,0 +1,18 @@
+#pragma once
+// --lcm [URL]: publishes every event as a typed LCM message while decoding
+// (DECODE_<PROTO>_<TYPE>) plus the generic annotation on DECODE_EVENTS.
+#include <memory>
+#include <string>
+
+#include "core/session.h"
+
+namespace busdecode {
+
+// url "" = LCM's default. Throws InputError when the URL is bad or the network is
+// unavailable. The sink prints a count of dropped messages at the end, if any.
+std::unique_ptr<OutputSink> makeLcmSink(const std::string& url);
+
+// `decode monitor [--lcm URL]`: the terminal dashboard. Returns the exit status.
+int runMonitor(int argc, char** argv);
+
+}  // namespace busdecode

@@ -1,0 +1,21 @@
+#pragma once
+// How an event is written out: one JSON object (the `jsonl` contract) or one human
+// line. Shared by the stdout sinks, the report, verify and the LCM annotation message,
+// so every output says exactly the same thing.
+#include <string>
+
+#include "core/event.h"
+#include "core/session.h"
+
+namespace busdecode {
+
+// {"proto":..,"type":..,"start_ns":..,"end_ns":..,<fields in order>,"errors":[..]}
+std::string eventToJson(const Event& e, const Timebase& tb);
+// JSON text of one value (numbers as integers when integral, strings escaped).
+std::string valueToJson(const Value& v);
+// "   12.345678 ms  bissc  frame  pos=0x... crc ok  [crc, short_frame]"
+std::string eventToText(const Event& e, const Timebase& tb);
+// A time in ns formatted with a unit that suits it ("12.345 us").
+std::string formatDuration(double ns);
+
+}  // namespace busdecode
