@@ -2,6 +2,7 @@
 // A capture source: VCD, CSV (sigrok dense, Saleae, plain), sigrok .sr, or memory.
 // Open parses the header; select() picks the mapped signals; next() streams edges of
 // those signals only, in blocks, so memory stays flat whatever the capture length.
+#include <atomic>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -48,6 +49,8 @@ public:
 struct OpenOptions {
     double rate_hz = 0;    // --rate: needed by plain CSV without a time column
     bool follow = false;   // --follow: keep reading a growing file
+    // Set (e.g. by Ctrl-C) to make a following reader return at its next poll.
+    const std::atomic<bool>* stop = nullptr;
 };
 
 // Picks the reader by content (and extension as a hint). Throws InputError naming the
