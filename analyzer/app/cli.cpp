@@ -1,5 +1,195 @@
+// The `decode` command line: argument parsing (Qt's QCommandLineParser), plugin
+// loading, and wiring captures, decoders and sinks together. Every user error is one
+// line on stderr and exit status 2.
 #include "cli.h"
 
+#include <atomic>
+#include <csignal>
+#include <cstdio>
+#include <unistd.h>
+
+#include <QCommandLineParser>
+#include <QCoreApplication>
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include "app/decode_args.h"
+#include "app/list_decoders.h"
+#include "core/options.h"
+#include "core/registry.h"
+#include "lcm/lcm_sink.h"
+#include "report/report_sink.h"
+#include "sinks/stream_sinks.h"
+#include "verify/verify.h"
+
 namespace busdecode {
-int runCli(int, char**) { return 2; }
+
+namespace {
+
+std::atomic<bool> g_stop{false};
+
+extern "C" void onInterrupt(int) { g_stop = true; }
+
+std::vector<std::string> toStd(const QStringList& l) {
+    std::vector<std::string> out;
+    for (const auto& s : l) out.push_back(s.toStdString());
+    return out;
+}
+
+// `--lcm` takes an optional URL: `--lcm udpm://...`, `--lcm=URL`, or bare `--lcm`.
+// QCommandLineParser has no optional values, so rewrite to `--lcm=...` first.
+QStringList normaliseArgs(int argc, char** argv) {
+    QStringList out;
+    for (int i = 0; i < argc; ++i) {
+        QString a = QString::fromLocal8Bit(argv[i]);
+        if (a == "--lcm") {
+            if (i + 1 < argc && QString::fromLocal8Bit(argv[i + 1]).contains("://")) {
+                out << "--lcm=" + QString::fromLocal8Bit(argv[++i]);
+            } else {
+                out << "--lcm=default";
+            }
+            continue;
+        }
+        out << a;
+    }
+    return out;
+}
+
+struct Parsed {
+    DecodeArgs args;
+    bool list = false;
+};
+
+Parsed parse(const QStringList& argv, bool verify) {
+    QCommandLineParser p;
+    p.setApplicationDescription("Decode logic-analyser captures of encoder and motion-control buses.");
+    p.addPositionalArgument("CAPTURE", "VCD, CSV or sigrok .sr capture; - reads standard input", "CAPTURE...");
+    QCommandLineOption proto("proto", "decoder to run (repeat for several buses)", "NAME");
+    QCommandLineOption map("map", "bind a decoder role to a capture signal", "ROLE=SIGNAL");
+    QCommandLineOption opt("opt", "set a decoder option", "KEY=VALUE");
+    QCommandLineOption format("format", "output format: text or jsonl", "FORMAT", "text");
+    QCommandLineOption report("report", "write a text or .html report", "FILE");
+    QCommandLineOption lcm("lcm", "publish events over LCM (optional URL)", "URL");
+    QCommandLineOption rate("rate", "sample rate for CSV files without time or rate", "HZ");
+    QCommandLineOption follow("follow", "keep reading a growing capture (or a pipe)");
+    QCommandLineOption realtime("realtime", "pace a recorded capture at its own time scale");
+    QCommandLineOption list("list", "list decoders, roles, options and defaults");
+    QCommandLineOption rules("rules", "verify: rules file (TOML)", "FILE");
+    QCommandLineOption junit("junit", "verify: write JUnit XML", "FILE");
+    QCommandLineOption jobs("jobs", "verify: captures checked in parallel", "N", "1");
+    QCommandLineOption help({"h", "help"}, "show this help");
+    QCommandLineOption version("version", "show the version");
+    for (auto* o : {&proto, &map, &opt, &format, &report, &lcm, &rate, &follow, &realtime, &list, &rules,
+                    &junit, &jobs, &help, &version})
+        p.addOption(*o);
+    if (!p.parse(argv)) throw InputError(p.errorText().toStdString());
+    if (p.isSet(help)) {
+        fmt::print("{}", p.helpText().toStdString());
+        fmt::print("\nCommands:\n  decode CAPTURE... --proto NAME [...]\n"
+                   "  decode verify CAPTURE... --rules FILE [--junit FILE] [--jobs N]\n"
+                   "  decode monitor [--lcm URL]\n  decode --list\n");
+        std::exit(0);
+    }
+    if (p.isSet(version)) {
+        fmt::print("decode (busdecode) 0.1.0\n");
+        std::exit(0);
+    }
+    Parsed out;
+    out.list = p.isSet(list);
+    DecodeArgs& a = out.args;
+    a.captures = toStd(p.positionalArguments());
+    a.protos = toStd(p.values(proto));
+    a.maps = toStd(p.values(map));
+    a.opts = toStd(p.values(opt));
+    a.format = p.value(format).toStdString();
+    if (a.format != "text" && a.format != "jsonl")
+        throw InputError(fmt::format("--format {}: expected text or jsonl", a.format));
+    a.report = p.value(report).toStdString();
+    if (p.isSet(lcm)) a.lcm_url = p.value(lcm) == "default" ? std::string() : p.value(lcm).toStdString();
+    if (p.isSet(rate)) {
+        auto r = parseNumber(p.value(rate).toStdString());
+        if (!r || *r <= 0) throw InputError(fmt::format("--rate {}: expected a positive number of Hz",
+                                                        p.value(rate).toStdString()));
+        a.rate_hz = *r;
+    }
+    a.follow = p.isSet(follow);
+    a.realtime = p.isSet(realtime);
+    a.rules = p.value(rules).toStdString();
+    a.junit = p.value(junit).toStdString();
+    auto j = parseInteger(p.value(jobs).toStdString());
+    if (!j || *j < 1 || *j > 256) throw InputError("--jobs: expected a whole number from 1 to 256");
+    a.jobs = int(*j);
+    if (!verify && (!a.rules.empty() || !a.junit.empty()))
+        throw InputError("--rules and --junit belong to 'decode verify'");
+    if (verify && a.rules.empty()) throw InputError("decode verify: --rules FILE is required");
+    if (!out.list && a.captures.empty()) throw InputError("no capture given (see decode --help)");
+    return out;
+}
+
+int runDecode(const DecodeArgs& a) {
+    auto requests = buildRequests(a.protos, a.maps, a.opts);
+    OpenOptions open;
+    open.rate_hz = a.rate_hz;
+    open.follow = a.follow;
+    open.stop = &g_stop;
+    std::signal(SIGINT, onInterrupt);
+    std::signal(SIGTERM, onInterrupt);
+    // Live output wants every line at once; a batch run wants big writes.
+    static char buffer[1 << 20];
+    if (a.follow || a.realtime || a.lcm_url) std::setvbuf(stdout, nullptr, _IOLBF, 0);
+    else std::setvbuf(stdout, buffer, _IOFBF, sizeof buffer);
+
+    std::unique_ptr<OutputSink> lcm;
+    if (a.lcm_url) lcm = makeLcmSink(*a.lcm_url);
+    for (const auto& capture : a.captures) {
+        std::vector<std::unique_ptr<OutputSink>> owned;
+        owned.push_back(a.format == "jsonl" ? makeJsonlSink(stdout) : makeTextSink(stdout));
+        if (!a.report.empty()) {
+            std::string path = a.report;
+            if (a.captures.size() > 1) {
+                // One report per capture: insert the capture's stem before the extension.
+                auto slash = capture.find_last_of('/');
+                std::string stem = capture.substr(slash == std::string::npos ? 0 : slash + 1);
+                auto dot = path.find_last_of('.');
+                path = dot == std::string::npos ? path + "-" + stem : path.substr(0, dot) + "-" + stem + path.substr(dot);
+            }
+            owned.push_back(makeReportSink(path));
+        }
+        std::vector<OutputSink*> sinks;
+        for (auto& s : owned) sinks.push_back(s.get());
+        if (lcm) sinks.push_back(lcm.get());
+        decodeCapture(capture, requests, open, sinks, a.realtime, &g_stop);
+        if (g_stop) break;
+    }
+    return 0;
+}
+
+}  // namespace
+
+int runCli(int argc, char** argv) {
+    QCoreApplication app(argc, argv);
+    try {
+        if (argc > 1 && std::string(argv[1]) == "monitor") return runMonitor(argc - 1, argv + 1);
+        const bool verify = argc > 1 && std::string(argv[1]) == "verify";
+        QStringList args = normaliseArgs(argc, argv);
+        if (verify) args.removeAt(1);
+        Parsed parsed = parse(args, verify);
+        loadPlugins();
+        if (parsed.list) {
+            printDecoderList(stdout);
+            return 0;
+        }
+        if (verify) return runVerify(parsed.args);
+        return runDecode(parsed.args);
+    } catch (const InputError& e) {
+        std::fflush(stdout);
+        fmt::print(stderr, "decode: {}\n", e.what());
+        return 2;
+    } catch (const std::exception& e) {
+        std::fflush(stdout);
+        fmt::print(stderr, "decode: internal error: {}\n", e.what());
+        return 2;
+    }
+}
+
 }  // namespace busdecode

@@ -1,6 +1,7 @@
 #pragma once
 // The decode command's arguments, shared by `decode` and `decode verify`: captures,
 // --proto/--map/--opt (with `proto.` scoping when several decoders run), output choices.
+#include <atomic>
 #include <optional>
 #include <string>
 #include <vector>
@@ -41,5 +42,10 @@ void loadPlugins();
 // Opens one capture and decodes it into the sinks. Throws InputError on bad input.
 CaptureFacts decodeCapture(const std::string& path, const std::vector<DecoderRequest>& requests,
                            const OpenOptions& open, const std::vector<OutputSink*>& sinks);
+// The same, optionally paced at the capture's own time scale (--realtime) and stopped
+// between blocks when *stop becomes true (Ctrl-C while following).
+CaptureFacts decodeCapture(const std::string& path, const std::vector<DecoderRequest>& requests,
+                           const OpenOptions& open, const std::vector<OutputSink*>& sinks, bool realtime,
+                           const std::atomic<bool>* stop);
 
 }  // namespace busdecode

@@ -102,6 +102,8 @@ struct Session::Impl : EventSink {
     int emitting = -1;
     Tick now = 0;
     std::atomic<bool> stop{false};
+    const std::atomic<bool>* external_stop = nullptr;
+    bool stopped() const { return stop || (external_stop && *external_stop); }
     std::vector<OutputSink*>* sinks = nullptr;
     CaptureFacts* facts = nullptr;
 
@@ -291,6 +293,7 @@ Session::Session(std::vector<DecoderRequest> requests, CaptureReader& reader, st
 Session::~Session() = default;
 
 void Session::requestStop() { impl_->stop = true; }
+void Session::setStopFlag(const std::atomic<bool>* flag) { impl_->external_stop = flag; }
 
 void Session::run() {
     Impl& im = *impl_;
@@ -312,7 +315,7 @@ void Session::run() {
 
     EdgeBlock block;
     block.edges.reserve(kEdgeBlockSize);
-    while (!im.stop && reader.next(block)) {
+    while (!im.stopped() && reader.next(block)) {
         for (const Edge& e : block.edges) {
             if (im.levels[e.line] == e.level) continue;  // repeated value, not an edge
             im.levels[e.line] = e.level;
@@ -324,7 +327,7 @@ void Session::run() {
         im.advanceAll(im.now);
         im.release(false);
     }
-    if (!im.stop) {
+    if (!im.stopped()) {
         // Drain the reader's end (a stopped follow has no end tick yet).
         facts_.end = std::max(reader.endTick(), im.now);
     } else {

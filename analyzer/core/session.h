@@ -3,6 +3,7 @@
 // decoder the edges of its lines in one merged time-ordered stream (several buses in
 // one pass), applies the glitch filter, releases events in time order and lets
 // decoders correlate with each other's events.
+#include <atomic>
 #include <map>
 #include <memory>
 #include <string>
@@ -57,6 +58,8 @@ public:
     void run();
     // Asks a running follow loop to stop at the next block boundary (signal-safe).
     void requestStop();
+    // An external flag (set from a SIGINT handler) checked between blocks as well.
+    void setStopFlag(const std::atomic<bool>* flag);
     const CaptureFacts& facts() const { return facts_; }
 
     struct Impl;

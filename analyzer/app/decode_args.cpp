@@ -1,0 +1,188 @@
+#include "decode_args.h"
+
+#include <chrono>
+#include <cstdlib>
+#include <mutex>
+#include <set>
+#include <thread>
+
+#include <QCoreApplication>
+#include <QDir>
+#include <QPluginLoader>
+#include <QString>
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include "busdecode/plugin.h"
+#include "core/registry.h"
+
+namespace busdecode {
+
+namespace {
+
+std::pair<std::string, std::string> splitAssignment(const std::string& what, const std::string& s) {
+    auto eq = s.find('=');
+    if (eq == std::string::npos || eq == 0)
+        throw InputError(fmt::format("{} '{}': expected KEY=VALUE", what, s));
+    return {s.substr(0, eq), s.substr(eq + 1)};
+}
+
+bool declaresOption(const DecoderInfo& info, const std::string& key) {
+    if (key == "glitch_ns") return true;
+    for (const auto& o : info.options)
+        if (o.key == key) return true;
+    return false;
+}
+
+bool declaresRole(const DecoderInfo& info, const std::string& role) {
+    for (const auto& r : info.roles)
+        if (r.name == role) return true;
+    return false;
+}
+
+}  // namespace
+
+std::vector<DecoderRequest> buildRequests(const std::vector<std::string>& protos,
+                                          const std::vector<std::string>& maps,
+                                          const std::vector<std::string>& opts) {
+    std::vector<DecoderRequest> reqs;
+    std::vector<const DecoderInfo*> infos;
+    for (const auto& p : protos) {
+        const DecoderFactory* f = Registry::instance().find(p);
+        if (!f) Registry::instance().create(p, {});  // throws "unknown decoder ... (available: ...)"
+        reqs.push_back({p, {}, {}});
+        infos.push_back(&f->info());
+    }
+    // A `proto.` prefix scopes a key to one decoder id; otherwise it goes to every
+    // requested decoder that declares it.
+    auto apply = [&](const std::string& what, const std::string& text, bool is_map) {
+        auto [key, value] = splitAssignment(what, text);
+        std::string scope;
+        if (auto dot = key.find('.'); dot != std::string::npos) {
+            std::string prefix = key.substr(0, dot);
+            for (const auto& p : protos)
+                if (p == prefix) scope = prefix;
+            if (!scope.empty()) key = key.substr(dot + 1);
+        }
+        bool used = false;
+        for (std::size_t i = 0; i < reqs.size(); ++i) {
+            if (!scope.empty() && reqs[i].proto != scope) continue;
+            const bool known = is_map ? declaresRole(*infos[i], key) : declaresOption(*infos[i], key);
+            if (!known && (scope.empty() && reqs.size() > 1)) continue;
+            if (!known) {
+                // Let the decoder's own validation produce the error listing valid keys.
+                if (is_map) {
+                    std::vector<std::string> roles;
+                    for (const auto& r : infos[i]->roles) roles.push_back(r.name);
+                    throw InputError(fmt::format("decoder {}: unknown role '{}' in --map (roles: {})",
+                                                 reqs[i].proto, key, fmt::join(roles, ", ")));
+                }
+                Options::resolve(*infos[i], {{key, value}});
+            }
+            (is_map ? reqs[i].map : reqs[i].options)[key] = value;
+            used = true;
+        }
+        if (!used) {
+            std::vector<std::string> keys;
+            for (const auto* info : infos) {
+                if (is_map)
+                    for (const auto& r : info->roles) keys.push_back(info->id + "." + r.name);
+                else
+                    for (const auto& o : info->options) keys.push_back(info->id + "." + o.key);
+            }
+            throw InputError(fmt::format("{} {}: no chosen decoder has '{}' (valid: {})", what, text, key,
+                                         fmt::join(keys, ", ")));
+        }
+    };
+    for (const auto& m : maps) apply("--map", m, true);
+    for (const auto& o : opts) apply("--opt", o, false);
+    return reqs;
+}
+
+void loadPlugins() {
+    static std::once_flag once;
+    std::call_once(once, [] {
+        QStringList dirs;
+        const QString app = QCoreApplication::instance() ? QCoreApplication::applicationDirPath() : QString();
+        if (const char* env = std::getenv("BUSDECODE_PLUGIN_PATH"))
+            for (const auto& d : QString::fromLocal8Bit(env).split(':', Qt::SkipEmptyParts)) dirs << d;
+        if (!app.isEmpty()) {
+            dirs << app + "/plugins";
+            dirs << app + "/../lib/busdecode/plugins";
+            dirs << app + "/../lib/x86_64-linux-gnu/busdecode/plugins";
+        }
+        std::set<QString> seen;
+        for (const auto& d : dirs) {
+            QDir dir(d);
+            if (!dir.exists()) continue;
+            for (const auto& file : dir.entryList({"*.so"}, QDir::Files, QDir::Name)) {
+                const QString path = dir.absoluteFilePath(file);
+                if (!seen.insert(QFileInfo(path).canonicalFilePath()).second) continue;
+                QPluginLoader loader(path);
+                QObject* root = loader.instance();
+                auto* plugin = root ? qobject_cast<DecoderPlugin*>(root) : nullptr;
+                if (!plugin) {
+                    fmt::print(stderr, "decode: warning: {}: not a busdecode plugin ({})\n",
+                               path.toStdString(), loader.errorString().toStdString());
+                    continue;
+                }
+                for (auto& f : plugin->factories()) Registry::instance().add(f);
+            }
+        }
+    });
+}
+
+namespace {
+
+// --realtime: hands out blocks no faster than the capture's own time runs.
+class PacedReader : public CaptureReader {
+public:
+    explicit PacedReader(std::unique_ptr<CaptureReader> inner) : in_(std::move(inner)) {}
+    const std::vector<SignalInfo>& signals() const override { return in_->signals(); }
+    Timebase timebase() const override { return in_->timebase(); }
+    std::string formatName() const override { return in_->formatName(); }
+    void select(const std::vector<LineRef>& l) override { in_->select(l); }
+    std::vector<std::uint8_t> initialLevels() override {
+        auto v = in_->initialLevels();
+        t0_ = std::chrono::steady_clock::now();
+        return v;
+    }
+    Tick startTick() const override { return in_->startTick(); }
+    bool next(EdgeBlock& b) override {
+        if (!in_->next(b)) return false;
+        Tick last = b.edges.empty() ? b.known_until : b.edges.back().t;
+        if (last != kNoTick) {
+            const double s = double(last - in_->startTick()) * in_->timebase().secondsPerTick();
+            std::this_thread::sleep_until(t0_ + std::chrono::duration<double>(s));
+        }
+        return true;
+    }
+    Tick endTick() const override { return in_->endTick(); }
+    std::uint64_t bytesRead() const override { return in_->bytesRead(); }
+    std::uint64_t bytesTotal() const override { return in_->bytesTotal(); }
+
+private:
+    std::unique_ptr<CaptureReader> in_;
+    std::chrono::steady_clock::time_point t0_;
+};
+
+}  // namespace
+
+CaptureFacts decodeCapture(const std::string& path, const std::vector<DecoderRequest>& requests,
+                           const OpenOptions& open, const std::vector<OutputSink*>& sinks) {
+    return decodeCapture(path, requests, open, sinks, false, nullptr);
+}
+
+CaptureFacts decodeCapture(const std::string& path, const std::vector<DecoderRequest>& requests,
+                           const OpenOptions& open, const std::vector<OutputSink*>& sinks, bool realtime,
+                           const std::atomic<bool>* stop) {
+    std::unique_ptr<CaptureReader> reader = openCapture(path, open);
+    if (realtime) reader = std::make_unique<PacedReader>(std::move(reader));
+    Session session(requests, *reader, path);
+    if (stop) session.setStopFlag(stop);
+    for (auto* s : sinks) session.addSink(s);
+    session.run();
+    return session.facts();
+}
+
+}  // namespace busdecode

@@ -1,0 +1,119 @@
+#include "event_format.h"
+
+#include <cmath>
+
+#include <fmt/format.h>
+
+namespace busdecode {
+
+namespace {
+
+void appendJsonString(std::string& out, const std::string& s) {
+    out += '"';
+    for (unsigned char c : s) {
+        switch (c) {
+            case '"': out += "\\\""; break;
+            case '\\': out += "\\\\"; break;
+            case '\n': out += "\\n"; break;
+            case '\r': out += "\\r"; break;
+            case '\t': out += "\\t"; break;
+            default:
+                if (c < 0x20) out += fmt::format("\\u{:04x}", c);
+                else out += char(c);
+        }
+    }
+    out += '"';
+}
+
+void appendValue(std::string& out, const Value& v) {
+    std::visit(
+        [&](const auto& x) {
+            using T = std::decay_t<decltype(x)>;
+            if constexpr (std::is_same_v<T, Null>) out += "null";
+            else if constexpr (std::is_same_v<T, bool>) out += x ? "true" : "false";
+            else if constexpr (std::is_same_v<T, std::int64_t> || std::is_same_v<T, std::uint64_t>)
+                out += fmt::format("{}", x);
+            else if constexpr (std::is_same_v<T, double>) {
+                if (!std::isfinite(x)) out += "null";
+                else if (x == std::floor(x) && std::fabs(x) < 1e15) out += fmt::format("{}", std::int64_t(x));
+                else out += fmt::format("{}", x);
+            } else if constexpr (std::is_same_v<T, std::string>) appendJsonString(out, x);
+            else {
+                out += '[';
+                for (std::size_t i = 0; i < x.size(); ++i) {
+                    if (i) out += ',';
+                    out += fmt::format("{}", x[i]);
+                }
+                out += ']';
+            }
+        },
+        v);
+}
+
+std::string valueToText(const Value& v) {
+    if (auto s = std::get_if<std::string>(&v)) return *s;
+    if (auto b = std::get_if<bool>(&v)) return *b ? "1" : "0";
+    if (auto d = std::get_if<double>(&v)) return std::isfinite(*d) ? fmt::format("{:.6g}", *d) : "-";
+    return valueToJson(v);
+}
+
+}  // namespace
+
+std::string valueToJson(const Value& v) {
+    std::string out;
+    appendValue(out, v);
+    return out;
+}
+
+std::string eventToJson(const Event& e, const Timebase& tb) {
+    std::string out;
+    out.reserve(256);
+    out += "{\"proto\":";
+    appendJsonString(out, e.proto);
+    out += ",\"type\":";
+    appendJsonString(out, e.type);
+    out += fmt::format(",\"start_ns\":{},\"end_ns\":{}", tb.toNs(e.start), tb.toNs(e.end));
+    for (const auto& f : e.fields) {
+        if (f.key == "proto" || f.key == "type" || f.key == "start_ns" || f.key == "end_ns" ||
+            f.key == "errors")
+            continue;  // the common keys are the session's, never a decoder's
+        out += ',';
+        appendJsonString(out, f.key);
+        out += ':';
+        appendValue(out, f.value);
+    }
+    out += ",\"errors\":[";
+    for (std::size_t i = 0; i < e.errors.size(); ++i) {
+        if (i) out += ',';
+        appendJsonString(out, e.errors[i]);
+    }
+    out += "]}";
+    return out;
+}
+
+std::string formatDuration(double ns) {
+    const double a = std::fabs(ns);
+    if (a >= 1e9) return fmt::format("{:.6f} s", ns / 1e9);
+    if (a >= 1e6) return fmt::format("{:.3f} ms", ns / 1e6);
+    if (a >= 1e3) return fmt::format("{:.3f} us", ns / 1e3);
+    return fmt::format("{:.0f} ns", ns);
+}
+
+std::string eventToText(const Event& e, const Timebase& tb) {
+    std::string body = e.summary;
+    if (body.empty()) {
+        for (const auto& f : e.fields) {
+            if (!body.empty()) body += ' ';
+            body += f.key + "=" + valueToText(f.value);
+        }
+    }
+    std::string line = fmt::format("{:>14.9f} s  {:<8} {:<12} {}", double(tb.toNs(e.start)) / 1e9,
+                                   e.instance.empty() ? e.proto : e.instance, e.type, body);
+    if (!e.errors.empty()) {
+        line += "  !";
+        for (std::size_t i = 0; i < e.errors.size(); ++i) line += (i ? "," : "") + e.errors[i];
+    }
+    return line;
+}
+
+}  // namespace busdecode

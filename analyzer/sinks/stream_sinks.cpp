@@ -1,0 +1,78 @@
+#include "stream_sinks.h"
+
+#include <map>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "event_format.h"
+
+namespace busdecode {
+
+namespace {
+
+// Counts per decoder instance, printed after the events of a text run.
+struct Tally {
+    std::map<std::string, std::uint64_t> by_type;
+    std::map<std::string, std::uint64_t> by_error;
+    std::uint64_t faulty = 0;
+};
+
+class TextSink : public OutputSink {
+public:
+    explicit TextSink(std::FILE* out) : out_(out) {}
+    void begin(const CaptureFacts& f) override {
+        tallies_.clear();
+        std::string binds;
+        for (const auto& b : f.bindings) binds += fmt::format(" {}.{}={}", b.instance, b.role, b.signal);
+        fmt::print(out_, "# {} ({}, {:.6g} MS/s timebase){}\n", f.file, f.format,
+                   f.timebase.sampleRateHz() / 1e6, binds);
+    }
+    void onEvent(const Event& e, const CaptureFacts& f) override {
+        std::string line = eventToText(e, f.timebase);
+        line += '\n';
+        std::fwrite(line.data(), 1, line.size(), out_);
+        auto& t = tallies_[e.instance.empty() ? e.proto : e.instance];
+        t.by_type[e.type]++;
+        if (!e.errors.empty()) t.faulty++;
+        for (const auto& err : e.errors) t.by_error[err]++;
+    }
+    void end(const CaptureFacts& f) override {
+        const double dur = double(f.timebase.toNs(f.end - f.start));
+        fmt::print(out_, "# summary: {} edges in {}\n", f.edges, formatDuration(dur));
+        for (const auto& inst : f.protos) {
+            const auto& t = tallies_[inst];
+            std::string types, errs;
+            for (const auto& [k, n] : t.by_type) types += fmt::format("{}{} {}", types.empty() ? "" : ", ", n, k);
+            for (const auto& [k, n] : t.by_error) errs += fmt::format("{}{} {}", errs.empty() ? "" : ", ", n, k);
+            fmt::print(out_, "# {}: {}; {} with errors{}\n", inst, types.empty() ? "no events" : types,
+                       t.faulty, errs.empty() ? "" : " (" + errs + ")");
+        }
+        std::fflush(out_);
+    }
+
+private:
+    std::FILE* out_;
+    std::map<std::string, Tally> tallies_;
+};
+
+class JsonlSink : public OutputSink {
+public:
+    explicit JsonlSink(std::FILE* out) : out_(out) {}
+    void onEvent(const Event& e, const CaptureFacts& f) override {
+        std::string line = eventToJson(e, f.timebase);
+        line += '\n';
+        std::fwrite(line.data(), 1, line.size(), out_);
+    }
+    void end(const CaptureFacts&) override { std::fflush(out_); }
+
+private:
+    std::FILE* out_;
+};
+
+}  // namespace
+
+std::unique_ptr<OutputSink> makeTextSink(std::FILE* out) { return std::make_unique<TextSink>(out); }
+std::unique_ptr<OutputSink> makeJsonlSink(std::FILE* out) { return std::make_unique<JsonlSink>(out); }
+
+}  // namespace busdecode
