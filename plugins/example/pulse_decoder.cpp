@@ -1,0 +1,67 @@
+#include "pulse_decoder.h"
+
+#include <string>
+
+namespace pulse {
+
+using namespace busdecode;
+
+const DecoderInfo& pulseInfo() {
+    static const DecoderInfo info = [] {
+        DecoderInfo d;
+        d.id = "pulse";
+        d.name = "Pulse widths (example plugin)";
+        d.description = "Reports each active pulse on one line with its width.";
+        d.roles = {{"line", true, {"line", "in", "sig"}, "the line to watch"}};
+        OptionSpec pol;
+        pol.key = "active";
+        pol.kind = OptionSpec::Kind::Choice;
+        pol.choices = {"high", "low"};
+        pol.default_value = "high";
+        pol.help = "which level is a pulse";
+        OptionSpec min;
+        min.key = "min_ns";
+        min.kind = OptionSpec::Kind::Float;
+        min.default_value = "0";
+        min.min = 0;
+        min.help = "flag pulses shorter than this as `short`";
+        d.options = {pol, min};
+        d.events = {{"pulse", "one active pulse", {"width_ns"}}};
+        return d;
+    }();
+    return info;
+}
+
+PulseDecoder::PulseDecoder(const Options& o)
+    : active_high_(o.text("active") == "high"), min_ns_(o.number("min_ns")) {}
+
+void PulseDecoder::start(const DecoderContext& ctx) {
+    Decoder::start(ctx);
+    level_ = ctx.initial_levels[0] == 1;
+}
+
+void PulseDecoder::edge(Tick t, int, bool level) {
+    level_ = level;
+    if (level == active_high_) {
+        since_ = t;
+        busyFrom(t);
+        return;
+    }
+    if (since_ == kNoTick) return;  // the capture started inside a pulse
+    Event e;
+    e.proto = "pulse";
+    e.type = "pulse";
+    e.start = since_;
+    e.end = t;
+    const double width = tb().toNsF(double(t - since_));
+    e.set("width_ns", width);
+    if (width < min_ns_) e.error("short");
+    e.summary = "width " + std::to_string(width) + " ns";
+    emit(std::move(e));
+    since_ = kNoTick;
+    idle();
+}
+
+void PulseDecoder::finish(Tick) { idle(); }
+
+}  // namespace pulse

@@ -1,0 +1,136 @@
+// The decode command as users meet it: the contract's options, output formats, and one
+// clear line with exit status 2 for every kind of bad input.
+#include <gtest/gtest.h>
+
+#include <QJsonDocument>
+#include <QJsonObject>
+#include <QJsonArray>
+#include <sstream>
+
+#include "support/paths.h"
+#include "vcd_text.h"
+
+using namespace busdecode::test;
+
+namespace {
+
+std::vector<std::string> lines(const std::string& s) {
+    std::vector<std::string> out;
+    std::istringstream in(s);
+    for (std::string l; std::getline(in, l);) out.push_back(l);
+    return out;
+}
+
+int countLines(const std::string& s) { return int(lines(s).size()); }
+
+// One SPI word (mode 3) and, on separate lines, two UART bytes at 115200 baud.
+std::string mixedCapture() {
+    VcdText v({"cs", "sclk", "mosi", "miso", "tx"}, {1, 1, 1, 1, 1});
+    v.spiWord(0, 1, 2, 3, 1000, 100, 0x80000000u, 0x10001B2Eu, 32);
+    std::int64_t t = v.uartByte(4, 2000, 115200, 'O');
+    v.uartByte(4, t + 5000, 115200, 'K');
+    return v.str(200000);
+}
+
+std::string writeTemp(const std::string& name, const std::string& text) {
+    const std::string path = tempDir() + "/" + name;
+    writeFile(path, text);
+    return path;
+}
+
+}  // namespace
+
+TEST(Cli, ListShowsEveryBuiltInDecoderWithRolesAndOptions) {
+    auto r = runDecode({"--list"});
+    ASSERT_EQ(r.status, 0) << r.err;
+    for (const char* id : {"bissc", "spi", "ssi", "tmc8100", "tmcl", "uart"})
+        EXPECT_NE(r.out.find(std::string("\n") + id + "  "), std::string::npos) << id << "\n" << r.out;
+    EXPECT_NE(r.out.find("glitch_ns"), std::string::npos);
+    EXPECT_NE(r.out.find("cpol"), std::string::npos);
+}
+
+TEST(Cli, JsonlHasTheContractKeysInTimeOrderAcrossTwoBuses) {
+    const auto path = writeTemp("mixed.vcd", mixedCapture());
+    auto r = runDecode({path, "--proto", "spi", "--proto", "uart", "--opt", "uart.baud=115200", "--format", "jsonl"});
+    ASSERT_EQ(r.status, 0) << r.err;
+    double last = -1;
+    int spi = 0, uart = 0;
+    for (const auto& l : lines(r.out)) {
+        QJsonParseError err;
+        auto doc = QJsonDocument::fromJson(QByteArray::fromStdString(l), &err);
+        ASSERT_EQ(err.error, QJsonParseError::NoError) << l;
+        auto o = doc.object();
+        for (const char* k : {"proto", "type", "start_ns", "end_ns", "errors"}) EXPECT_TRUE(o.contains(k)) << l;
+        EXPECT_GE(o["start_ns"].toDouble(), last);
+        last = o["start_ns"].toDouble();
+        if (o["proto"] == "spi") {
+            ++spi;
+            EXPECT_EQ(o["mosi"].toInteger(), 0x80000000LL);
+            EXPECT_EQ(o["miso"].toInteger(), 0x10001B2ELL);
+            EXPECT_EQ(o["bits"].toInt(), 32);
+        }
+        if (o["proto"] == "uart" && o["type"] == "byte") {
+            EXPECT_EQ(o["value"].toInt(), uart == 0 ? 'O' : 'K');
+            EXPECT_EQ(o["line"].toString(), "tx");
+            ++uart;
+        }
+    }
+    EXPECT_EQ(spi, 1);
+    EXPECT_EQ(uart, 2);
+}
+
+TEST(Cli, TextOutputHasOneLinePerEventAndASummary) {
+    const auto path = writeTemp("mixed_text.vcd", mixedCapture());
+    auto r = runDecode({path, "--proto", "uart", "--opt", "baud=115200"});
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.out.find("# summary:"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("uart"), std::string::npos);
+}
+
+TEST(Cli, StandardInputIsACapture) {
+    const auto path = writeTemp("stdin.vcd", mixedCapture());
+    auto r = runCommand(shellQuote(binDir() + "/decode") + " - --proto uart --opt baud=115200 --format jsonl < " +
+                        shellQuote(path));
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(countLines(r.out), 2) << r.out;
+}
+
+struct BadInput {
+    std::vector<std::string> args;
+    std::string expect;  // a piece of the one-line message
+};
+
+class CliErrors : public ::testing::TestWithParam<BadInput> {};
+
+TEST_P(CliErrors, OneLineOnStderrAndExitStatus2) {
+    const auto path = writeTemp("ok.vcd", mixedCapture());
+    std::vector<std::string> args;
+    for (auto a : GetParam().args) args.push_back(a == "@" ? path : a);
+    auto r = runDecode(args);
+    EXPECT_EQ(r.status, 2) << r.out << r.err;
+    EXPECT_EQ(countLines(r.err), 1) << r.err;
+    EXPECT_NE(r.err.find(GetParam().expect), std::string::npos) << r.err;
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Cases, CliErrors,
+    ::testing::Values(
+        BadInput{{"/nonexistent/cap.vcd", "--proto", "spi"}, "/nonexistent/cap.vcd"},
+        BadInput{{"@", "--proto", "nosuch"}, "unknown decoder 'nosuch' (available: "},
+        BadInput{{"@", "--proto", "ssi"}, "role 'clk' is not bound"},
+        BadInput{{"@", "--proto", "ssi"}, "signals: top.cs, top.sclk, top.mosi, top.miso, top.tx"},
+        BadInput{{"@", "--proto", "spi", "--opt", "cpol=2"}, "cpol=2: expected 0 or 1"},
+        BadInput{{"@", "--proto", "spi", "--opt", "speed=3"}, "unknown option 'speed'"},
+        BadInput{{"@", "--proto", "uart", "--opt", "parity=maybe"}, "one of"},
+        BadInput{{"@", "--proto", "spi", "--map", "sclk=nosuch"}, "--map sclk=nosuch: no such signal"},
+        BadInput{{"@", "--proto", "spi", "--format", "xml"}, "--format xml"},
+        BadInput{{"@"}, "no decoder chosen"},
+        BadInput{{"--proto", "spi"}, "no capture given"},
+        BadInput{{"@", "--proto", "spi", "--bogus"}, "bogus"}));
+
+TEST(Cli, MalformedVcdNamesFileAndLine) {
+    const auto path = writeTemp("bad.vcd", "$timescale 1 ns $end\n$var wire 1 ! a $end\n$enddefinitions $end\n#0 1!\n#10 1?\n");
+    auto r = runDecode({path, "--proto", "uart", "--map", "tx=a"});
+    EXPECT_EQ(r.status, 2);
+    EXPECT_NE(r.err.find(path + ":5:"), std::string::npos) << r.err;
+}

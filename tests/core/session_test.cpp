@@ -1,0 +1,162 @@
+// The session's own jobs, checked with a tiny decoder defined here: role binding by
+// alias, edges in time order, glitch filter, time-ordered release across decoders,
+// and cross-decoder correlation.
+#include <gtest/gtest.h>
+
+#include "core/event_window.h"
+#include "core/registry.h"
+#include "core/session.h"
+#include "core/waveform.h"
+
+using namespace busdecode;
+
+namespace {
+
+// Emits one event per rising edge on `in`, spanning from the previous falling edge;
+// optionally asks to be correlated with the other decoder's events.
+class RiseDecoder : public Decoder {
+public:
+    explicit RiseDecoder(const Options& o) : tag_(o.text("tag")), correlate_(o.flag("correlate")) {}
+    void edge(Tick t, int, bool level) override {
+        if (!level) {
+            fell_ = t;
+            busyFrom(t);
+            return;
+        }
+        Event e;
+        e.proto = "rise";
+        e.type = tag_;
+        e.start = fell_ == kNoTick ? t : fell_;
+        e.end = t;
+        e.wants_correlation = correlate_;
+        emit(std::move(e));
+        idle();
+        fell_ = kNoTick;
+    }
+    void glitch(Tick t, int) override { glitches.push_back(t); }
+    void finish(Tick) override {}
+    void correlate(Event& e, const EventWindow& w) override {
+        int n = 0;
+        w.forEach("rise", "other", e.start, e.end + 1000, [&](const Event&) {
+            ++n;
+            return true;
+        });
+        e.set("peers", std::int64_t(n));
+    }
+    static std::vector<Tick> glitches;
+
+private:
+    std::string tag_;
+    bool correlate_;
+    Tick fell_ = kNoTick;
+};
+std::vector<Tick> RiseDecoder::glitches;
+
+DecoderInfo riseInfo() {
+    DecoderInfo d;
+    d.id = "rise";
+    d.roles = {{"in", true, {"input", "x"}, ""}};
+    OptionSpec tag;
+    tag.key = "tag";
+    tag.kind = OptionSpec::Kind::String;
+    tag.default_value = "edge";
+    OptionSpec cor;
+    cor.key = "correlate";
+    cor.kind = OptionSpec::Kind::Bool;
+    cor.default_value = "0";
+    d.options = {tag, cor};
+    return d;
+}
+
+struct RegisterRise {
+    RegisterRise() { Registry::instance().add(std::make_shared<SimpleFactory<RiseDecoder>>(riseInfo())); }
+} register_rise;
+
+Waveform twoLines() {
+    WaveBuilder b(Timebase{1, 1'000'000'000}, {"top.a", "top.input"}, {1, 1});
+    b.set(0, 100, false);
+    b.set(0, 200, true);
+    b.set(1, 150, false);
+    b.set(1, 250, true);
+    b.set(1, 300, false);
+    b.set(1, 303, true);  // a 3 ns glitch
+    b.set(0, 400, false);
+    b.set(0, 500, true);
+    return b.build(1000);
+}
+
+}  // namespace
+
+TEST(Session, BindsByAliasAndExplicitMap) {
+    auto w = twoLines();
+    auto ev = decodeWaveform(w, {{"rise", {}, {}}});  // alias "input"
+    ASSERT_EQ(ev.size(), 2u);
+    EXPECT_EQ(ev[0].start, 150);
+    EXPECT_EQ(ev[0].end, 250);
+    auto ev2 = decodeWaveform(w, {{"rise", {{"in", "a"}}, {}}});
+    ASSERT_EQ(ev2.size(), 2u);
+    EXPECT_EQ(ev2[0].start, 100);
+    auto ev3 = decodeWaveform(w, {{"rise", {{"in", "0"}}, {}}});  // by index
+    EXPECT_EQ(ev3[0].start, 100);
+}
+
+TEST(Session, UnboundRoleListsSignals) {
+    WaveBuilder b(Timebase{}, {"foo", "bar"}, {1, 1});
+    auto w = b.build(10);
+    try {
+        decodeWaveform(w, {{"rise", {}, {}}});
+        FAIL() << "expected InputError";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("role 'in' is not bound"), std::string::npos);
+        EXPECT_NE(std::string(e.what()).find("signals: foo, bar"), std::string::npos);
+    }
+}
+
+TEST(Session, GlitchFilterRemovesShortPulsesAndReportsThem) {
+    RiseDecoder::glitches.clear();
+    auto w = twoLines();
+    auto ev = decodeWaveform(w, {{"rise", {}, {{"glitch_ns", "5"}}}});
+    ASSERT_EQ(ev.size(), 1u);  // the 3 ns pulse is gone
+    ASSERT_EQ(RiseDecoder::glitches.size(), 1u);
+    EXPECT_EQ(RiseDecoder::glitches[0], 300);
+    auto ev2 = decodeWaveform(w, {{"rise", {}, {{"glitch_ns", "2"}}}});
+    EXPECT_EQ(ev2.size(), 2u);  // a 2 ns filter keeps it
+}
+
+TEST(Session, EventsFromSeveralDecodersComeOutInStartOrder) {
+    auto w = twoLines();
+    auto ev = decodeWaveform(w, {{"rise", {{"in", "a"}}, {{"tag", "other"}}}, {"rise", {{"in", "input"}}, {}}});
+    ASSERT_EQ(ev.size(), 4u);
+    for (std::size_t i = 1; i < ev.size(); ++i) EXPECT_LE(ev[i - 1].start, ev[i].start);
+    EXPECT_EQ(ev[0].instance, "rise#1");
+    EXPECT_EQ(ev[1].instance, "rise#2");
+}
+
+TEST(Session, CorrelationSeesOtherDecodersEventsByTime) {
+    auto w = twoLines();
+    auto ev = decodeWaveform(
+        w, {{"rise", {{"in", "a"}}, {{"tag", "other"}}}, {"rise", {{"in", "input"}}, {{"correlate", "1"}}}});
+    int checked = 0;
+    for (const auto& e : ev) {
+        if (e.type != "edge") continue;
+        ASSERT_TRUE(e.has("peers"));
+        ++checked;
+    }
+    EXPECT_EQ(checked, 2);
+    // The first "edge" event spans 150..250; its window 150..1250 holds one "other"
+    // event (400..500), which had not been emitted yet when the "edge" event was.
+    const Event* first = nullptr;
+    for (const auto& e : ev)
+        if (e.type == "edge" && !first) first = &e;
+    EXPECT_EQ(asInt(*first->get("peers")), 1);
+}
+
+TEST(Session, BadOptionNamesDecoderAndValidValues) {
+    auto w = twoLines();
+    try {
+        decodeWaveform(w, {{"rise", {}, {{"correlate", "maybe"}}}});
+        FAIL();
+    } catch (const InputError& e) {
+        EXPECT_STREQ(e.what(), "decoder rise: option correlate=maybe: expected 0 or 1");
+    }
+}

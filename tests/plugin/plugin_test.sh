@@ -1,0 +1,23 @@
+#!/usr/bin/env bash
+# Installs busdecode into a temporary prefix, builds the example plugin against the
+# installed headers and CMake package, and decodes with it through BUSDECODE_PLUGIN_PATH.
+set -euo pipefail
+build_dir=$1
+src_dir=$2
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+cmake --install "$build_dir" --prefix "$tmp/prefix" >/dev/null
+cmake -S "$src_dir/plugins/example" -B "$tmp/pulse" -G Ninja -DCMAKE_PREFIX_PATH="$tmp/prefix" >/dev/null
+cmake --build "$tmp/pulse" >/dev/null
+out=$(BUSDECODE_PLUGIN_PATH="$tmp/pulse" "$tmp/prefix/bin/decode" "$src_dir/tests/plugin/pulses.vcd" \
+      --proto pulse --opt min_ns=20 --format jsonl)
+echo "$out"
+expected='{"proto":"pulse","type":"pulse","start_ns":100,"end_ns":150,"width_ns":50,"errors":[]}
+{"proto":"pulse","type":"pulse","start_ns":400,"end_ns":410,"width_ns":10,"errors":["short"]}
+{"proto":"pulse","type":"pulse","start_ns":1000,"end_ns":1250,"width_ns":250,"errors":[]}'
+if [ "$out" != "$expected" ]; then
+  echo "unexpected output; expected:"; echo "$expected"; exit 1
+fi
+# --list shows the plugin's declaration
+BUSDECODE_PLUGIN_PATH="$tmp/pulse" "$tmp/prefix/bin/decode" --list | grep -q "^pulse  Pulse widths"
+echo "plugin test passed"
