@@ -1,0 +1,132 @@
+#include "spi_decoder.h"
+
+#include <fmt/format.h>
+
+#include "spi_info.h"
+
+namespace busdecode {
+
+SpiDecoder::SpiDecoder(const Options& o)
+    : cpol_(int(o.integer("cpol"))),
+      cpha_(int(o.integer("cpha"))),
+      bits_(int(o.integer("bits"))),
+      lsb_first_(o.flag("lsb_first")),
+      cs_active_high_(o.text("cs_polarity") == "active-high"),
+      // Modes 0 and 3 sample on the rising edge, modes 1 and 2 on the falling edge.
+      sample_on_rising_(cpol_ == cpha_),
+      mosi_(o.flag("lsb_first")),
+      miso_(o.flag("lsb_first")) {}
+
+void SpiDecoder::start(const DecoderContext& ctx) {
+    Decoder::start(ctx);
+    for (int r = 0; r < kSpiRoleCount; ++r) {
+        int lv = r < int(ctx.initial_levels.size()) ? ctx.initial_levels[r] : -1;
+        bound_[r] = lv >= 0;
+        level_[r] = settled_[r] = lv;
+    }
+    group_open_ = false;
+    resetWord();
+}
+
+void SpiDecoder::edge(Tick t, int role, bool level) {
+    if (role < 0 || role >= kSpiRoleCount) return;
+    if (group_open_ && t > group_tick_) settle();
+    level_[role] = level ? 1 : 0;
+    group_tick_ = t;
+    group_open_ = true;
+    busyFrom(t);
+}
+
+void SpiDecoder::advance(Tick now) {
+    if (group_open_ && now > group_tick_) settle();
+}
+
+void SpiDecoder::settle() {
+    group_open_ = false;
+    const Tick t = group_tick_;
+    if (bound_[kSpiCs] && level_[kSpiCs] != settled_[kSpiCs]) {
+        // Any cs change ends the word in progress (sigrok resets its state likewise).
+        if (count_ > 0 && csActive(settled_[kSpiCs])) emitWord(t, true);
+        resetWord();
+    }
+    const bool clock_edge = level_[kSpiSclk] != settled_[kSpiSclk];
+    const bool sampling = clock_edge && (level_[kSpiSclk] == 1) == sample_on_rising_;
+    settled_ = level_;
+    if (sampling && (!bound_[kSpiCs] || csActive(level_[kSpiCs]))) sampleBit(t);
+    if (count_ > 0)
+        setBusyFrom(word_start_);
+    else
+        idle();
+}
+
+void SpiDecoder::sampleBit(Tick t) {
+    if (count_ == 0) {
+        word_start_ = t;
+        prev_sample_ = t;
+    } else {
+        prev_sample_ = last_sample_;
+    }
+    last_sample_ = t;
+    if (bound_[kSpiMosi]) mosi_.push(level_[kSpiMosi] == 1);
+    if (bound_[kSpiMiso]) miso_.push(level_[kSpiMiso] == 1);
+    ++count_;
+    if (count_ == bits_) {
+        // sigrok's end estimate: one bit period (the last sample interval) after the last bit.
+        emitWord(t + (t - prev_sample_), false);
+        resetWord();
+    }
+}
+
+void SpiDecoder::emitWord(Tick end, bool short_frame) {
+    Event e;
+    e.proto = "spi";
+    e.type = "transfer";
+    e.start = word_start_;
+    e.end = std::max(end, word_start_);
+    const int n = count_;
+    const int digits = (n + 3) / 4;
+    std::string text;
+    auto put = [&](const char* key, const char* label, const BitWord& w, bool bound) {
+        if (!bound) {
+            e.set(key, Null{});
+            return;
+        }
+        // MSB-first words keep the newest 64 bits; LSB-first words the first 64.
+        std::uint64_t v = lowBits(w.value(), n);
+        e.set(key, v);
+        text += fmt::format("{}{} 0x{:0{}X}", text.empty() ? "" : " ", label, v, digits);
+    };
+    put("mosi", "MOSI", mosi_, bound_[kSpiMosi]);
+    put("miso", "MISO", miso_, bound_[kSpiMiso]);
+    e.set("bits", std::int64_t(n));
+    if (short_frame) {
+        e.error("short_frame");
+        text += fmt::format(" ({} of {} bits)", n, bits_);
+    }
+    if (word_glitch_) e.error("glitch");
+    e.summary = std::move(text);
+    emit(std::move(e));
+}
+
+void SpiDecoder::resetWord() {
+    mosi_.clear();
+    miso_.clear();
+    count_ = 0;
+    word_glitch_ = false;
+}
+
+void SpiDecoder::glitch(Tick t, int role) {
+    (void)t;
+    // A removed pulse on a line of the word in progress makes that word doubtful.
+    if (role == kSpiSclk || role == kSpiMosi || role == kSpiMiso || role == kSpiCs)
+        if (count_ > 0) word_glitch_ = true;
+}
+
+void SpiDecoder::finish(Tick end) {
+    if (group_open_) settle();
+    if (count_ > 0) emitWord(end, true);
+    resetWord();
+    idle();
+}
+
+}  // namespace busdecode
