@@ -47,8 +47,8 @@ public:
 };
 
 struct OpenOptions {
-    double rate_hz = 0;    // --rate: needed by plain CSV without a time column
-    bool follow = false;   // --follow: keep reading a growing file
+    double rate_hz = 0;   // --rate: needed by plain CSV without a time column
+    bool follow = false;  // --follow: keep reading a growing file
     // Set (e.g. by Ctrl-C) to make a following reader return at its next poll.
     const std::atomic<bool>* stop = nullptr;
 };

@@ -1,0 +1,87 @@
+// openCapture: recognises the format by content, not by the file name: a ZIP is a
+// sigrok session, text starting with a `$keyword` is VCD, other text is CSV.
+#include <cstdlib>
+#include <filesystem>
+
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include "core/options.h"
+#include "readers.h"
+
+namespace busdecode {
+
+std::string printable(std::string_view s, std::size_t max) {
+    std::string out;
+    for (std::size_t i = 0; i < s.size() && i < max; ++i) {
+        const auto u = static_cast<unsigned char>(s[i]);
+        if (u >= 0x20 && u < 0x7f)
+            out += char(u);
+        else
+            out += fmt::format("\\x{:02x}", u);
+    }
+    if (s.size() > max) out += "...";
+    return out;
+}
+
+namespace {
+
+bool looksBinary(std::string_view head) {
+    std::size_t odd = 0;
+    for (char c : head) {
+        const auto u = static_cast<unsigned char>(c);
+        if (u == 0) return true;
+        if (u < 0x20 && c != '\n' && c != '\r' && c != '\t' && c != '\f') ++odd;
+    }
+    return odd * 10 > head.size();  // a few stray control bytes are not enough
+}
+
+// A seekable, already unlinked copy of standard input (libzip needs to seek).
+int copyToTempFile(TextSource& src) {
+    std::string tmpl = (std::filesystem::temp_directory_path() / "busdecode-stdin-XXXXXX").string();
+    int fd = mkstemp(tmpl.data());
+    if (fd < 0)
+        throw InputError(src.name() +
+                         ": cannot create a temporary file for a .sr from standard input");
+    unlink(tmpl.c_str());
+    try {
+        src.drainTo(fd);
+    } catch (...) {
+        close(fd);
+        throw;
+    }
+    lseek(fd, 0, SEEK_SET);
+    return fd;
+}
+
+}  // namespace
+
+std::unique_ptr<CaptureReader> openCapture(const std::string& path, const OpenOptions& opts) {
+    auto src = std::make_unique<TextSource>(path, opts);
+    std::string_view head = src->peek(4096);
+    if (head.empty()) throw InputError(src->name() + ": empty file");
+    if (head.size() >= 4 && head.substr(0, 4) == std::string_view("PK\x03\x04", 4)) {
+        if (path == "-") {
+            int fd = copyToTempFile(*src);
+            return openSr("", fd, src->name(), opts);
+        }
+        const std::string name = src->name();
+        src.reset();
+        return openSr(path, -1, name, opts);
+    }
+    std::string_view text = head;
+    if (text.substr(0, 3) == "\xef\xbb\xbf") text.remove_prefix(3);  // UTF-8 byte order mark
+    while (!text.empty() && (text.front() == ' ' || text.front() == '\t' || text.front() == '\r' ||
+                             text.front() == '\n'))
+        text.remove_prefix(1);
+    if (text.empty() && head.size() < 4096)
+        throw InputError(src->name() + ": empty file (only blank lines)");
+    if (looksBinary(head))
+        throw InputError(
+            src->name() +
+            ": unknown format: binary data that is neither VCD, CSV nor a sigrok .sr session");
+    if (!text.empty() && text.front() == '$') return openVcd(std::move(src), opts);
+    return openCsv(std::move(src), opts);
+}
+
+}  // namespace busdecode

@@ -1,0 +1,349 @@
+// sigrok session (.sr) reader: a ZIP holding `metadata` (INI) and the raw logic
+// samples in chunks `logic-1-1`, `logic-1-2`, ... (old sessions: one `logic-1`), each a
+// run of little-endian words of `unitsize` bytes; probe N is bit N-1 of a word.
+// Chunks are streamed through a fixed buffer; only changes of the selected probes
+// become edges. One tick is one sample (timebase 1/samplerate).
+//
+// The sample rate is taken as the file states it, even where it is known to be wrong
+// (sigrok-dumps' spi/ad7920 claims 5 Hz): ticks stay sample indices either way, so
+// sample-based comparisons hold; nanosecond times then follow the stated rate.
+//
+// signals() lists every probe bit 0 .. total probes-1, so the 0-based index of a signal
+// is its bit in the sample word; unnamed (disabled) probes are called D<bit>.
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstring>
+#include <map>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+#include <unistd.h>
+#include <zip.h>
+
+#include "core/options.h"
+#include "readers.h"
+
+namespace busdecode {
+
+namespace {
+
+std::string trim(const std::string& s) {
+    std::size_t b = 0, e = s.size();
+    while (b < e && std::isspace(static_cast<unsigned char>(s[b])))
+        ++b;
+    while (e > b && std::isspace(static_cast<unsigned char>(s[e - 1])))
+        --e;
+    return s.substr(b, e - b);
+}
+
+// "24 MHz", "1MHz", "5 Hz", "100 kHz", "1.5 GHz", "24000000" -> Hz (0 if unreadable).
+std::int64_t parseRate(const std::string& text) {
+    std::string s = trim(text);
+    std::size_t i = 0;
+    while (i < s.size() && (std::isdigit(static_cast<unsigned char>(s[i])) || s[i] == '.'))
+        ++i;
+    if (i == 0) return 0;
+    const double v = std::strtod(s.substr(0, i).c_str(), nullptr);
+    std::string unit = trim(s.substr(i));
+    for (auto& c : unit)
+        c = char(std::tolower(static_cast<unsigned char>(c)));
+    double mul = 0;
+    if (unit.empty() || unit == "hz")
+        mul = 1;
+    else if (unit == "khz")
+        mul = 1e3;
+    else if (unit == "mhz")
+        mul = 1e6;
+    else if (unit == "ghz")
+        mul = 1e9;
+    const double hz = v * mul;
+    if (!(hz >= 1) || hz > 1e15) return 0;
+    return std::int64_t(std::llround(hz));
+}
+
+class SrReader : public CaptureReader {
+public:
+    SrReader(const std::string& path, int fd, const std::string& name, const OpenOptions& opts)
+        : name_(name), opts_(opts) {
+        int err = 0;
+        if (fd >= 0) {
+            zip_ = zip_fdopen(fd, ZIP_RDONLY, &err);
+            if (!zip_) close(fd);
+        } else {
+            zip_ = zip_open(path.c_str(), ZIP_RDONLY, &err);
+        }
+        if (!zip_) {
+            zip_error_t ze;
+            zip_error_init_with_code(&ze, err);
+            std::string msg = zip_error_strerror(&ze);
+            zip_error_fini(&ze);
+            throw InputError(
+                fmt::format("{}: not a readable sigrok session (.sr): {}", name_, msg));
+        }
+        try {
+            readMetadata();
+            findChunks();
+        } catch (...) {
+            zip_discard(zip_);
+            zip_ = nullptr;
+            throw;
+        }
+    }
+    ~SrReader() override {
+        if (file_) zip_fclose(file_);
+        if (zip_) zip_discard(zip_);
+    }
+
+    const std::vector<SignalInfo>& signals() const override { return signals_; }
+    Timebase timebase() const override { return Timebase::fromSampleRate(rate_); }
+    std::string formatName() const override { return "sigrok-sr"; }
+
+    void select(const std::vector<LineRef>& lines) override {
+        sel_.clear();
+        mask_ = 0;
+        for (std::size_t i = 0; i < lines.size(); ++i) {
+            const int bit = lines[i].signal;
+            if (bit < 0 || bit >= int(signals_.size())) throw std::out_of_range("SrReader::select");
+            sel_.push_back({bit, std::uint32_t(i)});
+            mask_ |= std::uint32_t(1) << bit;
+        }
+    }
+
+    std::vector<std::uint8_t> initialLevels() override {
+        std::vector<std::uint8_t> out(sel_.size(), 0);
+        if (!started_) {
+            started_ = true;
+            std::uint32_t w = 0;
+            if (readWord(w)) {
+                prev_ = w & mask_;
+                sample_ = 1;
+            } else {
+                done_ = true;  // no samples at all
+                sample_ = 1;
+            }
+        }
+        for (std::size_t i = 0; i < sel_.size(); ++i)
+            out[i] = std::uint8_t((prev_ >> sel_[i].bit) & 1);
+        return out;
+    }
+    Tick startTick() const override { return 0; }
+
+    bool next(EdgeBlock& block) override {
+        block.clear();
+        if (!started_) initialLevels();
+        if (done_) return false;
+        const std::size_t limit = kEdgeBlockSize - sel_.size();
+        while (block.edges.size() <= limit) {
+            if (pos_ + unit_ > len_ && !refill()) {
+                done_ = true;
+                block.known_until = endTick();
+                return !block.edges.empty();
+            }
+            // Scan whole words in the buffer; edges only where a selected bit changes.
+            const std::uint8_t* p = buf_.data() + pos_;
+            const std::size_t words = (len_ - pos_) / unit_;
+            std::size_t k = 0;
+            for (; k < words && block.edges.size() <= limit; ++k, p += unit_) {
+                std::uint32_t w = p[0];
+                if (unit_ > 1) w |= std::uint32_t(p[1]) << 8;
+                if (unit_ > 2) w |= std::uint32_t(p[2]) << 16;
+                if (unit_ > 3) w |= std::uint32_t(p[3]) << 24;
+                w &= mask_;
+                if (w != prev_) {
+                    const std::uint32_t diff = w ^ prev_;
+                    const Tick t = Tick(sample_ + k);
+                    for (const auto& s : sel_)
+                        if ((diff >> s.bit) & 1)
+                            block.edges.push_back({t, s.line, std::uint8_t((w >> s.bit) & 1)});
+                    prev_ = w;
+                }
+            }
+            pos_ += k * unit_;
+            sample_ += k;
+        }
+        block.known_until = Tick(sample_) - 1;
+        return true;
+    }
+    Tick endTick() const override { return sample_ > 0 ? Tick(sample_) - 1 : 0; }
+    std::uint64_t bytesRead() const override { return consumed_ + pos_; }
+    std::uint64_t bytesTotal() const override { return total_bytes_; }
+
+private:
+    struct Sel {
+        int bit;
+        std::uint32_t line;
+    };
+
+    void readMetadata() {
+        zip_stat_t st;
+        zip_file_t* f = zip_fopen(zip_, "metadata", 0);
+        if (!f || zip_stat(zip_, "metadata", 0, &st) != 0)
+            throw InputError(fmt::format("{}: not a sigrok session: no metadata file", name_));
+        std::string text(std::size_t(std::min<zip_uint64_t>(st.size, 1 << 20)), '\0');
+        zip_int64_t n = zip_fread(f, text.data(), text.size());
+        zip_fclose(f);
+        if (n < 0) throw InputError(fmt::format("{}: cannot read the metadata", name_));
+        text.resize(std::size_t(n));
+
+        std::map<int, std::string> probes;
+        int total = 0;
+        bool in_device = false, have_rate = false;
+        std::string rate_text;
+        std::size_t at = 0;
+        while (at < text.size()) {
+            std::size_t nl = text.find('\n', at);
+            if (nl == std::string::npos) nl = text.size();
+            std::string line = trim(text.substr(at, nl - at));
+            at = nl + 1;
+            if (line.empty() || line[0] == ';' || line[0] == '#') continue;
+            if (line.front() == '[') {
+                in_device = line.rfind("[device", 0) == 0;
+                continue;
+            }
+            if (!in_device) continue;
+            auto eq = line.find('=');
+            if (eq == std::string::npos) continue;
+            const std::string key = trim(line.substr(0, eq)), value = trim(line.substr(eq + 1));
+            if (key == "samplerate") {
+                have_rate = true;
+                rate_text = value;
+                rate_ = parseRate(value);
+            } else if (key == "unitsize") {
+                unit_ = std::size_t(std::atoi(value.c_str()));
+                if (unit_ < 1 || unit_ > 4)
+                    throw InputError(fmt::format(
+                        "{}: unitsize={} not supported (1 to 4 bytes per sample)", name_, value));
+            } else if (key == "total probes") {
+                total = std::atoi(value.c_str());
+            } else if (key.rfind("probe", 0) == 0) {
+                const int n = std::atoi(key.c_str() + 5);
+                if (n >= 1) probes[n] = value;
+            } else if (key == "capturefile") {
+                capturefile_ = value;
+            }
+        }
+        if (!have_rate) throw InputError(fmt::format("{}: metadata has no samplerate", name_));
+        if (rate_ <= 0)
+            throw InputError(fmt::format("{}: samplerate '{}' is not a rate", name_, rate_text));
+        if (unit_ == 0) throw InputError(fmt::format("{}: metadata has no unitsize", name_));
+        if (!probes.empty()) total = std::max(total, probes.rbegin()->first);
+        if (total > int(unit_ * 8))
+            throw InputError(
+                fmt::format("{}: {} probes do not fit in unitsize={}", name_, total, unit_));
+        for (int bit = 0; bit < total; ++bit) {
+            auto it = probes.find(bit + 1);
+            std::string n = it != probes.end() ? it->second : fmt::format("D{}", bit);
+            signals_.push_back({n, n, 1});
+        }
+    }
+
+    void findChunks() {
+        const std::string prefix = capturefile_.empty() ? "logic-1" : capturefile_;
+        std::map<long, std::string> found;
+        const zip_int64_t n = zip_get_num_entries(zip_, 0);
+        for (zip_int64_t i = 0; i < n; ++i) {
+            const char* nm = zip_get_name(zip_, zip_uint64_t(i), 0);
+            if (!nm) continue;
+            std::string s = nm;
+            if (s.rfind(prefix + "-", 0) == 0) {
+                const std::string num = s.substr(prefix.size() + 1);
+                if (!num.empty() && num.find_first_not_of("0123456789") == std::string::npos)
+                    found[std::atol(num.c_str())] = s;
+            }
+        }
+        if (found.empty()) {
+            zip_stat_t st;
+            if (zip_stat(zip_, prefix.c_str(), 0, &st) == 0) {
+                chunks_.push_back(prefix);  // old single-file session
+                total_bytes_ = st.size;
+                return;
+            }
+            throw InputError(fmt::format("{}: no logic data (no {}-1 chunk)", name_, prefix));
+        }
+        long expect = 1;
+        for (const auto& [k, s] : found) {
+            if (k != expect)
+                throw InputError(fmt::format("{}: missing chunk {}-{}", name_, prefix, expect));
+            chunks_.push_back(s);
+            zip_stat_t st;
+            if (zip_stat(zip_, s.c_str(), 0, &st) == 0) total_bytes_ += st.size;
+            ++expect;
+        }
+        if (total_bytes_ % unit_ != 0)
+            throw InputError(fmt::format(
+                "{}: logic data of {} bytes is not a whole number of samples of unitsize={}", name_,
+                total_bytes_, unit_));
+    }
+
+    // Moves the unread tail to the front and reads more, crossing chunk boundaries
+    // (a sample may straddle two chunks). False when no whole word is left.
+    bool refill() {
+        const std::size_t tail = len_ - pos_;
+        consumed_ += pos_;
+        if (buf_.empty()) buf_.resize(1 << 18);
+        std::memmove(buf_.data(), buf_.data() + pos_, tail);
+        pos_ = 0;
+        len_ = tail;
+        while (len_ < unit_ || len_ < buf_.size() / 2) {
+            if (!file_) {
+                if (next_chunk_ >= chunks_.size()) break;
+                file_ = zip_fopen(zip_, chunks_[next_chunk_].c_str(), 0);
+                if (!file_)
+                    throw InputError(
+                        fmt::format("{}: cannot read chunk {}", name_, chunks_[next_chunk_]));
+                ++next_chunk_;
+            }
+            zip_int64_t n = zip_fread(file_, buf_.data() + len_, buf_.size() - len_);
+            if (n < 0)
+                throw InputError(
+                    fmt::format("{}: corrupt chunk {}", name_, chunks_[next_chunk_ - 1]));
+            if (n == 0) {
+                zip_fclose(file_);
+                file_ = nullptr;
+                continue;
+            }
+            len_ += std::size_t(n);
+        }
+        return len_ >= unit_;
+    }
+
+    bool readWord(std::uint32_t& w) {
+        if (pos_ + unit_ > len_ && !refill()) return false;
+        const std::uint8_t* p = buf_.data() + pos_;
+        w = 0;
+        for (std::size_t i = 0; i < unit_; ++i)
+            w |= std::uint32_t(p[i]) << (8 * i);
+        pos_ += unit_;
+        return true;
+    }
+
+    std::string name_;
+    OpenOptions opts_;
+    zip_t* zip_ = nullptr;
+    zip_file_t* file_ = nullptr;
+    std::vector<std::string> chunks_;
+    std::size_t next_chunk_ = 0;
+    std::string capturefile_;
+    std::int64_t rate_ = 0;
+    std::size_t unit_ = 0;
+    std::vector<SignalInfo> signals_;
+    std::vector<Sel> sel_;
+    std::uint32_t mask_ = 0;
+    std::uint32_t prev_ = 0;
+    std::vector<std::uint8_t> buf_;
+    std::size_t pos_ = 0, len_ = 0;
+    std::uint64_t consumed_ = 0, total_bytes_ = 0;
+    std::uint64_t sample_ = 0;  // index of the next word
+    bool started_ = false, done_ = false;
+};
+
+}  // namespace
+
+std::unique_ptr<CaptureReader> openSr(const std::string& path, int fd, const std::string& name,
+                                      const OpenOptions& opts) {
+    return std::make_unique<SrReader>(path, fd, name, opts);
+}
+
+}  // namespace busdecode

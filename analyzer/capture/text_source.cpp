@@ -1,0 +1,209 @@
+#include "text_source.h"
+
+#include <algorithm>
+#include <cerrno>
+#include <chrono>
+#include <cstdlib>
+#include <thread>
+
+#include <fcntl.h>
+#include <poll.h>
+#include <sys/mman.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <fmt/format.h>
+
+#include "core/options.h"
+
+namespace busdecode {
+
+namespace {
+constexpr std::size_t kInitialBuffer = 1 << 20;
+}  // namespace
+
+TextSource::TextSource(const std::string& path, const OpenOptions& opts) : opts_(opts) {
+    if (path == "-") {
+        name_ = "<stdin>";
+        fd_ = 0;
+    } else {
+        name_ = path;
+        fd_ = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+        if (fd_ < 0)
+            throw InputError(fmt::format("{}: cannot open: {}", path, std::strerror(errno)));
+    }
+    struct stat st {};
+    if (fstat(fd_, &st) != 0)
+        throw InputError(fmt::format("{}: cannot read: {}", name_, std::strerror(errno)));
+    if (S_ISDIR(st.st_mode))
+        throw InputError(fmt::format("{}: is a directory, not a capture", name_));
+    pipe_ = !S_ISREG(st.st_mode);
+    if (!pipe_ && !opts_.follow && st.st_size > 0) {
+        void* m = mmap(nullptr, std::size_t(st.st_size), PROT_READ, MAP_PRIVATE, fd_, 0);
+        if (m != MAP_FAILED) {
+            madvise(m, std::size_t(st.st_size), MADV_SEQUENTIAL);
+            mapped_ = true;
+            map_ = static_cast<const char*>(m);
+            map_len_ = std::size_t(st.st_size);
+            base_ = pos_ = released_ = map_;
+            end_ = map_ + map_len_;
+            total_ = map_len_;
+            return;
+        }
+    }
+    if (!pipe_) total_ = std::uint64_t(st.st_size);
+    cap_ = kInitialBuffer;
+    buf_ = static_cast<char*>(std::malloc(cap_));
+    if (!buf_) throw std::bad_alloc();
+    base_ = pos_ = end_ = buf_;
+}
+
+TextSource::~TextSource() {
+    if (mapped_) munmap(const_cast<char*>(map_), map_len_);
+    std::free(buf_);
+    if (fd_ > 0) ::close(fd_);
+}
+
+std::string TextSource::at(const std::string& what) const {
+    return at(line_no_, what);
+}
+
+std::string TextSource::at(std::uint64_t line, const std::string& what) const {
+    return fmt::format("{}:{}: {}", name_, line, what);
+}
+
+bool TextSource::stopRequested() const {
+    return opts_.stop && opts_.stop->load(std::memory_order_relaxed);
+}
+
+void TextSource::releaseMapped() {
+    // Give back whole pages behind the cursor; they are re-read from the file if needed.
+    const std::uintptr_t page = std::uintptr_t(sysconf(_SC_PAGESIZE));
+    auto upto = std::uintptr_t(pos_) & ~(page - 1);
+    if (upto > std::uintptr_t(released_)) {
+        madvise(const_cast<char*>(released_), upto - std::uintptr_t(released_), MADV_DONTNEED);
+        released_ = reinterpret_cast<const char*>(upto);
+    }
+}
+
+std::size_t TextSource::fill() {
+    if (eof_) return 0;
+    // Keep the unread tail, drop what was consumed.
+    if (pos_ != buf_) {
+        std::size_t keep = std::size_t(end_ - pos_);
+        consumed_base_ += std::uint64_t(pos_ - base_);
+        std::memmove(buf_, pos_, keep);
+        base_ = pos_ = buf_;
+        end_ = buf_ + keep;
+    }
+    if (std::size_t(end_ - buf_) == cap_) {
+        std::size_t ncap = std::min(cap_ * 2, kMaxLine * 2 + kInitialBuffer);
+        if (ncap == cap_) return 0;  // the caller reports the over-long line
+        char* nb = static_cast<char*>(std::realloc(buf_, ncap));
+        if (!nb) throw std::bad_alloc();
+        end_ = nb + (end_ - buf_);
+        buf_ = nb;
+        base_ = pos_ = buf_;
+        cap_ = ncap;
+    }
+    if (pipe_) {
+        // Never block here: a live pipe hands back what it has so far.
+        pollfd p{fd_, POLLIN, 0};
+        if (poll(&p, 1, 0) <= 0) return 0;
+    }
+    for (;;) {
+        ssize_t n = ::read(fd_, const_cast<char*>(end_), cap_ - std::size_t(end_ - buf_));
+        if (n > 0) {
+            end_ += n;
+            file_off_ += std::uint64_t(n);
+            return std::size_t(n);
+        }
+        if (n < 0 && errno == EINTR) continue;
+        if (n < 0 && errno != EAGAIN)
+            throw InputError(fmt::format("{}: read error: {}", name_, std::strerror(errno)));
+        break;
+    }
+    if (opts_.follow && !pipe_) {
+        struct stat st {};
+        if (fstat(fd_, &st) != 0 || st.st_nlink == 0 || std::uint64_t(st.st_size) < file_off_)
+            throw InputError(fmt::format("{}: truncated while following", name_));
+        return 0;
+    }
+    eof_ = true;
+    return 0;
+}
+
+void TextSource::waitForData(int ms) {
+    if (mapped_ || eof_) return;
+    if (pipe_) {
+        pollfd p{fd_, POLLIN, 0};
+        // Short slices so a stop request is noticed quickly.
+        for (int waited = 0; waited < ms && !stopRequested(); waited += 5)
+            if (poll(&p, 1, 5) > 0) return;
+        return;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(std::min(ms, 5)));
+}
+
+TextSource::Status TextSource::slowNextLine(std::string_view& line) {
+    for (;;) {
+        const char* nl =
+            static_cast<const char*>(std::memchr(pos_, '\n', std::size_t(end_ - pos_)));
+        std::size_t len = nl ? std::size_t(nl - pos_) : std::size_t(end_ - pos_);
+        if (len > kMaxLine)
+            throw InputError(at(line_no_ + 1, "line longer than 1 MiB (not a text capture?)"));
+        if (nl) {
+            line = trimCr(pos_, nl);
+            pos_ = nl + 1;
+            ++line_no_;
+            if (mapped_ && std::size_t(pos_ - released_) > kReleaseStep) releaseMapped();
+            return Status::Line;
+        }
+        if (!mapped_ && !eof_ && !stopRequested()) {
+            if (fill() > 0) continue;
+            if (!eof_) return Status::NoData;
+        }
+        // The end: a last line without a newline still counts (not when a followed
+        // capture is stopped: that line may be half written).
+        if (pos_ < end_ && (mapped_ || eof_)) {
+            line = trimCr(pos_, end_);
+            pos_ = end_;
+            ++line_no_;
+            return Status::Line;
+        }
+        return Status::Eof;
+    }
+}
+
+void TextSource::drainTo(int out_fd) {
+    auto writeAll = [&](const char* p, std::size_t n) {
+        while (n > 0) {
+            ssize_t w = ::write(out_fd, p, n);
+            if (w < 0 && errno == EINTR) continue;
+            if (w <= 0)
+                throw InputError(fmt::format("{}: cannot copy to a temporary file: {}", name_,
+                                             std::strerror(errno)));
+            p += w;
+            n -= std::size_t(w);
+        }
+    };
+    for (;;) {
+        writeAll(pos_, std::size_t(end_ - pos_));
+        pos_ = end_;
+        if (mapped_ || eof_ || stopRequested()) return;
+        if (fill() == 0 && !eof_) waitForData(50);
+    }
+}
+
+std::string_view TextSource::peek(std::size_t n) {
+    if (mapped_) return std::string_view(pos_, std::min(n, std::size_t(end_ - pos_)));
+    const std::size_t want = std::min<std::size_t>(n, 64);
+    while (std::size_t(end_ - pos_) < n && !eof_ && !stopRequested()) {
+        if (fill() > 0) continue;
+        if (eof_ || std::size_t(end_ - pos_) >= want) break;
+        waitForData(50);
+    }
+    return std::string_view(pos_, std::min(n, std::size_t(end_ - pos_)));
+}
+
+}  // namespace busdecode

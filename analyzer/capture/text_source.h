@@ -1,0 +1,98 @@
+#pragma once
+// Complete lines of a text capture without copying them: a regular file is mapped
+// (mmap) and scanned with memchr; standard input, pipes and followed files are read
+// into one reusable buffer. Memory stays flat whatever the file size: mapped pages
+// behind the cursor are released, and the buffer only grows to the longest line.
+#include <cstdint>
+#include <cstring>
+#include <string>
+#include <string_view>
+
+#include "capture_reader.h"
+
+namespace busdecode {
+
+class TextSource {
+public:
+    // Longest line accepted: a longer one is not a text capture (or is broken).
+    static constexpr std::size_t kMaxLine = 1 << 20;
+    // Mapped pages already parsed are handed back every this many bytes, so the resident
+    // size of a 1 GB capture stays small.
+    static constexpr std::size_t kReleaseStep = 16 << 20;
+
+    // Opens `path` ("-" = standard input). Throws InputError naming the file.
+    TextSource(const std::string& path, const OpenOptions& opts);
+    ~TextSource();
+    TextSource(const TextSource&) = delete;
+    TextSource& operator=(const TextSource&) = delete;
+
+    const std::string& name() const { return name_; }  // for messages: path or "<stdin>"
+
+    enum class Status { Line, Eof, NoData };
+    // Next complete line (without "\n" or "\r\n"); the view stays valid until the next
+    // call. NoData: nothing complete yet on a pipe or a followed file (try again after
+    // waitForData()). Eof: the end (a last line without newline is returned first).
+    Status nextLine(std::string_view& line) {
+        const char* nl =
+            static_cast<const char*>(std::memchr(pos_, '\n', std::size_t(end_ - pos_)));
+        if (nl && std::size_t(nl - pos_) <= kMaxLine) {
+            line = trimCr(pos_, nl);
+            pos_ = nl + 1;
+            ++line_no_;
+            if (mapped_ && std::size_t(pos_ - released_) > kReleaseStep) releaseMapped();
+            return Status::Line;
+        }
+        return slowNextLine(line);
+    }
+    // 1-based number of the line last returned.
+    std::uint64_t lineNo() const { return line_no_; }
+    // Blocks up to `ms` milliseconds for more input (pipes, followed files).
+    void waitForData(int ms);
+
+    // The first bytes of the input (up to n, fewer at the end), for sniffing the format.
+    std::string_view peek(std::size_t n);
+
+    // Writes everything not yet consumed, up to the end of the input, to `out_fd`
+    // (a seekable copy of standard input for formats that need one).
+    void drainTo(int out_fd);
+
+    std::uint64_t bytesRead() const { return consumed_base_ + std::uint64_t(pos_ - base_); }
+    std::uint64_t bytesTotal() const { return total_; }
+    bool isStream() const { return !mapped_; }
+
+    // A message "NAME:LINE: what" for the line last returned.
+    std::string at(const std::string& what) const;
+    std::string at(std::uint64_t line, const std::string& what) const;
+
+private:
+    static std::string_view trimCr(const char* b, const char* e) {
+        if (e > b && e[-1] == '\r') --e;
+        return std::string_view(b, std::size_t(e - b));
+    }
+    Status slowNextLine(std::string_view& line);
+    // Reads more into the buffer; returns bytes added (0 = nothing now or at the end).
+    std::size_t fill();
+    bool stopRequested() const;
+    void releaseMapped();
+
+    std::string name_;
+    OpenOptions opts_;
+    int fd_ = -1;
+    bool mapped_ = false;
+    bool eof_ = false;   // the stream ended (not for followed files)
+    bool pipe_ = false;  // not a regular file
+    const char* map_ = nullptr;
+    std::size_t map_len_ = 0;
+    const char* released_ = nullptr;  // mapped pages before this were given back
+    char* buf_ = nullptr;
+    std::size_t cap_ = 0;
+    const char* base_ = nullptr;  // start of the valid data
+    const char* pos_ = nullptr;
+    const char* end_ = nullptr;
+    std::uint64_t consumed_base_ = 0;  // file offset of base_
+    std::uint64_t file_off_ = 0;       // bytes read from the fd so far
+    std::uint64_t total_ = 0;
+    std::uint64_t line_no_ = 0;
+};
+
+}  // namespace busdecode

@@ -1,0 +1,494 @@
+// VCD reader: a byte-level scan of the value-change section, one line at a time,
+// without a std::string or an allocation per change.
+//
+// Dialect notes (what a user can rely on):
+// - `$timescale` 1/10/100 of s, ms, us, ns, ps, fs, written `1ns`, `1 ns` or across
+//   lines; without one the unit is 1 ns. One tick = one timescale unit.
+// - Nested `$scope`s make full_name `a.b.sig`; name is the last component. A vector's
+//   range (`data [7:0]`) is not part of its name; a 1-bit `$var` keeps an index in its
+//   reference (`bus[3]`) so it can be mapped by that name.
+// - Identifier codes of any length; several `$var`s may share one code (aliases).
+// - Several changes may follow a timestamp on its line (`#0 1! 1"`, as sigrok writes).
+// - `$dumpvars/$dumpon/$dumpoff/$dumpall` and `$end` are transparent; `$comment` (and
+//   any other keyword block) is skipped up to its `$end`, on the same or a later line.
+// - x and z are not levels: a line keeps its previous level through x/z; before any
+//   known level it reads 1 (the idle level of most buses). The same holds per bit of a
+//   vector. A selected real reads 1 when nonzero.
+// - Bit k of a vector (LineRef::bit) counts from the LSB; a value shorter than the
+//   vector is extended the VCD way (0 for a leading 1 or 0, else the leading x/z).
+// - Initial levels are those at the first timestamp (including `$dumpvars` before it);
+//   startTick is the first timestamp, endTick the last one.
+#include <algorithm>
+#include <charconv>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "core/options.h"
+#include "readers.h"
+
+namespace busdecode {
+
+namespace {
+
+inline bool isSpace(char c) {
+    return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v';
+}
+
+struct StringHash {
+    using is_transparent = void;
+    std::size_t operator()(std::string_view s) const { return std::hash<std::string_view>{}(s); }
+};
+
+class VcdReader : public CaptureReader {
+public:
+    VcdReader(std::unique_ptr<TextSource> src, const OpenOptions& opts)
+        : src_(std::move(src)), opts_(opts) {
+        short1_.assign(94, -1);
+        short2_.assign(94 * 94, -1);
+        parseHeader();
+    }
+
+    const std::vector<SignalInfo>& signals() const override { return signals_; }
+    Timebase timebase() const override { return tb_; }
+    std::string formatName() const override { return "vcd"; }
+
+    void select(const std::vector<LineRef>& lines) override {
+        std::vector<std::vector<Target>> per_code(codes_.size());
+        for (std::size_t i = 0; i < lines.size(); ++i) {
+            const LineRef& r = lines[i];
+            if (r.signal < 0 || r.signal >= int(signals_.size()))
+                throw std::out_of_range("VcdReader::select");
+            per_code[sig_code_[r.signal]].push_back({r.bit < 0 ? 0 : r.bit, std::uint32_t(i)});
+        }
+        targets_.clear();
+        max_targets_ = 1;
+        for (std::size_t c = 0; c < codes_.size(); ++c) {
+            codes_[c].tbegin = std::uint32_t(targets_.size());
+            targets_.insert(targets_.end(), per_code[c].begin(), per_code[c].end());
+            codes_[c].tend = std::uint32_t(targets_.size());
+            max_targets_ = std::max(max_targets_, per_code[c].size());
+        }
+        level_.assign(lines.size(), 1);
+    }
+
+    std::vector<std::uint8_t> initialLevels() override {
+        if (!initial_done_) readInitial();
+        return level_;
+    }
+    Tick startTick() const override { return start_; }
+
+    bool next(EdgeBlock& block) override {
+        block.clear();
+        if (!initial_done_) readInitial();
+        if (done_) return false;
+        int idle_rounds = 0;
+        for (;;) {
+            Stop why = pump(&block);
+            switch (why) {
+                case Stop::Full:
+                    block.known_until = cur_;
+                    return true;
+                case Stop::Eof:
+                    done_ = true;
+                    end_ = seen_time_ ? cur_ : start_;
+                    block.known_until = end_;
+                    return !block.edges.empty();
+                case Stop::NoData:
+                    if (!block.edges.empty() || ++idle_rounds > 20) {
+                        // Live input: hand over what we have now (low latency), or an
+                        // empty block now and then so the caller can stop.
+                        block.known_until = cur_;
+                        return true;
+                    }
+                    src_->waitForData(5);
+                    break;
+                case Stop::FirstDone:
+                    break;  // not in this phase
+            }
+        }
+    }
+    Tick endTick() const override { return end_; }
+    std::uint64_t bytesRead() const override { return src_->bytesRead(); }
+    std::uint64_t bytesTotal() const override { return src_->bytesTotal(); }
+
+private:
+    struct Code {
+        int width = 1;
+        bool real = false;
+        std::uint32_t tbegin = 0, tend = 0;  // targets_[tbegin, tend)
+    };
+    struct Target {
+        int bit;
+        std::uint32_t line;
+    };
+    enum class Stop { Full, Eof, NoData, FirstDone };
+
+    [[noreturn]] void fail(const std::string& what) const { throw InputError(src_->at(what)); }
+    [[noreturn]] void failAt(std::uint64_t line, const std::string& what) const {
+        throw InputError(src_->at(line, what));
+    }
+
+    // ---- header -------------------------------------------------------------
+
+    // Next whitespace-separated token of the header, across lines. False at the end.
+    bool headerToken(std::string_view& tok) {
+        for (;;) {
+            while (p_ < e_ && isSpace(*p_))
+                ++p_;
+            if (p_ < e_) {
+                const char* b = p_;
+                while (p_ < e_ && !isSpace(*p_))
+                    ++p_;
+                tok = std::string_view(b, std::size_t(p_ - b));
+                return true;
+            }
+            if (!nextLine()) return false;
+        }
+    }
+    // Loads the next line into p_/e_, waiting on live input. False at the end.
+    bool nextLine() {
+        std::string_view line;
+        for (;;) {
+            auto st = src_->nextLine(line);
+            if (st == TextSource::Status::Line) {
+                p_ = line.data();
+                e_ = line.data() + line.size();
+                return true;
+            }
+            if (st == TextSource::Status::Eof) return false;
+            src_->waitForData(5);
+        }
+    }
+    // Tokens up to `$end` of the keyword `kw` (started on line `line`).
+    std::vector<std::string> blockTokens(std::string_view kw, std::uint64_t line) {
+        std::vector<std::string> out;
+        std::string_view tok;
+        for (;;) {
+            if (!headerToken(tok)) failAt(line, fmt::format("{} without $end", kw));
+            if (tok == "$end") return out;
+            out.emplace_back(tok);
+        }
+    }
+
+    void parseHeader() {
+        std::string_view tok;
+        std::vector<std::string> scope;
+        for (;;) {
+            if (!headerToken(tok)) {
+                if (src_->lineNo() == 0) throw InputError(src_->name() + ": empty file");
+                fail("no $enddefinitions (the header never ends)");
+            }
+            const std::uint64_t line = src_->lineNo();
+            if (tok == "$enddefinitions") {
+                blockTokens(tok, line);
+                break;
+            } else if (tok == "$timescale") {
+                parseTimescale(blockTokens(tok, line), line);
+            } else if (tok == "$scope") {
+                auto t = blockTokens(tok, line);
+                scope.push_back(t.empty() ? std::string() : t.back());
+            } else if (tok == "$upscope") {
+                blockTokens(tok, line);
+                if (!scope.empty()) scope.pop_back();
+            } else if (tok == "$var") {
+                declare(blockTokens(tok, line), scope, line);
+            } else if (tok.size() > 1 && tok[0] == '$') {
+                skipBlock();  // $date, $version, $comment, ...
+            } else {
+                failAt(line, fmt::format("expected a $keyword in the VCD header, found '{}'",
+                                         printable(tok)));
+            }
+        }
+    }
+    void skipBlock() {
+        std::string_view tok;
+        const std::uint64_t line = src_->lineNo();
+        while (headerToken(tok))
+            if (tok == "$end") return;
+        failAt(line, "keyword without $end");
+    }
+
+    void parseTimescale(const std::vector<std::string>& toks, std::uint64_t line) {
+        std::string s;
+        for (const auto& t : toks)
+            s += t;
+        std::size_t i = 0;
+        std::int64_t n = 0;
+        while (i < s.size() && s[i] >= '0' && s[i] <= '9' && n < 1000)
+            n = n * 10 + (s[i++] - '0');
+        const std::string unit = s.substr(i);
+        static const std::pair<const char*, int> units[] = {{"s", 0},  {"ms", 3},  {"us", 6},
+                                                            {"ns", 9}, {"ps", 12}, {"fs", 15}};
+        int exp = -1;
+        for (const auto& [u, e] : units)
+            if (unit == u) exp = e;
+        if ((n != 1 && n != 10 && n != 100) || exp < 0)
+            failAt(line, fmt::format("expected a $timescale like 1ns, 10 us or 100 ps, found '{}'",
+                                     printable(s)));
+        std::int64_t den = 1;
+        for (int k = 0; k < exp; ++k)
+            den *= 10;
+        tb_ = Timebase{n, den};
+    }
+
+    void declare(const std::vector<std::string>& t, const std::vector<std::string>& scope,
+                 std::uint64_t line) {
+        if (t.size() < 4) failAt(line, "expected '$var TYPE WIDTH ID NAME $end'");
+        int width = 0;
+        auto [ptr, ec] = std::from_chars(t[1].data(), t[1].data() + t[1].size(), width);
+        if (ec != std::errc() || ptr != t[1].data() + t[1].size() || width < 1)
+            failAt(line, fmt::format("expected a width in $var, found '{}'", printable(t[1])));
+        std::string ref = t[3];
+        // `name [7:0]` or `name[7:0]`: the range is not part of a vector's name.
+        auto lb = ref.find('[');
+        if (width > 1 && lb != std::string::npos && lb > 0 && ref.back() == ']') ref.erase(lb);
+        if (width == 1 && t.size() >= 5 && t[4].front() == '[') ref += t[4];
+        std::string full;
+        for (const auto& s : scope)
+            if (!s.empty()) full += s + ".";
+        full += ref;
+
+        const std::string& id = t[2];
+        int code = lookup(id.data(), id.size());
+        if (code < 0) {
+            code = int(codes_.size());
+            Code c;
+            c.width = width;
+            c.real = t[0] == "real" || t[0] == "realtime";
+            codes_.push_back(c);
+            const auto* u = reinterpret_cast<const unsigned char*>(id.data());
+            if (id.size() == 1 && unsigned(u[0] - 33) < 94) {
+                short1_[u[0] - 33] = code;
+            } else if (id.size() == 2 && unsigned(u[0] - 33) < 94 && unsigned(u[1] - 33) < 94) {
+                short2_[(u[0] - 33) * 94 + (u[1] - 33)] = code;
+            } else {
+                long_.emplace(id, code);
+            }
+        }
+        sig_code_.push_back(code);
+        signals_.push_back({ref, full, width});
+    }
+
+    int lookup(const char* s, std::size_t n) const {
+        const auto* u = reinterpret_cast<const unsigned char*>(s);
+        if (n == 1) {
+            unsigned i = unsigned(u[0]) - 33;
+            if (i < 94) return short1_[i];
+        } else if (n == 2) {
+            unsigned i = unsigned(u[0]) - 33, j = unsigned(u[1]) - 33;
+            if (i < 94 && j < 94) return short2_[i * 94 + j];
+        }
+        if (long_.empty()) return -1;
+        auto it = long_.find(std::string_view(s, n));
+        return it == long_.end() ? -1 : it->second;
+    }
+
+    // ---- value changes -------------------------------------------------------
+
+    void readInitial() {
+        initial_done_ = true;
+        for (;;) {
+            Stop why = pump(nullptr);
+            if (why == Stop::FirstDone) break;
+            if (why == Stop::Eof) {
+                done_ = true;
+                end_ = seen_time_ ? cur_ : 0;
+                break;
+            }
+            if (why == Stop::NoData) {
+                if (seen_time_) break;  // live input: what came with the first timestamp
+                src_->waitForData(5);
+                if (opts_.stop && opts_.stop->load()) {
+                    done_ = true;
+                    break;
+                }
+            }
+        }
+        initial_ = false;
+    }
+
+    void set(std::uint32_t line, std::uint8_t level, EdgeBlock* block) {
+        if (level_[line] == level) return;
+        level_[line] = level;
+        if (block) block->edges.push_back({cur_, line, level});
+    }
+
+    const char* tokenEnd(const char* q) const {
+        while (q<e_&& static_cast<unsigned char>(*q)> ' ')
+            ++q;
+        return q;
+    }
+
+    // Parses value changes. block == nullptr: the initial phase (levels only, stops at
+    // the first timestamp after the start).
+    Stop pump(EdgeBlock* block) {
+        for (;;) {
+            while (p_ < e_ && isSpace(*p_))
+                ++p_;
+            if (p_ >= e_) {
+                std::string_view line;
+                auto st = src_->nextLine(line);
+                if (st == TextSource::Status::Eof) return Stop::Eof;
+                if (st == TextSource::Status::NoData) return Stop::NoData;
+                p_ = line.data();
+                e_ = line.data() + line.size();
+                continue;
+            }
+            if (in_block_) {  // inside $comment ... $end
+                const char* q = tokenEnd(p_);
+                if (q == p_) ++q;  // a control byte inside a comment
+                if (std::string_view(p_, std::size_t(q - p_)) == "$end") in_block_ = false;
+                p_ = q;
+                continue;
+            }
+            if (block && block->edges.size() + max_targets_ > kEdgeBlockSize) return Stop::Full;
+            const char c = *p_;
+            switch (c) {
+                case '#': {
+                    const char* q = p_ + 1;
+                    std::uint64_t t = 0;
+                    bool overflow = false;
+                    while (q < e_ && unsigned(*q - '0') < 10) {
+                        overflow |= t > (std::uint64_t(INT64_MAX) - 9) / 10;
+                        t = t * 10 + unsigned(*q++ - '0');
+                    }
+                    if (q == p_ + 1 || (q < e_ && !isSpace(*q)))
+                        fail(fmt::format(
+                            "expected a time after '#', found '{}'",
+                            printable(std::string_view(p_, std::size_t(tokenEnd(p_) - p_)))));
+                    if (overflow) fail("time does not fit in 63 bits");
+                    p_ = q;
+                    const Tick tt = Tick(t);
+                    if (!seen_time_) {
+                        seen_time_ = true;
+                        start_ = cur_ = tt;
+                    } else if (tt < cur_) {
+                        fail(fmt::format("time going backwards (#{} after #{})", tt, cur_));
+                    } else if (tt > cur_) {
+                        cur_ = tt;
+                        if (!block) return Stop::FirstDone;
+                    }
+                    break;
+                }
+                case '0':
+                case '1':
+                case 'x':
+                case 'X':
+                case 'z':
+                case 'Z': {
+                    const char* id = p_ + 1;
+                    const char* q = tokenEnd(id);
+                    if (q == id) {  // tolerate `1 !`
+                        while (q < e_ && isSpace(*q))
+                            ++q;
+                        id = q;
+                        q = tokenEnd(q);
+                    }
+                    const Code& code = codeFor(id, q);
+                    p_ = q;
+                    if (code.tbegin != code.tend && (c == '0' || c == '1')) {
+                        for (std::uint32_t k = code.tbegin; k < code.tend; ++k)
+                            set(targets_[k].line, targets_[k].bit == 0 ? std::uint8_t(c - '0') : 0,
+                                block);
+                    }
+                    break;
+                }
+                case 'b':
+                case 'B':
+                case 'r':
+                case 'R': {
+                    const char* v = p_ + 1;
+                    const char* ve = tokenEnd(v);
+                    const char* id = ve;
+                    while (id < e_ && isSpace(*id))
+                        ++id;
+                    const char* q = tokenEnd(id);
+                    if (id == q)
+                        fail(fmt::format("expected an identifier after the value '{}'",
+                                         printable(std::string_view(p_, std::size_t(ve - p_)))));
+                    const Code& code = codeFor(id, q);
+                    p_ = q;
+                    if (code.tbegin == code.tend) break;
+                    if (c == 'r' || c == 'R') {
+                        double d = 0;
+                        auto [ptr, ec] = std::from_chars(v, ve, d);
+                        if (ec != std::errc() || ptr != ve)
+                            fail(fmt::format("expected a real number, found '{}'",
+                                             printable(std::string_view(v, std::size_t(ve - v)))));
+                        for (std::uint32_t k = code.tbegin; k < code.tend; ++k)
+                            set(targets_[k].line, d != 0, block);
+                    } else {
+                        const std::size_t len = std::size_t(ve - v);
+                        if (len == 0) fail("expected binary digits after 'b'");
+                        for (std::uint32_t k = code.tbegin; k < code.tend; ++k) {
+                            const std::size_t bit = std::size_t(targets_[k].bit);
+                            char b = bit < len ? v[len - 1 - bit] : (v[0] == '1' ? '0' : v[0]);
+                            if (b == '0' || b == '1')
+                                set(targets_[k].line, std::uint8_t(b - '0'), block);
+                        }
+                    }
+                    break;
+                }
+                case '$': {
+                    const char* q = tokenEnd(p_);
+                    std::string_view kw(p_, std::size_t(q - p_));
+                    p_ = q;
+                    if (kw == "$end" || kw == "$dumpvars" || kw == "$dumpon" || kw == "$dumpoff" ||
+                        kw == "$dumpall")
+                        break;
+                    in_block_ = true;  // $comment and anything else: skip to its $end
+                    break;
+                }
+                default: {
+                    const unsigned char u = static_cast<unsigned char>(c);
+                    if (u < 0x20 || u >= 0x7f)
+                        fail(fmt::format(
+                            "binary data (byte 0x{:02x}) where a value change was expected", u));
+                    fail(fmt::format(
+                        "expected a value change, #time or $keyword, found '{}'",
+                        printable(std::string_view(p_, std::size_t(tokenEnd(p_) - p_)))));
+                }
+            }
+        }
+    }
+
+    const Code& codeFor(const char* id, const char* q) const {
+        int code = lookup(id, std::size_t(q - id));
+        if (code < 0)
+            fail(fmt::format("value change for undeclared identifier '{}'",
+                             printable(std::string_view(id, std::size_t(q - id)))));
+        return codes_[std::size_t(code)];
+    }
+
+    std::unique_ptr<TextSource> src_;
+    OpenOptions opts_;
+    Timebase tb_{1, 1'000'000'000};
+    std::vector<SignalInfo> signals_;
+    std::vector<int> sig_code_;
+    std::vector<Code> codes_;
+    std::vector<Target> targets_;
+    std::size_t max_targets_ = 1;
+    std::vector<int> short1_, short2_;
+    std::unordered_map<std::string, int, StringHash, std::equal_to<>> long_;
+    std::vector<std::uint8_t> level_;
+
+    const char* p_ = nullptr;  // the rest of the current line
+    const char* e_ = nullptr;
+    bool in_block_ = false;
+    bool seen_time_ = false;
+    bool initial_ = true;
+    bool initial_done_ = false;
+    bool done_ = false;
+    Tick start_ = 0, cur_ = 0, end_ = 0;
+};
+
+}  // namespace
+
+std::unique_ptr<CaptureReader> openVcd(std::unique_ptr<TextSource> src, const OpenOptions& opts) {
+    return std::make_unique<VcdReader>(std::move(src), opts);
+}
+
+}  // namespace busdecode

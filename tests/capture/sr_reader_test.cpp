@@ -1,0 +1,138 @@
+// The sigrok session (.sr) reader: metadata dialects, chunk order, unit sizes, errors,
+// and agreement with sigrok-cli's own VCD and CSV exports of the same session.
+#include <gtest/gtest.h>
+#include <zip.h>
+
+#include <cstdlib>
+#include <map>
+
+#include "capture_util.h"
+
+namespace busdecode::test {
+namespace {
+
+// Writes a ZIP with the given members (in the given order).
+std::string writeSr(const std::string& name,
+                    const std::vector<std::pair<std::string, std::string>>& members) {
+    const std::string path = tempDir() + "/" + name;
+    std::remove(path.c_str());
+    int err = 0;
+    zip_t* z = zip_open(path.c_str(), ZIP_CREATE | ZIP_TRUNCATE, &err);
+    EXPECT_NE(z, nullptr);
+    static std::vector<std::string> keep;  // libzip reads the buffers at close
+    for (const auto& [n, data] : members) {
+        keep.push_back(data);
+        zip_source_t* s = zip_source_buffer(z, keep.back().data(), keep.back().size(), 0);
+        zip_file_add(z, n.c_str(), s, ZIP_FL_OVERWRITE);
+    }
+    EXPECT_EQ(zip_close(z), 0);
+    return path;
+}
+
+std::string words(const std::vector<std::uint32_t>& samples, int unitsize) {
+    std::string out;
+    for (auto w : samples)
+        for (int i = 0; i < unitsize; ++i)
+            out += char((w >> (8 * i)) & 0xff);
+    return out;
+}
+
+TEST(SrReader, MetadataWithSpacesUnitsize2AndChunkOrder) {
+    const std::string meta =
+        "[global]\nsigrok version = 0.2.0\n[device 1]\ncapturefile = logic-1\nunitsize = 2\n"
+        "total probes = 10\nsamplerate = 1 MHz\nprobe1 = CS#\nprobe2 = MISO\nprobe10 = HIGH\n";
+    // sample values; chunks hold 2, 2 and 1 samples, stored out of order in the ZIP
+    std::vector<std::uint32_t> s = {0x0001, 0x0001, 0x0200, 0x0203, 0x0002};
+    auto p = writeSr("u2.sr", {{"version", "2"},
+                               {"logic-1-2", words({s[2], s[3]}, 2)},
+                               {"metadata", meta},
+                               {"logic-1-3", words({s[4]}, 2)},
+                               {"logic-1-1", words({s[0], s[1]}, 2)}});
+    auto c = collectFile(p, {"CS#", "MISO", "HIGH"});
+    EXPECT_EQ(c.format, "sigrok-sr");
+    ASSERT_EQ(c.signals.size(), 10u);
+    EXPECT_EQ(c.signals[2].name, "D2");  // unnamed probe
+    EXPECT_EQ(c.tb.num, 1);
+    EXPECT_EQ(c.tb.den, 1'000'000);
+    EXPECT_EQ(c.initial, (std::vector<std::uint8_t>{1, 0, 0}));
+    EXPECT_EQ(c.start, 0);
+    EXPECT_EQ(c.end, 4);
+    EXPECT_EQ(c.edges, (std::vector<Edge>{
+                           {2, 0, 0}, {2, 2, 1}, {3, 0, 1}, {3, 1, 1}, {4, 0, 0}, {4, 2, 0}}));
+}
+
+TEST(SrReader, ManyChunksSortNumericallyAndUnitsize4) {
+    std::string meta =
+        "[device 1]\ncapturefile=logic-1\ntotal probes=32\nsamplerate=5 "
+        "Hz\nprobe32=top\nunitsize=4\n";
+    std::vector<std::pair<std::string, std::string>> members{{"metadata", meta}};
+    for (int k = 12; k >= 1; --k)  // logic-1-10 must come after logic-1-9
+        members.push_back({"logic-1-" + std::to_string(k), words({k % 2 ? 0x80000000u : 0u}, 4)});
+    auto c = collectFile(writeSr("u4.sr", members), {"top"});
+    EXPECT_EQ(c.tb.den, 5);  // the stated rate, even when it is implausible
+    EXPECT_EQ(c.initial, (std::vector<std::uint8_t>{1}));
+    ASSERT_EQ(c.edges.size(), 11u);
+    for (int i = 0; i < 11; ++i)
+        EXPECT_EQ(c.edges[i].t, i + 1);
+    EXPECT_EQ(c.end, 11);
+}
+
+TEST(SrReader, OldSingleChunkSession) {
+    auto c = collectFile(
+        writeSr("old.sr",
+                {{"metadata", "[device 1]\nsamplerate = 25 MHz\nunitsize = 1\nprobe1 = A\n"},
+                 {"logic-1", words({0, 1, 1, 0}, 1)}}),
+        {"A"});
+    EXPECT_EQ(c.edges, (std::vector<Edge>{{1, 0, 1}, {3, 0, 0}}));
+}
+
+TEST(SrReader, IndexIsTheProbeBit) {
+    auto c = collectFile(sharedCaptures() + "/biss-renishaw/sr/renishaw_biss_1MHz.sr");
+    ASSERT_EQ(c.signals.size(), 8u);
+    EXPECT_EQ(c.signals[1].name, "MA");   // probe2
+    EXPECT_EQ(c.signals[3].name, "SLO");  // probe4
+}
+
+TEST(SrReaderErrors, MissingChunkUnitsizeAndRate) {
+    const std::string meta = "[device 1]\nsamplerate=1 MHz\nunitsize=1\nprobe1=A\n";
+    auto p = writeSr("gap.sr", {{"metadata", meta}, {"logic-1-1", "\x01"}, {"logic-1-3", "\x00"}});
+    EXPECT_EQ(errorOf(p), p + ": missing chunk logic-1-2");
+    p = writeSr("none.sr", {{"metadata", meta}});
+    EXPECT_EQ(errorOf(p), p + ": no logic data (no logic-1-1 chunk)");
+    p = writeSr("unit.sr",
+                {{"metadata", "[device 1]\nsamplerate=1 MHz\nunitsize=5\n"}, {"logic-1-1", "x"}});
+    EXPECT_EQ(errorOf(p), p + ": unitsize=5 not supported (1 to 4 bytes per sample)");
+    p = writeSr("odd.sr",
+                {{"metadata", "[device 1]\nsamplerate=1 MHz\nunitsize=2\n"}, {"logic-1-1", "abc"}});
+    EXPECT_EQ(errorOf(p),
+              p + ": logic data of 3 bytes is not a whole number of samples of unitsize=2");
+    p = writeSr("rate.sr",
+                {{"metadata", "[device 1]\nunitsize=1\nprobe1=A\n"}, {"logic-1-1", "\x01"}});
+    EXPECT_EQ(errorOf(p), p + ": metadata has no samplerate");
+    p = writeSr("nometa.sr", {{"logic-1-1", "\x01"}});
+    EXPECT_EQ(errorOf(p), p + ": not a sigrok session: no metadata file");
+    p = writeSr("probes.sr", {{"metadata", "[device 1]\nsamplerate=1 MHz\nunitsize=1\nprobe9=A\n"},
+                              {"logic-1-1", "\x01"}});
+    EXPECT_EQ(errorOf(p), p + ": 9 probes do not fit in unitsize=1");
+}
+
+// The same session read from the .sr, sigrok-cli's VCD (100 ps timescale) and its CSV
+// (one row per sample) gives the same edges in nanoseconds.
+TEST(SrReader, DifferentialAgainstSigrokVcdExport) {
+    const std::string base = sharedCaptures() + "/biss-renishaw/";
+    auto sr = collectFile(base + "sr/renishaw_biss_1MHz.sr", {"MA", "SLO"});
+    auto vcd = collectFile(base + "sigrok-vcd/renishaw_biss_1MHz.vcd", {"MA", "SLO"});
+    ASSERT_GT(sr.edges.size(), 1000u);
+    EXPECT_EQ(sr.initial, vcd.initial);
+    ASSERT_EQ(sr.edges.size(), vcd.edges.size());
+    auto a = inNs(sr), b = inNs(vcd);
+    for (std::size_t i = 0; i < a.size(); ++i) {
+        ASSERT_EQ(a[i].line, b[i].line) << i;
+        ASSERT_EQ(a[i].level, b[i].level) << i;
+        // sigrok rounds each sample time to 100 ps; toNs rounds again: at most 1 ns apart
+        ASSERT_LE(std::llabs(a[i].ns - b[i].ns), 1) << i;
+    }
+}
+
+}  // namespace
+}  // namespace busdecode::test
