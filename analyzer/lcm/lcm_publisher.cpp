@@ -1,0 +1,221 @@
+#include "lcm_publisher.h"
+
+#include <fmt/format.h>
+
+#include <condition_variable>
+#include <cstdlib>
+#include <deque>
+#include <lcm/lcm-cpp.hpp>
+#include <mutex>
+#include <thread>
+#include <variant>
+
+#include "busdecode_lcm/decode_status_t.hpp"
+#include "core/options.h"
+#include "lcm_channels.h"
+#include "lcm_messages.h"
+#include "lcm_sink.h"
+
+namespace busdecode {
+
+namespace {
+
+constexpr const char* kDefaultUrl = "udpm://239.255.76.67:7667?ttl=0";
+
+struct EventItem {
+    Event event;
+    Timebase tb;
+    std::int64_t seq;
+};
+struct StatusItem {
+    std::string state;
+    CaptureFacts facts;
+    Tick now = 0;
+};
+using Item = std::variant<EventItem, StatusItem>;
+
+}  // namespace
+
+std::shared_ptr<lcm::LCM> openLcm(const std::string& url) {
+    const std::string shown = url.empty() ? kDefaultUrl : url;
+    auto lc = std::make_shared<lcm::LCM>(url);
+    if (!lc->good()) {
+        std::string hint;
+        if (shown.rfind("udpm://", 0) == 0)
+            hint =
+                " (udpm needs a multicast route; on a machine without a network: "
+                "`ip link set lo multicast on; ip route add 224.0.0.0/4 dev lo`)";
+        else
+            hint =
+                " (LCM URLs look like udpm://239.255.76.67:7667?ttl=0, file://log.lcm?mode=w, "
+                "memq://)";
+        throw InputError(fmt::format("--lcm: cannot open LCM URL '{}'{}", shown, hint));
+    }
+    return lc;
+}
+
+LcmSinkOptions LcmSinkOptions::fromEnvironment() {
+    LcmSinkOptions o;
+    if (const char* q = std::getenv("BUSDECODE_LCM_QUEUE")) {
+        char* end = nullptr;
+        long long n = std::strtoll(q, &end, 10);
+        if (!end || *end || n < 1)
+            throw InputError(fmt::format("BUSDECODE_LCM_QUEUE='{}': expected a positive count", q));
+        o.queue_capacity = std::size_t(n);
+    }
+    if (const char* d = std::getenv("BUSDECODE_LCM_DROP")) o.drop_when_full = std::string(d) == "1";
+    return o;
+}
+
+struct LcmSink::Impl {
+    std::shared_ptr<lcm::LCM> lc;
+    std::string url;
+    LcmSinkOptions opt;
+
+    std::mutex mu;
+    std::condition_variable not_full, not_empty, drained;
+    std::deque<Item> queue;
+    bool busy = false;  // the publisher holds an item outside the queue
+    bool stopping = false;
+    LcmSinkCounts counts;
+    LcmSinkCounts reported;  // counts at the previous end(), to report per capture
+    std::int64_t next_seq = 0;
+    Timebase tb;
+    std::thread worker;
+
+    void publishStatus(const StatusItem& s) {
+        busdecode_lcm::decode_status_t m{};
+        m.utime = lcmUtimeNow();
+        m.state = s.state;
+        m.file = s.facts.file;
+        m.format = s.facts.format;
+        m.protos = s.facts.protos;
+        m.num_protos = int16_t(m.protos.size());
+        m.ns_per_tick = s.facts.timebase.nsPerTick();
+        m.capture_ns = s.facts.timebase.toNs(s.now);
+        std::lock_guard lock(mu);
+        m.events = std::int64_t(counts.events);
+        m.published = std::int64_t(counts.published);
+        m.dropped = std::int64_t(counts.dropped);
+        lc->publish(kLcmStatusChannel, &m);
+    }
+
+    void run() {
+        for (;;) {
+            Item item;
+            {
+                std::unique_lock lock(mu);
+                not_empty.wait(lock, [&] { return stopping || !queue.empty(); });
+                if (queue.empty()) return;  // stopping and drained
+                item = std::move(queue.front());
+                queue.pop_front();
+                busy = true;
+            }
+            not_full.notify_one();
+            if (auto* ev = std::get_if<EventItem>(&item)) {
+                if (opt.before_publish) opt.before_publish();
+                LcmPublishResult r = publishEventToLcm(*lc, ev->event, ev->tb, ev->seq);
+                std::lock_guard lock(mu);
+                (r.failures ? counts.failed : counts.published)++;
+            } else {
+                publishStatus(std::get<StatusItem>(item));
+            }
+            {
+                std::lock_guard lock(mu);
+                busy = false;
+            }
+            drained.notify_all();
+        }
+    }
+
+    void push(Item item, bool may_drop) {
+        std::unique_lock lock(mu);
+        if (queue.size() >= opt.queue_capacity) {
+            if (may_drop) {
+                counts.dropped++;
+                return;
+            }
+            not_full.wait(lock, [&] { return queue.size() < opt.queue_capacity; });
+        }
+        queue.push_back(std::move(item));
+        lock.unlock();
+        not_empty.notify_one();
+    }
+
+    void waitDrained() {
+        std::unique_lock lock(mu);
+        drained.wait(lock, [&] { return queue.empty() && !busy; });
+    }
+};
+
+LcmSink::LcmSink(std::shared_ptr<lcm::LCM> lcm, std::string url, LcmSinkOptions options)
+    : impl_(std::make_unique<Impl>()) {
+    impl_->lc = std::move(lcm);
+    impl_->url = url.empty() ? kDefaultUrl : std::move(url);
+    impl_->opt = std::move(options);
+    if (impl_->opt.queue_capacity < 1) impl_->opt.queue_capacity = 1;
+    // A first message proves the transport works (an unreachable network fails here,
+    // at start, instead of silently losing every event later).
+    busdecode_lcm::decode_status_t start{};
+    start.utime = lcmUtimeNow();
+    start.state = "start";
+    if (impl_->lc->publish(kLcmStatusChannel, &start) != 0)
+        throw InputError(
+            fmt::format("--lcm: cannot publish on '{}' (is the network up?)", impl_->url));
+    impl_->worker = std::thread([this] { impl_->run(); });
+}
+
+LcmSink::~LcmSink() {
+    {
+        std::lock_guard lock(impl_->mu);
+        impl_->stopping = true;
+    }
+    impl_->not_empty.notify_all();
+    if (impl_->worker.joinable()) impl_->worker.join();
+}
+
+void LcmSink::begin(const CaptureFacts& facts) {
+    impl_->tb = facts.timebase;
+    impl_->push(StatusItem{"begin", facts, facts.start}, false);
+}
+
+void LcmSink::onEvent(const Event& e, const CaptureFacts& facts) {
+    std::int64_t seq;
+    {
+        std::lock_guard lock(impl_->mu);
+        impl_->counts.events++;
+        seq = impl_->next_seq++;
+    }
+    impl_->push(EventItem{e, impl_->tb, seq}, impl_->opt.drop_when_full);
+}
+
+void LcmSink::end(const CaptureFacts& facts) {
+    impl_->waitDrained();  // events first, so "end" carries final counts
+    impl_->push(StatusItem{"end", facts, facts.end}, false);
+    impl_->waitDrained();
+    LcmSinkCounts now = counts(), &before = impl_->reported;
+    std::uint64_t events = now.events - before.events, dropped = now.dropped - before.dropped,
+                  failed = now.failed - before.failed;
+    if (dropped && impl_->opt.report)
+        fmt::print(impl_->opt.report,
+                   "decode: LCM: dropped {} of {} events: the queue ({} events) was full "
+                   "(BUSDECODE_LCM_DROP=1; unset it to make decoding wait instead)\n",
+                   dropped, events, impl_->opt.queue_capacity);
+    if (failed && impl_->opt.report)
+        fmt::print(impl_->opt.report,
+                   "decode: LCM: {} of {} events could not be published on '{}'\n", failed, events,
+                   impl_->url);
+    before = now;
+}
+
+LcmSinkCounts LcmSink::counts() const {
+    std::lock_guard lock(impl_->mu);
+    return impl_->counts;
+}
+
+std::unique_ptr<OutputSink> makeLcmSink(const std::string& url) {
+    LcmSinkOptions opt = LcmSinkOptions::fromEnvironment();
+    return std::make_unique<LcmSink>(openLcm(url), url, std::move(opt));
+}
+
+}  // namespace busdecode
