@@ -4,7 +4,7 @@
 #include <zip.h>
 
 #include <cstdlib>
-#include <map>
+#include <list>
 
 #include "capture_util.h"
 
@@ -19,7 +19,7 @@ std::string writeSr(const std::string& name,
     int err = 0;
     zip_t* z = zip_open(path.c_str(), ZIP_CREATE | ZIP_TRUNCATE, &err);
     EXPECT_NE(z, nullptr);
-    static std::vector<std::string> keep;  // libzip reads the buffers at close
+    static std::list<std::string> keep;  // libzip reads the buffers at close (stable addresses)
     for (const auto& [n, data] : members) {
         keep.push_back(data);
         zip_source_t* s = zip_source_buffer(z, keep.back().data(), keep.back().size(), 0);
@@ -116,13 +116,16 @@ TEST(SrReaderErrors, MissingChunkUnitsizeAndRate) {
     EXPECT_EQ(errorOf(p), p + ": 9 probes do not fit in unitsize=1");
 }
 
-// The same session read from the .sr, sigrok-cli's VCD (100 ps timescale) and its CSV
-// (one row per sample) gives the same edges in nanoseconds.
+// The same session read from the .sr and sigrok-cli's VCD (100 ps timescale) gives the
+// same edges in nanoseconds. sigrok-cli 0.7.2 exports this session (only probes 2 and 4
+// enabled) wrongly: it writes sample bits 0 and 1 under the names of the enabled probes,
+// so its "MA" is bit 0 (D0) and its "SLO" is bit 1 (the real MA). We compare like
+// with like; the bit-3 SLO data is not in sigrok's exports at all.
 TEST(SrReader, DifferentialAgainstSigrokVcdExport) {
     const std::string base = sharedCaptures() + "/biss-renishaw/";
-    auto sr = collectFile(base + "sr/renishaw_biss_1MHz.sr", {"MA", "SLO"});
+    auto sr = collectFile(base + "sr/renishaw_biss_1MHz.sr", {"D0", "MA"});
     auto vcd = collectFile(base + "sigrok-vcd/renishaw_biss_1MHz.vcd", {"MA", "SLO"});
-    ASSERT_GT(sr.edges.size(), 1000u);
+    ASSERT_GT(sr.edges.size(), 300u);
     EXPECT_EQ(sr.initial, vcd.initial);
     ASSERT_EQ(sr.edges.size(), vcd.edges.size());
     auto a = inNs(sr), b = inNs(vcd);
