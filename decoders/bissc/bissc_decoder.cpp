@@ -1,0 +1,387 @@
+#include "bissc_decoder.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "core/bit_word.h"
+#include "core/crc.h"
+
+namespace busdecode {
+
+namespace {
+
+// A rising MA edge from low, followed by a high phase this many times longer than the
+// low phase after it, was the master returning to idle (CDM = 1 without Hold-CDM); a
+// shorter one was the LAT of a Hold-CDM frame.
+constexpr double kIdleReturnRatio = 3.0;
+// An SL change this many bit periods after the last clocked slot is not a data bit.
+constexpr double kLateSlEdgePeriods = 1.5;
+// A clock pause longer than this ends a frame in progress (C6: clock phases <= 12.5 us).
+constexpr double kMinQuietNs = 20000.0;
+
+}  // namespace
+
+BisscDecoder::BisscDecoder(const Options& options)
+    : s_(BisscSettings::from(options)),
+      control_([this](Event&& e) { emit(std::move(e)); }) {}
+
+void BisscDecoder::start(const DecoderContext& ctx) {
+    Decoder::start(ctx);
+    ma_ = ctx.initial_levels.size() > kMa ? ctx.initial_levels[kMa] != 0 : true;
+    sl_ = ctx.initial_levels.size() > kSl ? ctx.initial_levels[kSl] != 0 : true;
+    sampler_.reset(sl_);
+    // A capture that starts with SL low starts inside a frame or a timeout.
+    state_ = sl_ ? State::Idle : State::WaitSlaveIdle;
+}
+
+Tick BisscDecoder::watermark(Tick now) const {
+    Tick w = Decoder::watermark(now);
+    const Tick c = control_.openSince();
+    if (c != kNoTick) w = std::min(w, c);
+    return w;
+}
+
+void BisscDecoder::edge(Tick t, int role, bool level) {
+    if (role == kSl) onSl(t, level);
+    else if (role == kMa) onMa(t, level);
+}
+
+void BisscDecoder::advance(Tick now) {
+    sampler_.advanceTo(now);
+    drainSamples();
+    checkQuiet(now);
+}
+
+void BisscDecoder::glitch(Tick t, int role) {
+    (void)t;
+    (void)role;
+    if (state_ == State::WaitAck || state_ == State::Data || state_ == State::Timeout)
+        addError("glitch");
+    else
+        glitch_pending_ = true;
+}
+
+void BisscDecoder::addError(const std::string& e) {
+    if (std::find(f_.errors.begin(), f_.errors.end(), e) == f_.errors.end()) f_.errors.push_back(e);
+}
+
+double BisscDecoder::meanPeriod() const {
+    const auto& r = f_.rises;
+    if (r.size() >= 2) return double(r.back() - r.front()) / double(r.size() - 1);
+    return last_period_;
+}
+
+double BisscDecoder::quietLimit() const {
+    return std::max(tb().fromNs(kMinQuietNs), 3.0 * meanPeriod()) + f_.delay;
+}
+
+void BisscDecoder::checkQuiet(Tick now) {
+    if (state_ == State::Idle && hold_rise_ != kNoTick && hold_fall_ == kNoTick) {
+        // MA rose from low and stayed high: the master went back to idle.
+        if (double(now - hold_rise_) > std::max(tb().fromNs(kMinQuietNs), 4.0 * last_period_)) {
+            hold_rise_ = kNoTick;
+            idle();
+        }
+        return;
+    }
+    if (state_ != State::WaitAck && state_ != State::Data) return;
+    if (last_ma_edge_ == kNoTick || double(now - last_ma_edge_) <= quietLimit()) return;
+    const char* why = state_ == State::WaitAck ? "no_ack"
+                      : f_.slot == Slot::Busy  ? "no_start"
+                                               : "short_frame";
+    closeFrame(last_ma_edge_, kNoTick, why, true);
+    state_ = sl_ ? State::Idle : State::WaitSlaveIdle;
+}
+
+void BisscDecoder::beginFrame(Tick start, bool from_hold) {
+    f_ = Frame{};
+    f_.start = start;
+    f_.from_hold = from_hold;
+    sampler_.reset(sl_);
+    state_ = State::WaitAck;
+    setBusyFrom(start);
+    if (glitch_pending_) {
+        addError("glitch");
+        glitch_pending_ = false;
+    }
+}
+
+void BisscDecoder::onMa(Tick t, bool level) {
+    sampler_.advanceTo(t);
+    drainSamples();
+    checkQuiet(t);
+    last_ma_edge_ = t;
+    ma_ = level;
+
+    switch (state_) {
+        case State::WaitSlaveIdle: break;
+        case State::Idle:
+            if (!level) {
+                if (hold_rise_ != kNoTick) hold_fall_ = t;
+                else beginFrame(t, false);
+            } else if (hold_rise_ == kNoTick) {
+                hold_rise_ = t;  // decided at the next rising edge
+                busyFrom(t);
+            } else if (hold_fall_ != kNoTick) {
+                const double high = double(hold_fall_ - hold_rise_);
+                const double low = double(t - hold_fall_);
+                if (high > kIdleReturnRatio * low) {
+                    beginFrame(hold_fall_, false);
+                    f_.rises.push_back(t);
+                } else {
+                    beginFrame(hold_rise_, true);
+                    f_.rises.push_back(hold_rise_);
+                    f_.rises.push_back(t);
+                }
+                hold_rise_ = hold_fall_ = kNoTick;
+            }
+            break;
+        case State::WaitAck:
+            if (level) f_.rises.push_back(t);
+            break;
+        case State::Data:
+            if (level) {
+                f_.rises.push_back(t);
+                scheduleSamples();
+            }
+            break;
+        case State::Timeout:
+            if (level) f_.rises.push_back(t);  // clocks past the stop bit
+            break;
+    }
+}
+
+void BisscDecoder::onSl(Tick t, bool level) {
+    sampler_.lineEdge(t, level);
+    sl_ = level;
+    drainSamples();
+    checkQuiet(t);
+
+    switch (state_) {
+        case State::WaitSlaveIdle:
+            if (level) {
+                state_ = State::Idle;
+                idle();
+            }
+            break;
+        case State::Idle:
+            if (!level) {  // SL low outside a frame: not ours to decode
+                hold_rise_ = hold_fall_ = kNoTick;
+                state_ = State::WaitSlaveIdle;
+                idle();
+            }
+            break;
+        case State::WaitAck:
+            if (level) break;
+            if (f_.rises.size() < 2) {
+                addError("early_ack");
+                closeFrame(t, kNoTick, nullptr, true);
+                state_ = State::WaitSlaveIdle;
+                break;
+            }
+            f_.ack = t;
+            f_.delay = double(t - f_.rises[1]);
+            state_ = State::Data;
+            scheduleSamples();
+            break;
+        case State::Data: {
+            const double late = double(f_.rises.back()) + f_.delay + kLateSlEdgePeriods * meanPeriod();
+            if (sampler_.pending() == 0 && double(t) > late) {
+                // SL moved long after the last clocked slot: the master stopped early and
+                // the slave timed out (or gave up).
+                closeFrame(t, kNoTick, f_.slot == Slot::Busy ? "no_start" : "short_frame", true);
+                state_ = level ? State::Idle : State::WaitSlaveIdle;
+            }
+            break;
+        }
+        case State::Timeout:
+            if (level) {
+                closeFrame(t, t, nullptr, true);
+                state_ = State::Idle;
+            }
+            break;
+    }
+}
+
+void BisscDecoder::scheduleSamples() {
+    // Slot k (k >= 1; 1 = ACK) is driven after rising edge k and valid from r_k + d to
+    // r_{k+1} + d: sample its middle. T is the frame's mean period, which smooths the
+    // quantisation of a capture sampled at only a few samples per bit.
+    const double half = meanPeriod() / 2.0;
+    while (f_.scheduled < f_.rises.size()) {
+        double t = double(f_.rises[f_.scheduled]) + f_.delay + half;
+        t = std::max(t, f_.last_sample_t);
+        f_.last_sample_t = t;
+        sampler_.schedule(t, std::uint32_t(f_.scheduled));
+        ++f_.scheduled;
+    }
+}
+
+void BisscDecoder::drainSamples() {
+    while (sampler_.ready()) {
+        const LineSampler::Sample s = sampler_.pop();
+        if (state_ == State::Data) takeSample(int(s.tag), s.level, s.t);
+    }
+}
+
+void BisscDecoder::takeSample(int index, bool level, double t) {
+    switch (f_.slot) {
+        case Slot::Ack:
+            if (level) addError("ack");
+            f_.slot = Slot::Busy;
+            break;
+        case Slot::Busy:
+            if (!level) {
+                ++f_.proc_cycles;
+            } else {
+                f_.start_index = index;
+                f_.slot = Slot::Cds;
+            }
+            break;
+        case Slot::Cds:
+            f_.cds = level;
+            f_.slot = s_.bits > 0 ? Slot::Data : Slot::NE;
+            break;
+        case Slot::Data:
+            f_.data = (f_.data << 1) | std::uint64_t(level);
+            if (++f_.data_count == s_.bits) f_.slot = Slot::NE;
+            break;
+        case Slot::NE:
+            f_.ne = level;
+            f_.slot = Slot::NW;
+            break;
+        case Slot::NW:
+            f_.nw = level;
+            f_.slot = s_.crc_bits > 0 ? Slot::Crc : Slot::Stop;
+            break;
+        case Slot::Crc:
+            f_.crc_rx = (f_.crc_rx << 1) | std::uint32_t(level);
+            if (++f_.crc_count == s_.crc_bits) f_.slot = Slot::Stop;
+            break;
+        case Slot::Stop:
+            f_.stop_index = index;
+            f_.slot = Slot::Done;
+            sampler_.cancelAll();
+            if (level) {
+                // No low stop bit, so no timeout to wait for: the frame ends here.
+                addError("stop_bit");
+                closeFrame(Tick(std::ceil(t)), kNoTick, nullptr, true);
+                state_ = sl_ ? State::Idle : State::WaitSlaveIdle;
+            } else {
+                state_ = State::Timeout;
+            }
+            break;
+        case Slot::Done: break;
+    }
+}
+
+void BisscDecoder::closeFrame(Tick end, Tick timeout_end, const char* error, bool feed_control) {
+    Event e;
+    e.proto = "bissc";
+    e.type = "frame";
+    e.start = f_.start;
+    e.end = std::max(timeout_end != kNoTick ? timeout_end : end, f_.start);
+    for (const auto& err : f_.errors) e.error(err);
+    if (error) e.error(error);
+
+    const bool complete = f_.slot == Slot::Done;
+    const int pos_bits = std::min(s_.bits, s_.st_bits + s_.mt_bits);
+    Value position = Null{}, st = Null{}, mt = Null{}, ne = Null{}, nw = Null{};
+    Value crc_rx = Null{}, crc_ok = Null{}, cds = Null{}, cdm = Null{};
+    std::uint64_t pos = 0;
+    bool crc_good = true;
+    if (complete) {
+        pos = lowBits(f_.data, pos_bits);
+        position = pos;
+        st = lowBits(pos, s_.st_bits);
+        mt = s_.mt_bits > 0 ? lowBits(pos >> s_.st_bits, s_.mt_bits) : std::uint64_t(0);
+        ne = std::int64_t(f_.ne);
+        nw = std::int64_t(f_.nw);
+        if (s_.crc_bits > 0) {
+            BitCrc crc = BitCrc::fromFullPoly(s_.crc_poly, s_.crc_init, s_.crc_inverted);
+            crc.pushBits(f_.data, s_.bits);
+            crc.push(f_.ne);
+            crc.push(f_.nw);
+            crc_good = crc.value() == f_.crc_rx;
+            crc_rx = std::int64_t(f_.crc_rx);
+            crc_ok = crc_good;
+            if (!crc_good) e.error("crc");
+        }
+        if (f_.ne == 0) e.error("error_bit");
+        if (f_.nw == 0) e.error("warning_bit");
+    }
+    if (f_.cds >= 0) cds = std::int64_t(f_.cds);
+    Value timeout_ns = Null{};
+    if (timeout_end != kNoTick && complete) {
+        cdm = std::int64_t(ma_ ? 0 : 1);  // MA low in the timeout means CDM = 1
+        const std::int64_t to = tb().toNs(timeout_end - f_.rises.back());
+        timeout_ns = to;
+        if (s_.timeout_min_ns > 0 && double(to) < s_.timeout_min_ns) e.error("timeout_short");
+    }
+    Value clock_hz = Null{};
+    const double period = meanPeriod();
+    if (f_.rises.size() >= 2 && period > 0) {
+        clock_hz = 1.0 / (period * tb().secondsPerTick());
+        last_period_ = period;
+    }
+    const bool acked = f_.ack != kNoTick;
+
+    e.set("position", position);
+    e.set("st", st);
+    e.set("mt", mt);
+    e.set("nE", ne);
+    e.set("nW", nw);
+    e.set("crc_rx", crc_rx);
+    e.set("crc_ok", crc_ok);
+    e.set("cds", cds);
+    e.set("cdm", cdm);
+    e.set("line_delay_ns", acked ? Value(std::int64_t(std::llround(tb().toNsF(f_.delay))))
+                                 : Value(Null{}));
+    e.set("proc_cycles", f_.start_index >= 0 ? Value(std::int64_t(f_.proc_cycles)) : Value(Null{}));
+    e.set("clock_hz", clock_hz);
+    e.set("timeout_ns", timeout_ns);
+    e.set("extra_clocks",
+          f_.stop_index >= 0 ? Value(std::int64_t(f_.rises.size()) - 1 - f_.stop_index)
+                             : Value(Null{}));
+    e.set("clocks", std::int64_t(f_.rises.size()));
+    e.set("hold_cdm", f_.from_hold);
+
+    if (complete) {
+        e.summary = fmt::format("pos={} (0x{:X}) nE={} nW={} crc=0x{:02X} {} cds={} cdm={}", pos, pos,
+                                f_.ne, f_.nw, f_.crc_rx, crc_good ? "ok" : "bad", f_.cds,
+                                isNull(cdm) ? "?" : std::to_string(asInt(cdm)));
+    } else {
+        e.summary = "incomplete frame";
+    }
+    if (acked) e.summary += fmt::format(" delay={}ns", std::llround(tb().toNsF(f_.delay)));
+    if (f_.proc_cycles > 0) e.summary += fmt::format(" busy={}", f_.proc_cycles);
+
+    ControlBits bits;
+    bits.start = e.start;
+    bits.end = e.end;
+    bits.cdm = isNull(cdm) ? -1 : int(asInt(cdm));
+    bits.cds = complete ? f_.cds : -1;
+
+    emit(std::move(e));
+    sampler_.cancelAll();
+    f_.slot = Slot::Done;
+    idle();
+    if (feed_control) control_.push(bits);
+}
+
+void BisscDecoder::finish(Tick end) {
+    sampler_.advanceTo(end);
+    drainSamples();
+    switch (state_) {
+        case State::WaitAck:
+        case State::Data: closeFrame(end, kNoTick, "short_frame", false); break;
+        case State::Timeout: closeFrame(end, kNoTick, nullptr, false); break;
+        default: break;
+    }
+    state_ = State::Idle;
+    control_.finish();
+}
+
+}  // namespace busdecode

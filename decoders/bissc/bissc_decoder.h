@@ -1,0 +1,100 @@
+#pragma once
+// BiSS-C (continuous mode, point to point) from the master clock MA and the slave line
+// SL, as seen at the master. Per frame (PROTOCOLS.md §1.1):
+//   MA falls (or, with Hold-CDM, rises from low); the 1st rising edge latches (LAT); the
+//   slave pulls SL low after the 2nd rising edge (ACK), keeps it low while busy, then
+//   sends Start = 1, CDS, data MSB first, nE, nW, CRC (inverted), and a 0 stop bit; SL
+//   stays low for the slave's timeout, then rises. CDM = inverted MA level then.
+// The line delay d is measured per frame from the 2nd rising MA edge to the falling SL
+// edge, and every bit is sampled at its MA rising edge + d + T/2: SL is read where the
+// slave's answer really is, however long the cable (d may span many bit times).
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "bissc_control.h"
+#include "bissc_options.h"
+#include "core/decoder.h"
+#include "core/line_sampler.h"
+#include "core/registry.h"
+
+namespace busdecode {
+
+class BisscDecoder : public Decoder {
+public:
+    enum Role { kMa = 0, kSl = 1 };
+
+    explicit BisscDecoder(const Options& options);
+
+    void start(const DecoderContext& ctx) override;
+    void edge(Tick t, int role, bool level) override;
+    void advance(Tick now) override;
+    void finish(Tick end) override;
+    void glitch(Tick t, int role) override;
+    Tick watermark(Tick now) const override;
+
+private:
+    enum class State {
+        WaitSlaveIdle,  // SL low outside a frame: wait for it to rise
+        Idle,           // SL high, no frame
+        WaitAck,        // clocking, waiting for SL to fall (ACK)
+        Data,           // ACK seen: sampling the frame's slots
+        Timeout,        // stop bit seen: waiting for SL to rise (end of the slave's timeout)
+    };
+    // Where the slot parser is within the frame.
+    enum class Slot { Ack, Busy, Cds, Data, NE, NW, Crc, Stop, Done };
+
+    struct Frame {
+        Tick start = 0;
+        bool from_hold = false;   // started from MA low (Hold-CDM)
+        std::vector<Tick> rises;  // MA rising edges; rises[0] = LAT
+        Tick ack = kNoTick;
+        double delay = 0;         // line delay in ticks
+        std::size_t scheduled = 1;  // rises with a scheduled sample (index 0 = LAT has none)
+        double last_sample_t = -1e300;
+        Slot slot = Slot::Ack;
+        int proc_cycles = 0;
+        int start_index = -1;  // rise index of the start bit
+        int stop_index = -1;
+        int cds = -1;
+        std::uint64_t data = 0;
+        int data_count = 0;
+        int ne = -1, nw = -1;
+        std::uint32_t crc_rx = 0;
+        int crc_count = 0;
+        std::vector<std::string> errors;
+    };
+
+    void onMa(Tick t, bool level);
+    void onSl(Tick t, bool level);
+    void beginFrame(Tick start, bool from_hold);
+    void scheduleSamples();
+    void drainSamples();
+    void takeSample(int index, bool level, double t);
+    double meanPeriod() const;  // ticks, over the frame's rising edges so far
+    double quietLimit() const;  // MA silence (ticks) that ends a frame in progress
+    // Emits the frame in progress. timeout_end = the SL rising edge ending the slave's
+    // timeout, or kNoTick; feed_control passes its CDM/CDS bits on to the reassembler.
+    void closeFrame(Tick end, Tick timeout_end, const char* error, bool feed_control);
+    void addError(const std::string& e);
+    void checkQuiet(Tick now);
+
+    BisscSettings s_;
+    BisscControlReassembler control_;
+    LineSampler sampler_;
+    State state_ = State::Idle;
+    Frame f_;
+    bool ma_ = true, sl_ = true;
+    Tick last_ma_edge_ = kNoTick;
+    // A rising MA edge from low while idle: either the LAT of a Hold-CDM frame or the
+    // master returning to idle after CDM = 1. Decided at the next rising edge.
+    Tick hold_rise_ = kNoTick;
+    Tick hold_fall_ = kNoTick;
+    bool glitch_pending_ = false;
+    double last_period_ = 0;  // mean clock period of the previous frame (ticks)
+};
+
+std::shared_ptr<const DecoderFactory> makeBisscFactory();
+
+}  // namespace busdecode

@@ -1,0 +1,101 @@
+// The BiSS-C decoder declared as data: roles, options, event types; and its factory.
+#include <fmt/format.h>
+
+#include "bissc_decoder.h"
+#include "bissc_options.h"
+
+namespace busdecode {
+
+namespace {
+
+OptionSpec intOption(std::string key, std::string def, double min, double max, std::string help,
+                     bool allow_auto = false) {
+    OptionSpec o;
+    o.key = std::move(key);
+    o.kind = OptionSpec::Kind::Int;
+    o.default_value = std::move(def);
+    o.min = min;
+    o.max = max;
+    o.help = std::move(help);
+    o.allow_auto = allow_auto;
+    return o;
+}
+
+DecoderInfo bisscInfo() {
+    DecoderInfo info;
+    info.id = "bissc";
+    info.name = "BiSS-C";
+    info.description =
+        "BiSS-C continuous mode (iC-Haus), point to point: frames with line-delay compensated "
+        "sampling, processing time, CRC, and register accesses / commands carried by CDM/CDS";
+    info.roles = {
+        {"ma", true, {"clk", "clock", "mo"}, "master clock MA (as seen at the master)"},
+        {"sl", true, {"slo", "data"}, "slave data SL (as seen at the master)"},
+    };
+    OptionSpec timeout;
+    timeout.key = "timeout_min_us";
+    timeout.kind = OptionSpec::Kind::Float;
+    timeout.default_value = "0";
+    timeout.min = 0;
+    timeout.help = "flag timeout_short when SL rises sooner than this after the last MA rise (0: off)";
+    OptionSpec invert;
+    invert.key = "crc_invert";
+    invert.kind = OptionSpec::Kind::Bool;
+    invert.default_value = "1";
+    invert.help = "the CRC is sent inverted (BiSS); 0 for encoders that send the plain remainder";
+    info.options = {
+        intOption("bits", "26", 0, 64, "data bits between CDS and nE (position, MT+ST)"),
+        intOption("st_bits", "auto", 0, 64, "single-turn field width, LSB aligned (auto: bits - mt_bits)",
+                  true),
+        intOption("mt_bits", "0", 0, 64, "multi-turn field width, above the single-turn field"),
+        intOption("crc_poly", "0x43", 2, 0xFFFFFFFF,
+                  "CRC polynomial in full notation (0x43 = x^6+x+1; 0x190D9 for CRC16)"),
+        intOption("crc_bits", "auto", 0, 32, "CRC width (auto: from crc_poly; 0: frame has no CRC)",
+                  true),
+        intOption("crc_init", "0", 0, 0xFFFFFFFF, "CRC start value"),
+        invert,
+        timeout,
+    };
+    info.events = {
+        {"frame", "one BiSS-C frame (single-cycle data) with its timeout",
+         {"position", "st", "mt", "nE", "nW", "crc_rx", "crc_ok", "cds", "cdm", "line_delay_ns",
+          "proc_cycles", "clock_hz", "timeout_ns", "extra_clocks", "clocks", "hold_cdm"}},
+        {"register", "a register read or write carried by CDM/CDS over many frames",
+         {"op", "id", "address", "data", "crc_ok", "echo", "refused", "busy_frames", "sequence",
+          "idl", "frames"}},
+        {"command", "a control command (CTS = 0)",
+         {"id", "command", "crc_ok", "broadcast", "targets", "ida", "executed"}},
+    };
+    return info;
+}
+
+}  // namespace
+
+BisscSettings BisscSettings::from(const Options& o) {
+    BisscSettings s;
+    s.bits = int(o.integer("bits"));
+    s.mt_bits = int(o.integer("mt_bits"));
+    s.st_bits = o.isAuto("st_bits") ? std::max(0, s.bits - s.mt_bits) : int(o.integer("st_bits"));
+    if (s.st_bits + s.mt_bits > s.bits)
+        throw InputError(fmt::format("decoder bissc: st_bits ({}) + mt_bits ({}) exceed bits ({})",
+                                     s.st_bits, s.mt_bits, s.bits));
+    const std::int64_t poly = o.integer("crc_poly");
+    int width = 0;
+    for (std::int64_t p = poly; p > 1; p >>= 1) ++width;
+    s.crc_poly = std::uint32_t(poly);
+    s.crc_bits = o.isAuto("crc_bits") ? width : int(o.integer("crc_bits"));
+    if (s.crc_bits != 0 && s.crc_bits != width)
+        throw InputError(fmt::format(
+            "decoder bissc: crc_bits={} does not match crc_poly=0x{:X} (a {}-bit polynomial)",
+            s.crc_bits, poly, width));
+    s.crc_init = std::uint32_t(o.integer("crc_init"));
+    s.crc_inverted = o.flag("crc_invert");
+    s.timeout_min_ns = o.number("timeout_min_us") * 1000.0;
+    return s;
+}
+
+std::shared_ptr<const DecoderFactory> makeBisscFactory() {
+    return std::make_shared<SimpleFactory<BisscDecoder>>(bisscInfo());
+}
+
+}  // namespace busdecode

@@ -1,0 +1,365 @@
+// BiSS-C frames: the published frame vectors (PROTOCOLS.md §4.2) built slot by slot,
+// then generated captures across clock rates, widths, line delays and processing times.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "bissc_generator.h"
+#include "bissc_test_util.h"
+
+using namespace busdecode;
+using namespace busdecode::test;
+
+namespace {
+
+// A frame from its slot string (SL level driven after each MA rising edge, slot 0 = LAT),
+// independent of the generator: MA at period_ns, SL answering delay_ns after each rise.
+Waveform fromSlots(const std::string& slots, double period_ns, double delay_ns, bool cdm = false) {
+    WaveBuilder b(Timebase{1, 1'000'000'000}, {"MA", "SLO"}, {1, 1});
+    const double t0 = 2000;
+    double last = t0;
+    for (std::size_t k = 0; k < slots.size(); ++k) {
+        const double r = t0 + period_ns / 2 + double(k) * period_ns;
+        b.setNs(0, r - period_ns / 2, false);
+        b.setNs(0, r, true);
+        if (k > 0) b.setNs(1, r + delay_ns, slots[k] == '1');
+        last = r;
+    }
+    if (cdm) b.setNs(0, last + period_ns / 2, false);
+    b.setNs(1, last + delay_ns + 20000, true);
+    if (cdm) b.setNs(0, last + delay_ns + 21000, true);
+    return b.build(b.ticksFromNs(last + 40000));
+}
+
+std::string strip(std::string s) {
+    s.erase(std::remove(s.begin(), s.end(), ' '), s.end());
+    return s;
+}
+
+}  // namespace
+
+TEST(BisscFrameVectors, V10_13bit_nW_active) {
+    const std::string slots = strip("1 0 1 0 0101001011010 1 0 101011 0");
+    ASSERT_EQ(slots, "10100101001011010101010110");
+    for (double delay : {0.0, 80.0, 2600.0}) {  // 2.6 us = 2.6 bit times at 1 MHz
+        auto frames = ofType(decodeBissc(fromSlots(slots, 1000, delay), {{"bits", "13"}}), "frame");
+        ASSERT_EQ(frames.size(), 1u) << delay;
+        const Event& f = frames[0];
+        EXPECT_EQ(intField(f, "position"), 0x0A5A);
+        EXPECT_EQ(intField(f, "nE"), 1);
+        EXPECT_EQ(intField(f, "nW"), 0);
+        EXPECT_EQ(intField(f, "crc_rx"), 0x2B);
+        EXPECT_TRUE(std::get<bool>(*f.get("crc_ok")));
+        EXPECT_EQ(intField(f, "cds"), 0);
+        EXPECT_EQ(intField(f, "cdm"), 0);
+        EXPECT_EQ(intField(f, "proc_cycles"), 0);
+        EXPECT_EQ(intField(f, "line_delay_ns"), std::llround(delay));
+        EXPECT_EQ(intField(f, "extra_clocks"), 0);
+        EXPECT_EQ(intField(f, "clocks"), 26);
+        EXPECT_NEAR(std::get<double>(*f.get("clock_hz")), 1e6, 1);
+        EXPECT_EQ(f.errors, std::vector<std::string>{"warning_bit"});
+    }
+}
+
+TEST(BisscFrameVectors, V11_24bit_four_ack_clocks) {
+    const std::string slots = strip("1 0000 1 0 000100100011010001010110 11 110101 0");
+    auto frames = ofType(decodeBissc(fromSlots(slots, 400, 150, true), {{"bits", "24"}}), "frame");
+    ASSERT_EQ(frames.size(), 1u);
+    const Event& f = frames[0];
+    EXPECT_EQ(intField(f, "position"), 0x123456);
+    EXPECT_EQ(intField(f, "crc_rx"), 0x35);
+    EXPECT_TRUE(std::get<bool>(*f.get("crc_ok")));
+    EXPECT_EQ(intField(f, "proc_cycles"), 3);
+    EXPECT_EQ(intField(f, "cdm"), 1);
+    EXPECT_EQ(intField(f, "line_delay_ns"), 150);
+    EXPECT_TRUE(f.errors.empty());
+}
+
+TEST(BisscFrameVectors, V12_AN18_capture_data) {
+    // AN18 Fig. 10: 24-bit 0x05AC53, nE = nW = 0, CRC 101111.
+    const std::string slots = "1" "0" "1" "0" + strip("00000101101011000101001100101111") + "0";
+    auto frames = ofType(decodeBissc(fromSlots(slots, 500, 0), {{"bits", "24"}}), "frame");
+    ASSERT_EQ(frames.size(), 1u);
+    EXPECT_EQ(intField(frames[0], "position"), 0x05AC53);
+    EXPECT_EQ(intField(frames[0], "crc_rx"), 0b101111);
+    EXPECT_TRUE(std::get<bool>(*frames[0].get("crc_ok")));
+    EXPECT_EQ(intField(frames[0], "nE"), 0);
+    EXPECT_EQ(intField(frames[0], "nW"), 0);
+    EXPECT_TRUE(frames[0].hasError("error_bit"));
+    EXPECT_TRUE(frames[0].hasError("warning_bit"));
+    EXPECT_FALSE(frames[0].hasError("crc"));
+}
+
+TEST(BisscGenerator, ProducesTheV10Slots) {
+    // The generator's SL, read at each MA falling edge with no line delay, is V10.
+    BisscGenConfig cfg;
+    cfg.bits = 13;
+    BisscGenerator gen(cfg);
+    BisscFrameSpec f;
+    f.data = 0x0A5A;
+    f.nw = 0;
+    gen.addFrame(f);
+    const Waveform w = gen.build();
+    bool ma = true, sl = true;
+    std::string seen;
+    for (const Edge& e : w.edges) {
+        if (e.line == 1) sl = e.level;
+        if (e.line == 0) {
+            if (ma && !e.level) seen += sl ? '1' : '0';
+            ma = e.level;
+        }
+    }
+    // The first falling edge starts the frame (SL idle 1); the next 26 read slots 0..25.
+    EXPECT_EQ(seen.substr(1, 26), "10100101001011010101010110");
+}
+
+struct SweepCase {
+    double clock_hz;
+    int bits;
+    double delay_ns;
+    double sample_rate;  // 0: 1 ns ticks
+};
+
+class BisscSweep : public ::testing::TestWithParam<SweepCase> {};
+
+TEST_P(BisscSweep, EveryFrameExact) {
+    const SweepCase c = GetParam();
+    BisscGenConfig cfg;
+    cfg.clock_hz = c.clock_hz;
+    cfg.bits = c.bits;
+    cfg.line_delay_ns = c.delay_ns;
+    cfg.jitter_ns = 0.03e9 / c.clock_hz;  // 3 % of a period
+    if (c.sample_rate > 0) {
+        cfg.timebase = Timebase::fromSampleRate(std::int64_t(c.sample_rate));
+        cfg.jitter_ns = 0;
+    }
+    cfg.seed = std::uint32_t(c.bits * 7 + int(c.delay_ns));
+    cfg.timeout_ns = 15000 + 2e9 / c.clock_hz;
+    BisscGenerator gen(cfg);
+    std::mt19937_64 rng(cfg.seed);
+    const std::uint64_t mask = c.bits >= 64 ? ~0ull : ((1ull << c.bits) - 1);
+    for (int i = 0; i < 12; ++i) {
+        BisscFrameSpec f;
+        f.data = rng() & mask;
+        f.ne = int(rng() % 5 != 0);
+        f.nw = int(rng() % 4 != 0);
+        f.cds = int(rng() & 1);
+        f.cdm = int(rng() & 1);
+        f.proc_cycles = int(rng() % 9);
+        f.extra_clocks = int(rng() % 3) * 3;
+        f.corrupt_crc = i == 5;
+        gen.addFrame(f);
+    }
+    const auto events = decodeBissc(gen.build(), {{"bits", std::to_string(c.bits)}});
+    const auto frames = ofType(events, "frame");
+    ASSERT_EQ(frames.size(), gen.frames().size());
+    const double tick_ns = cfg.timebase.nsPerTick();
+    for (std::size_t i = 0; i < frames.size(); ++i) {
+        const Event& e = frames[i];
+        const BisscFrameTruth& t = gen.frames()[i];
+        SCOPED_TRACE(::testing::Message() << "frame " << i);
+        EXPECT_EQ(e.start, t.start);
+        EXPECT_EQ(e.end, t.end);
+        EXPECT_EQ(std::get<std::uint64_t>(*e.get("position")), t.spec.data);
+        EXPECT_EQ(intField(e, "nE"), t.spec.ne);
+        EXPECT_EQ(intField(e, "nW"), t.spec.nw);
+        EXPECT_EQ(intField(e, "crc_rx"), t.crc_sent);
+        EXPECT_EQ(std::get<bool>(*e.get("crc_ok")), t.crc_ok);
+        EXPECT_EQ(e.hasError("crc"), !t.crc_ok);
+        EXPECT_EQ(intField(e, "cds"), t.spec.cds);
+        EXPECT_EQ(intField(e, "cdm"), t.spec.cdm);
+        EXPECT_EQ(intField(e, "proc_cycles"), t.spec.proc_cycles);
+        EXPECT_EQ(intField(e, "extra_clocks"), t.spec.extra_clocks);
+        EXPECT_NEAR(double(intField(e, "line_delay_ns")), c.delay_ns,
+                    2 * tick_ns + 2 * cfg.jitter_ns + 1);
+        EXPECT_NEAR(std::get<double>(*e.get("clock_hz")), c.clock_hz, c.clock_hz * 0.02);
+        EXPECT_FALSE(e.hasError("short_frame"));
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Rates, BisscSweep,
+    ::testing::Values(SweepCase{80e3, 8, 0, 0}, SweepCase{80e3, 48, 1500, 0},
+                      SweepCase{250e3, 26, 300, 0}, SweepCase{1e6, 13, 0, 0},
+                      SweepCase{1e6, 32, 1500, 0}, SweepCase{2e6, 24, 750, 0},
+                      SweepCase{5e6, 40, 1000, 0}, SweepCase{10e6, 32, 0, 0},
+                      SweepCase{10e6, 48, 1500, 0}, SweepCase{10e6, 8, 550, 0},
+                      // Sampled captures: 10 MHz at 24 MHz (2.4 samples per bit), as the
+                      // real Renishaw capture; 2 MHz at 24 MHz.
+                      SweepCase{10e6, 32, 60, 24e6}, SweepCase{10e6, 26, 1200, 24e6},
+                      SweepCase{2e6, 32, 80, 24e6}, SweepCase{5e6, 48, 400, 50e6}));
+
+TEST(BisscFrames, StSplitAndMt) {
+    BisscGenConfig cfg;
+    cfg.bits = 32;
+    BisscGenerator gen(cfg);
+    BisscFrameSpec f;
+    f.data = 0xABC12345;  // MT 12 bits 0xABC, ST 20 bits 0x12345
+    gen.addFrame(f);
+    auto frames = ofType(decodeBissc(gen.build(), {{"bits", "32"}, {"mt_bits", "12"}}), "frame");
+    ASSERT_EQ(frames.size(), 1u);
+    EXPECT_EQ(intField(frames[0], "position"), 0xABC12345);
+    EXPECT_EQ(intField(frames[0], "st"), 0x12345);
+    EXPECT_EQ(intField(frames[0], "mt"), 0xABC);
+}
+
+TEST(BisscFrames, Crc16Encoder) {
+    BisscGenConfig cfg;
+    cfg.bits = 32;
+    cfg.crc_poly = 0x190D9;
+    BisscGenerator gen(cfg);
+    BisscFrameSpec f;
+    f.data = 0x12345678;
+    gen.addFrame(f);
+    f.corrupt_crc = true;
+    gen.addFrame(f);
+    auto frames =
+        ofType(decodeBissc(gen.build(), {{"bits", "32"}, {"crc_poly", "0x190D9"}}), "frame");
+    ASSERT_EQ(frames.size(), 2u);
+    EXPECT_EQ(intField(frames[0], "position"), 0x12345678);
+    EXPECT_TRUE(std::get<bool>(*frames[0].get("crc_ok")));
+    EXPECT_EQ(intField(frames[0], "crc_rx"), gen.frames()[0].crc_sent);
+    EXPECT_TRUE(frames[1].hasError("crc"));
+}
+
+TEST(BisscFrames, HoldCdmFramesStartFromMaLow) {
+    BisscGenConfig cfg;
+    cfg.bits = 26;
+    cfg.hold_cdm = true;
+    cfg.line_delay_ns = 400;
+    BisscGenerator gen(cfg);
+    const int cdm[] = {1, 1, 0, 1, 0, 0, 1, 1};
+    for (int i = 0; i < 8; ++i) {
+        BisscFrameSpec f;
+        f.data = std::uint64_t(i) * 1234567;
+        f.cdm = cdm[i];
+        gen.addFrame(f);
+    }
+    auto frames = ofType(decodeBissc(gen.build(), {}), "frame");
+    ASSERT_EQ(frames.size(), 8u);
+    for (int i = 0; i < 8; ++i) {
+        SCOPED_TRACE(i);
+        EXPECT_EQ(intField(frames[i], "position"), std::int64_t(i) * 1234567);
+        EXPECT_EQ(intField(frames[i], "cdm"), cdm[i]);
+        EXPECT_EQ(std::get<bool>(*frames[i].get("hold_cdm")), i > 0 && cdm[i - 1] == 1);
+        EXPECT_EQ(frames[i].start, gen.frames()[i].start);
+        EXPECT_TRUE(frames[i].errors.empty());
+    }
+}
+
+TEST(BisscFrames, CdmOneWithoutHoldReturnsToIdle) {
+    BisscGenConfig cfg;
+    BisscGenerator gen(cfg);
+    for (int i = 0; i < 4; ++i) {
+        BisscFrameSpec f;
+        f.data = 100 + i;
+        f.cdm = 1;
+        gen.addFrame(f);
+    }
+    auto frames = ofType(decodeBissc(gen.build(), {}), "frame");
+    ASSERT_EQ(frames.size(), 4u);
+    for (int i = 0; i < 4; ++i) {
+        EXPECT_EQ(intField(frames[i], "position"), 100 + i);
+        EXPECT_EQ(intField(frames[i], "cdm"), 1);
+        EXPECT_FALSE(std::get<bool>(*frames[i].get("hold_cdm")));
+        EXPECT_EQ(frames[i].start, gen.frames()[i].start);
+    }
+}
+
+TEST(BisscFrames, TruncatedFrameIsShortAndTheNextDecodes) {
+    BisscGenConfig cfg;
+    cfg.line_delay_ns = 200;
+    BisscGenerator gen(cfg);
+    BisscFrameSpec f;
+    f.data = 0x2AAAAAA;
+    for (int cut : {12, 3, 1, 30}) {  // mid data, before start, LAT only, in the CRC
+        f.truncate_after = cut;
+        gen.addFrame(f);
+        f.truncate_after = -1;
+        gen.addFrame(f);
+    }
+    auto frames = ofType(decodeBissc(gen.build(), {}), "frame");
+    ASSERT_EQ(frames.size(), 8u);
+    for (int i = 0; i < 8; i += 2) {
+        SCOPED_TRACE(i);
+        EXPECT_FALSE(frames[i].errors.empty());
+        EXPECT_TRUE(nullField(frames[i], "position"));
+        EXPECT_EQ(intField(frames[i + 1], "position"), 0x2AAAAAA);
+        EXPECT_TRUE(frames[i + 1].errors.empty());
+    }
+    EXPECT_TRUE(frames[0].hasError("short_frame"));
+    EXPECT_TRUE(frames[2].hasError("no_start") || frames[2].hasError("no_ack"));
+    EXPECT_TRUE(frames[4].hasError("no_ack"));
+    EXPECT_TRUE(frames[6].hasError("short_frame"));
+}
+
+TEST(BisscFrames, CaptureEndingMidFrameIsShort) {
+    BisscGenConfig cfg;
+    BisscGenerator gen(cfg);
+    BisscFrameSpec f;
+    f.data = 77;
+    gen.addFrame(f);
+    Waveform w = gen.build();
+    // Cut the capture in the middle of the frame's data.
+    const Tick cut = gen.frames()[0].start + w.timebase.fromNs(15000);
+    std::erase_if(w.edges, [&](const Edge& e) { return e.t > cut; });
+    w.end = cut;
+    auto frames = ofType(decodeBissc(w, {}), "frame");
+    ASSERT_EQ(frames.size(), 1u);
+    EXPECT_TRUE(frames[0].hasError("short_frame"));
+}
+
+TEST(BisscFrames, GlitchesAreFilteredAndFlagged) {
+    BisscGenConfig cfg;
+    cfg.clock_hz = 1e6;
+    BisscGenerator gen(cfg);
+    BisscFrameSpec f;
+    f.data = 0x1555555;
+    gen.addFrame(f);
+    gen.addFrame(f);
+    gen.addFrame(f);
+    // A 20 ns pulse on MA in the middle of a high phase of frame 1, and one on SL in frame 2.
+    const double f1 = double(gen.frames()[1].start) + 500 + 10 * 1000 + 200;
+    gen.addGlitch(0, f1, 20);
+    const double f2 = double(gen.frames()[2].start) + 500 + 15 * 1000 + 300;
+    gen.addGlitch(1, f2, 20);
+    const Waveform w = gen.build();
+
+    auto raw = ofType(decodeBissc(w, {}), "frame");
+    ASSERT_EQ(raw.size(), 3u);
+    EXPECT_TRUE(raw[1].hasError("crc") || raw[1].hasError("short_frame") ||
+                intField(raw[1], "extra_clocks") != 0);
+
+    auto frames = ofType(decodeBissc(w, {{"glitch_ns", "50"}}), "frame");
+    ASSERT_EQ(frames.size(), 3u);
+    for (int i = 0; i < 3; ++i) {
+        EXPECT_EQ(intField(frames[i], "position"), 0x1555555);
+        EXPECT_TRUE(std::get<bool>(*frames[i].get("crc_ok")));
+        EXPECT_EQ(frames[i].hasError("glitch"), i > 0) << i;
+    }
+}
+
+TEST(BisscFrames, TimeoutShortOption) {
+    BisscGenConfig cfg;
+    cfg.timeout_ns = 10000;
+    BisscGenerator gen(cfg);
+    BisscFrameSpec f;
+    gen.addFrame(f);
+    auto plain = ofType(decodeBissc(gen.build(), {}), "frame");
+    ASSERT_EQ(plain.size(), 1u);
+    EXPECT_EQ(intField(plain[0], "timeout_ns"), 10000);
+    EXPECT_FALSE(plain[0].hasError("timeout_short"));
+    auto strict = ofType(decodeBissc(gen.build(), {{"timeout_min_us", "12.5"}}), "frame");
+    ASSERT_EQ(strict.size(), 1u);
+    EXPECT_TRUE(strict[0].hasError("timeout_short"));
+}
+
+TEST(BisscFrames, BadOptionsAreInputErrors) {
+    BisscGenerator gen(BisscGenConfig{});
+    gen.addFrame({});
+    const Waveform w = gen.build();
+    EXPECT_THROW(decodeBissc(w, {{"bits", "20"}, {"st_bits", "16"}, {"mt_bits", "8"}}), InputError);
+    EXPECT_THROW(decodeBissc(w, {{"crc_poly", "0x43"}, {"crc_bits", "16"}}), InputError);
+    EXPECT_THROW(decodeBissc(w, {{"bits", "65"}}), InputError);
+}

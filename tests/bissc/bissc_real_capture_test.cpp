@@ -1,0 +1,1 @@
+// Placeholder replaced below once the capture readers land.

@@ -1,0 +1,47 @@
+#pragma once
+// Helpers shared by the BiSS-C tests: decode a generated waveform, pick events by type.
+#include <map>
+#include <string>
+#include <vector>
+
+#include "bissc_decoder.h"
+#include "core/event.h"
+#include "core/registry.h"
+#include "core/session.h"
+#include "core/waveform.h"
+
+namespace busdecode::test {
+
+inline std::vector<Event> decodeBissc(const Waveform& w,
+                                      const std::map<std::string, std::string>& options,
+                                      const std::string& ma = "MA", const std::string& sl = "SLO") {
+    static const bool registered = [] {
+        Registry::instance().add(makeBisscFactory());
+        return true;
+    }();
+    (void)registered;
+    DecoderRequest r;
+    r.proto = "bissc";
+    r.map = {{"ma", ma}, {"sl", sl}};
+    r.options = options;
+    return decodeWaveform(w, {r});
+}
+
+inline std::vector<Event> ofType(const std::vector<Event>& all, const std::string& type) {
+    std::vector<Event> out;
+    for (const auto& e : all)
+        if (e.type == type) out.push_back(e);
+    return out;
+}
+
+inline std::int64_t intField(const Event& e, const char* key) {
+    const Value* v = e.get(key);
+    return v ? asInt(*v) : -999;
+}
+
+inline bool nullField(const Event& e, const char* key) {
+    const Value* v = e.get(key);
+    return !v || isNull(*v);
+}
+
+}  // namespace busdecode::test
