@@ -13,9 +13,10 @@ namespace busdecode {
 void writeVcd(const Waveform& w, const std::string& path);
 
 enum class CsvDialect {
-    SigrokDense,  // `; Channels (n/m): A, B` + `; Samplerate: X` comments, `logic,...` header, one row per sample
-    SaleaeLogic2, // `Time [s],A,B`, one row per change
-    Plain,        // header of names, one row per sample (needs --rate to read back)
+    SigrokDense,   // `; Channels (n/m): A, B` + `; Samplerate: X` comments, `logic,...` header, one
+                   // row per sample
+    SaleaeLogic2,  // `Time [s],A,B`, one row per change
+    Plain,         // header of names, one row per sample (needs --rate to read back)
 };
 // Dense dialects need a timebase that is one sample per tick (Timebase::fromSampleRate).
 void writeCsv(const Waveform& w, const std::string& path, CsvDialect dialect);

@@ -1,8 +1,447 @@
+// CSV readers. One parser covers the dialects logic analysers write; the header row
+// decides which one a file is:
+// - sigrok dense CSV: `;` comment lines (`; Channels (2/8): MA, SLO` names the columns,
+//   `; Samplerate: 24 MHz` gives the rate), a `logic,logic` header, one row per sample.
+// - time column, one row per change or per sample: Saleae Logic 2 (`Time [s],A,B`),
+//   Logic 1.x (`Time[s], Channel 0, ...`), USBee (`Time,0,1,...`, per sample, starting
+//   at a negative time), ScanaStudio (`Times;CH1 MOSI;...` with `;` separators and
+//   times like `4.860 530 ms`). Times are seconds unless a unit follows them.
+// - plain: a header of names and one row per sample; needs the rate (--rate).
+// Dense formats count one tick per sample (sample 0 = tick 0). Time-column formats
+// use ticks of 10^-R s, R = the finest decimal place in the first rows but at least
+// 9 (1 ns) and at most 12 (1 ps), so times as written are exact; finer digits later in
+// the file are rounded to that tick. Times may be negative.
+// Values are 0 or 1; fields may be padded with spaces or quoted.
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <deque>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+
 #include "core/options.h"
 #include "readers.h"
 
 namespace busdecode {
-std::unique_ptr<CaptureReader> openCsv(std::unique_ptr<TextSource> src, const OpenOptions&) {
-    throw InputError(src->name() + ": CSV not supported yet");
+
+namespace {
+
+std::string_view trimView(std::string_view s) {
+    while (!s.empty() && (s.front() == ' ' || s.front() == '\t'))
+        s.remove_prefix(1);
+    while (!s.empty() && (s.back() == ' ' || s.back() == '\t'))
+        s.remove_suffix(1);
+    if (s.size() >= 2 && s.front() == '"' && s.back() == '"') s = s.substr(1, s.size() - 2);
+    return s;
 }
+
+std::string lower(std::string_view s) {
+    std::string out(s);
+    for (auto& c : out)
+        c = char(std::tolower(static_cast<unsigned char>(c)));
+    return out;
+}
+
+// Splits at `sep` into `out` (views into `line`); no allocation once `out` has grown.
+void split(std::string_view line, char sep, std::vector<std::string_view>& out) {
+    out.clear();
+    std::size_t b = 0;
+    for (;;) {
+        std::size_t e = line.find(sep, b);
+        if (e == std::string_view::npos) {
+            out.push_back(trimView(line.substr(b)));
+            return;
+        }
+        out.push_back(trimView(line.substr(b, e - b)));
+        b = e + 1;
+    }
+}
+
+// A time as written ("-0.000000250", "4.860 530 ms", "1.5e-06", "0 ns"): an exact
+// decimal mantissa and a power of ten of seconds. False if it is not a time.
+struct Decimal {
+    __int128 mantissa = 0;
+    int exp10 = 0;  // value = mantissa * 10^exp10 seconds
+};
+bool parseTime(std::string_view s, Decimal& out) {
+    std::size_t i = 0;
+    bool neg = false;
+    if (i < s.size() && (s[i] == '-' || s[i] == '+')) neg = s[i++] == '-';
+    __int128 m = 0;
+    int digits = 0, frac = 0;
+    bool dot = false;
+    for (; i < s.size(); ++i) {
+        const char c = s[i];
+        if (c >= '0' && c <= '9') {
+            if (digits < 30) {
+                m = m * 10 + (c - '0');
+                ++digits;
+                if (dot) ++frac;
+            } else if (!dot) {
+                return false;  // absurdly large
+            }
+        } else if (c == '.' && !dot) {
+            dot = true;
+        } else if (c == ' ' && i + 1 < s.size() && s[i + 1] >= '0' && s[i + 1] <= '9' &&
+                   digits > 0) {
+            continue;  // digit groups: "4.860 530"
+        } else {
+            break;
+        }
+    }
+    if (digits == 0) return false;
+    int exp = 0;
+    if (i < s.size() && (s[i] == 'e' || s[i] == 'E')) {
+        ++i;
+        auto [p, ec] = std::from_chars(s.data() + i, s.data() + s.size(), exp);
+        if (ec != std::errc() || exp < -30 || exp > 30) return false;
+        i = std::size_t(p - s.data());
+    }
+    while (i < s.size() && s[i] == ' ')
+        ++i;
+    const std::string_view unit = s.substr(i);
+    int unit_exp = 0;
+    if (unit.empty() || unit == "s")
+        unit_exp = 0;
+    else if (unit == "ms")
+        unit_exp = -3;
+    else if (unit == "us" || unit == "\xc2\xb5s" || unit == "\xce\xbcs")
+        unit_exp = -6;
+    else if (unit == "ns")
+        unit_exp = -9;
+    else if (unit == "ps")
+        unit_exp = -12;
+    else
+        return false;
+    out.mantissa = neg ? -m : m;
+    out.exp10 = exp - frac + unit_exp;
+    return true;
+}
+
+// value * 10^(exp10 + R) rounded to an integer tick.
+bool toTicks(const Decimal& d, int resolution, Tick& t) {
+    __int128 v = d.mantissa;
+    int e = d.exp10 + resolution;
+    for (; e > 0; --e) {
+        v *= 10;
+        if (v > (__int128)INT64_MAX * 10 || v < (__int128)INT64_MIN * 10) return false;
+    }
+    if (e < 0) {
+        __int128 div = 1;
+        for (; e < 0; ++e)
+            div *= 10;
+        __int128 q = v / div, r = v % div;
+        if (2 * (r < 0 ? -r : r) >= div) q += v < 0 ? -1 : 1;
+        v = q;
+    }
+    if (v > INT64_MAX || v < INT64_MIN) return false;
+    t = Tick(v);
+    return true;
+}
+
+class CsvReader : public CaptureReader {
+public:
+    CsvReader(std::unique_ptr<TextSource> src, const OpenOptions& opts)
+        : src_(std::move(src)), opts_(opts) {
+        parseHeader();
+    }
+
+    const std::vector<SignalInfo>& signals() const override { return signals_; }
+    Timebase timebase() const override { return tb_; }
+    std::string formatName() const override { return format_; }
+
+    void select(const std::vector<LineRef>& lines) override {
+        sel_.clear();
+        for (std::size_t i = 0; i < lines.size(); ++i) {
+            if (lines[i].signal < 0 || lines[i].signal >= int(signals_.size()))
+                throw std::out_of_range("CsvReader::select");
+            sel_.push_back(std::size_t(lines[i].signal) + first_col_);
+        }
+        level_.assign(sel_.size(), 1);
+    }
+
+    std::vector<std::uint8_t> initialLevels() override {
+        if (!started_) start();
+        return level_;
+    }
+    Tick startTick() const override { return start_; }
+
+    bool next(EdgeBlock& block) override {
+        block.clear();
+        if (!started_) start();
+        if (done_) return false;
+        int idle_rounds = 0;
+        for (;;) {
+            if (block.edges.size() + sel_.size() > kEdgeBlockSize) {
+                block.known_until = cur_;
+                return true;
+            }
+            std::string_view line;
+            auto st = nextRow(line);
+            if (st == TextSource::Status::Eof) {
+                done_ = true;
+                block.known_until = cur_;
+                return !block.edges.empty();
+            }
+            if (st == TextSource::Status::NoData) {
+                if (!block.edges.empty() || ++idle_rounds > 20) {
+                    block.known_until = cur_;
+                    return true;
+                }
+                src_->waitForData(5);
+                continue;
+            }
+            row(line, &block);
+        }
+    }
+    Tick endTick() const override { return cur_; }
+    std::uint64_t bytesRead() const override { return src_->bytesRead(); }
+    std::uint64_t bytesTotal() const override { return src_->bytesTotal(); }
+
+private:
+    [[noreturn]] void fail(const std::string& what) const {
+        throw InputError(src_->at(line_no_, what));
+    }
+
+    // The next data row: rows held back while choosing the timebase first, then the
+    // stream. Blank and `;` comment lines are skipped.
+    TextSource::Status nextRow(std::string_view& line) {
+        if (!held_.empty()) {
+            current_ = std::move(held_.front().second);
+            line_no_ = held_.front().first;
+            held_.pop_front();
+            line = current_;
+            return TextSource::Status::Line;
+        }
+        for (;;) {
+            auto st = src_->nextLine(line);
+            if (st != TextSource::Status::Line) return st;
+            line_no_ = src_->lineNo();
+            std::string_view t = trimView(line);
+            if (t.empty() || t.front() == ';' || t.front() == '#') continue;
+            return st;
+        }
+    }
+
+    void parseHeader() {
+        std::string_view line;
+        std::vector<std::string> channel_names;
+        std::int64_t comment_rate = 0;
+        for (;;) {
+            auto st = src_->nextLine(line);
+            if (st == TextSource::Status::NoData) {
+                src_->waitForData(5);
+                continue;
+            }
+            if (st == TextSource::Status::Eof)
+                throw InputError(src_->name() + ": empty file (no CSV header)");
+            line_no_ = src_->lineNo();
+            std::string_view t = trimView(line);
+            if (t.empty()) continue;
+            if (t.front() == ';' || t.front() == '#') {
+                // sigrok: "; Channels (2/8): MA, SLO" and "; Samplerate: 24 MHz"
+                std::string_view body = trimView(t.substr(1));
+                const std::string lb = lower(body);
+                auto colon = body.find(':');
+                if (lb.rfind("channels", 0) == 0 && colon != std::string_view::npos) {
+                    std::vector<std::string_view> parts;
+                    split(body.substr(colon + 1), ',', parts);
+                    channel_names.assign(parts.begin(), parts.end());
+                } else if (lb.rfind("samplerate", 0) == 0 && colon != std::string_view::npos) {
+                    comment_rate = parseRateHz(body.substr(colon + 1));
+                }
+                continue;
+            }
+            break;
+        }
+        header_line_ = line_no_;
+        // Separator: `;` (ScanaStudio), else `,`, else tab.
+        sep_ = line.find(';') != std::string_view::npos    ? ';'
+               : line.find(',') != std::string_view::npos  ? ','
+               : line.find('\t') != std::string_view::npos ? '\t'
+                                                           : ',';
+        std::vector<std::string_view> f;
+        split(line, sep_, f);
+        if (f.size() > 1 && f.back().empty()) f.pop_back();  // a trailing separator
+        ncols_ = f.size();
+        const std::string first = lower(f[0]);
+        std::vector<std::string> names;
+        bool all_logic =
+            std::all_of(f.begin(), f.end(), [](std::string_view s) { return lower(s) == "logic"; });
+        if (first.rfind("time", 0) == 0) {
+            timed_ = true;
+            first_col_ = 1;
+            format_ = first == "times"                            ? "scanastudio-csv"
+                      : first == "time [s]" || first == "time[s]" ? "saleae-csv"
+                                                                  : "time-csv";
+            for (std::size_t i = 1; i < f.size(); ++i)
+                names.emplace_back(f[i]);
+        } else if (all_logic) {
+            format_ = "sigrok-csv";
+            if (channel_names.size() == f.size()) {
+                names = channel_names;
+            } else {
+                for (std::size_t i = 0; i < f.size(); ++i)
+                    names.push_back(std::to_string(i));
+            }
+        } else {
+            format_ = comment_rate > 0 ? "sigrok-csv" : "plain-csv";
+            names.assign(f.begin(), f.end());
+        }
+        for (std::size_t i = 0; i < names.size(); ++i) {
+            if (names[i].empty())
+                fail(fmt::format("empty column name (column {})", i + 1 + first_col_));
+            for (std::size_t j = 0; j < i; ++j)
+                if (names[j] == names[i])
+                    fail(fmt::format("duplicate column name '{}'", printable(names[i])));
+            signals_.push_back(signalFor(names[i]));
+        }
+        if (timed_) chooseResolution();  // the timebase is known before the first row
+        if (!timed_) {
+            const double rate = opts_.rate_hz > 0 ? opts_.rate_hz : double(comment_rate);
+            if (!(rate > 0))
+                throw InputError(
+                    src_->at(header_line_,
+                             "this CSV has no time column and no samplerate comment: give the "
+                             "sample rate with --rate HZ"));
+            if (rate == std::floor(rate) && rate < 9e18)
+                tb_ = Timebase{1, std::int64_t(rate)};
+            else
+                tb_ = Timebase{1'000'000, std::int64_t(std::llround(rate * 1e6))};
+        }
+    }
+
+    // "CH1 MOSI" -> name MOSI (the user's label), "CH5 CH 5" -> CH5; full_name keeps the
+    // column title as written.
+    static SignalInfo signalFor(const std::string& title) {
+        SignalInfo s{title, title, 1};
+        auto sp = title.find(' ');
+        if (sp != std::string::npos && title.size() > 2 && (title[0] == 'C' || title[0] == 'c') &&
+            (title[1] == 'H' || title[1] == 'h') &&
+            std::isdigit(static_cast<unsigned char>(title[2]))) {
+            std::string rest(trimView(std::string_view(title).substr(sp + 1)));
+            std::string lr = lower(rest);
+            s.name = lr.rfind("ch ", 0) == 0 || lr.empty() ? title.substr(0, sp) : rest;
+        }
+        return s;
+    }
+
+    void start() {
+        started_ = true;
+        std::string_view line;
+        for (;;) {
+            auto st = nextRow(line);
+            if (st == TextSource::Status::Eof) {
+                done_ = true;
+                return;
+            }
+            if (st == TextSource::Status::NoData) {
+                src_->waitForData(5);
+                if (opts_.stop && opts_.stop->load()) {
+                    done_ = true;
+                    return;
+                }
+                continue;
+            }
+            row(line, nullptr);
+            start_ = cur_;
+            return;
+        }
+    }
+
+    // Holds back the first rows to find the finest decimal place of their times.
+    void chooseResolution() {
+        int finest = 9;
+        std::string_view line;
+        while (held_.size() < 2000) {
+            auto st = src_->nextLine(line);
+            if (st != TextSource::Status::Line) {
+                if (st == TextSource::Status::NoData && held_.empty()) {
+                    src_->waitForData(5);
+                    if (!(opts_.stop && opts_.stop->load())) continue;
+                }
+                break;
+            }
+            std::string_view t = trimView(line);
+            if (t.empty() || t.front() == ';' || t.front() == '#') continue;
+            held_.emplace_back(src_->lineNo(), std::string(line));
+            std::string_view tf = trimView(t.substr(0, t.find(sep_)));
+            Decimal d;
+            if (parseTime(tf, d)) finest = std::max(finest, -d.exp10);
+        }
+        resolution_ = std::min(finest, 12);
+        std::int64_t den = 1;
+        for (int k = 0; k < resolution_; ++k)
+            den *= 10;
+        tb_ = Timebase{1, den};
+    }
+
+    void row(std::string_view line, EdgeBlock* block) {
+        split(line, sep_, fields_);
+        if (fields_.size() != ncols_) {
+            // A trailing separator is tolerated (some tools end rows with one).
+            if (!(fields_.size() == ncols_ + 1 && fields_.back().empty()))
+                fail(fmt::format("expected {} fields like the header (line {}), found {}", ncols_,
+                                 header_line_, fields_.size()));
+        }
+        Tick t;
+        if (timed_) {
+            Decimal d;
+            if (!parseTime(fields_[0], d))
+                fail(fmt::format("expected a time in seconds, found '{}'", printable(fields_[0])));
+            if (!toTicks(d, resolution_, t))
+                fail(fmt::format("time '{}' out of range", printable(fields_[0])));
+            if (rows_ > 0 && t < cur_)
+                fail(fmt::format("time going backwards ({} after {})", printable(fields_[0]),
+                                 prev_time_));
+            prev_time_.assign(fields_[0]);
+        } else {
+            t = Tick(rows_);
+        }
+        cur_ = t;
+        ++rows_;
+        for (std::size_t i = 0; i < sel_.size(); ++i) {
+            std::string_view v = fields_[sel_[i]];
+            std::uint8_t level;
+            if (v.size() == 1 && (v[0] == '0' || v[0] == '1')) {
+                level = std::uint8_t(v[0] - '0');
+            } else {
+                fail(fmt::format("expected 0 or 1 in column '{}', found '{}'",
+                                 signals_[sel_[i] - first_col_].full_name, printable(v)));
+            }
+            if (level != level_[i]) {
+                level_[i] = level;
+                if (block) block->edges.push_back({t, std::uint32_t(i), level});
+            }
+        }
+    }
+
+    std::unique_ptr<TextSource> src_;
+    OpenOptions opts_;
+    std::string format_;
+    std::vector<SignalInfo> signals_;
+    Timebase tb_;
+    char sep_ = ',';
+    bool timed_ = false;
+    std::size_t first_col_ = 0, ncols_ = 0;
+    std::uint64_t header_line_ = 0, line_no_ = 0;
+    int resolution_ = 9;
+    std::deque<std::pair<std::uint64_t, std::string>> held_;
+    std::string current_, prev_time_;
+    std::vector<std::string_view> fields_;
+    std::vector<std::size_t> sel_;  // column of each selected line
+    std::vector<std::uint8_t> level_;
+    std::uint64_t rows_ = 0;
+    Tick start_ = 0, cur_ = 0;
+    bool started_ = false, done_ = false;
+};
+
+}  // namespace
+
+std::unique_ptr<CaptureReader> openCsv(std::unique_ptr<TextSource> src, const OpenOptions& opts) {
+    return std::make_unique<CsvReader>(std::move(src), opts);
+}
+
 }  // namespace busdecode

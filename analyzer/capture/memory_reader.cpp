@@ -22,12 +22,14 @@ public:
     std::string formatName() const override { return "memory"; }
     void select(const std::vector<LineRef>& lines) override {
         map_.assign(w_.names.size(), -1);
-        for (int i = 0; i < int(lines.size()); ++i) map_[lines[i].signal] = i;
+        for (int i = 0; i < int(lines.size()); ++i)
+            map_[lines[i].signal] = i;
         selected_ = lines;
     }
     std::vector<std::uint8_t> initialLevels() override {
         std::vector<std::uint8_t> out;
-        for (const auto& l : selected_) out.push_back(w_.initial[l.signal]);
+        for (const auto& l : selected_)
+            out.push_back(w_.initial[l.signal]);
         return out;
     }
     Tick startTick() const override { return w_.start; }
@@ -35,9 +37,12 @@ public:
         block.clear();
         while (pos_ < w_.edges.size() && block.edges.size() < kEdgeBlockSize) {
             const Edge& e = w_.edges[pos_++];
-            if (map_[e.line] >= 0) block.edges.push_back({e.t, std::uint32_t(map_[e.line]), e.level});
+            if (map_[e.line] >= 0)
+                block.edges.push_back({e.t, std::uint32_t(map_[e.line]), e.level});
         }
-        block.known_until = pos_ < w_.edges.size() ? (block.edges.empty() ? kNoTick : block.edges.back().t) : w_.end;
+        block.known_until = pos_ < w_.edges.size()
+                                ? (block.edges.empty() ? kNoTick : block.edges.back().t)
+                                : w_.end;
         return !block.edges.empty() || pos_ < w_.edges.size();
     }
     Tick endTick() const override { return w_.end; }
@@ -52,6 +57,8 @@ private:
 
 }  // namespace
 
-std::unique_ptr<CaptureReader> memoryReader(const Waveform& w) { return std::make_unique<MemoryReader>(w); }
+std::unique_ptr<CaptureReader> memoryReader(const Waveform& w) {
+    return std::make_unique<MemoryReader>(w);
+}
 
 }  // namespace busdecode

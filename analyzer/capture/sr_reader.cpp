@@ -38,31 +38,6 @@ std::string trim(const std::string& s) {
     return s.substr(b, e - b);
 }
 
-// "24 MHz", "1MHz", "5 Hz", "100 kHz", "1.5 GHz", "24000000" -> Hz (0 if unreadable).
-std::int64_t parseRate(const std::string& text) {
-    std::string s = trim(text);
-    std::size_t i = 0;
-    while (i < s.size() && (std::isdigit(static_cast<unsigned char>(s[i])) || s[i] == '.'))
-        ++i;
-    if (i == 0) return 0;
-    const double v = std::strtod(s.substr(0, i).c_str(), nullptr);
-    std::string unit = trim(s.substr(i));
-    for (auto& c : unit)
-        c = char(std::tolower(static_cast<unsigned char>(c)));
-    double mul = 0;
-    if (unit.empty() || unit == "hz")
-        mul = 1;
-    else if (unit == "khz")
-        mul = 1e3;
-    else if (unit == "mhz")
-        mul = 1e6;
-    else if (unit == "ghz")
-        mul = 1e9;
-    const double hz = v * mul;
-    if (!(hz >= 1) || hz > 1e15) return 0;
-    return std::int64_t(std::llround(hz));
-}
-
 class SrReader : public CaptureReader {
 public:
     SrReader(const std::string& path, int fd, const std::string& name, const OpenOptions& opts)
@@ -209,7 +184,7 @@ private:
             if (key == "samplerate") {
                 have_rate = true;
                 rate_text = value;
-                rate_ = parseRate(value);
+                rate_ = parseRateHz(value);
             } else if (key == "unitsize") {
                 unit_ = std::size_t(std::atoi(value.c_str()));
                 if (unit_ < 1 || unit_ > 4)

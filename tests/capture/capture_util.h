@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "capture/capture_reader.h"
+#include "core/options.h"
 #include "support/paths.h"
 
 namespace busdecode {
