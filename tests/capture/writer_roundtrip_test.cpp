@@ -1,0 +1,134 @@
+// write -> read round trips: a random Waveform written as VCD and as each CSV dialect
+// reads back with the same initial levels and edges.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <random>
+
+#include "capture/capture_writer.h"
+#include "capture_util.h"
+#include "core/waveform.h"
+
+namespace busdecode::test {
+namespace {
+
+Waveform randomWave(Timebase tb, std::uint32_t seed, int edges_per_line, Tick max_gap) {
+    std::mt19937 rng(seed);
+    std::vector<std::string> names = {"clk", "data", "cs"};
+    std::vector<std::uint8_t> init = {1, 0, 1};
+    WaveBuilder b(tb, names, init);
+    // lines share some instants, so one timestamp carries several changes
+    Tick t = 0;
+    std::uniform_int_distribution<Tick> gap(0, max_gap);
+    std::uniform_int_distribution<int> line(0, 2);
+    for (int i = 0; i < edges_per_line * 3; ++i) {
+        t += gap(rng);
+        const auto l = std::uint32_t(line(rng));
+        b.set(l, t, !b.level(l));
+    }
+    return b.build(t + 7);
+}
+
+// Edges of the file read back, on the lines in Waveform order, in ns.
+std::vector<NsEdge> wantNs(const Waveform& w) {
+    std::vector<NsEdge> out;
+    for (const Edge& e : w.edges)
+        out.push_back({w.timebase.toNs(e.t), e.line, e.level});
+    return out;
+}
+
+void expectSameNs(const std::vector<NsEdge>& got, const std::vector<NsEdge>& want,
+                  std::int64_t tol) {
+    ASSERT_EQ(got.size(), want.size());
+    for (std::size_t i = 0; i < got.size(); ++i) {
+        ASSERT_EQ(got[i].line, want[i].line) << i;
+        ASSERT_EQ(got[i].level, want[i].level) << i;
+        ASSERT_LE(std::llabs(got[i].ns - want[i].ns), tol) << i;
+    }
+}
+
+TEST(WriterRoundTrip, VcdExactTimescale) {
+    for (Timebase tb :
+         {Timebase{1, 1'000'000'000}, Timebase{100, 1'000'000'000'000}, Timebase{10, 1'000'000}}) {
+        auto w = randomWave(tb, 7, 3000, 40);
+        const std::string p = tempDir() + "/rt.vcd";
+        writeVcd(w, p);
+        auto c = collectFile(p, {"clk", "data", "cs"});
+        EXPECT_EQ(c.tb.num * w.timebase.den, w.timebase.num * c.tb.den);
+        EXPECT_EQ(c.signals[0].full_name, "busdecode.clk");
+        EXPECT_EQ(c.initial, w.initial);
+        EXPECT_EQ(c.start, w.start);
+        EXPECT_EQ(c.end, w.end);
+        EXPECT_EQ(c.edges, w.edges);
+    }
+}
+
+TEST(WriterRoundTrip, VcdSampleRateTimebaseGoesThroughPicoseconds) {
+    auto w = randomWave(Timebase::fromSampleRate(24'000'000), 11, 2000, 30);
+    const std::string p = tempDir() + "/rt24.vcd";
+    writeVcd(w, p);
+    auto c = collectFile(p, {"clk", "data", "cs"});
+    EXPECT_EQ(c.tb.den, 1'000'000'000'000);
+    EXPECT_EQ(c.initial, w.initial);
+    expectSameNs(inNs(c), wantNs(w), 0);
+}
+
+TEST(WriterRoundTrip, SigrokDenseCsv) {
+    auto w = randomWave(Timebase::fromSampleRate(2'500'000), 3, 1500, 9);
+    const std::string p = tempDir() + "/rt_sigrok.csv";
+    writeCsv(w, p, CsvDialect::SigrokDense);
+    auto c = collectFile(p, {"clk", "data", "cs"});
+    EXPECT_EQ(c.format, "sigrok-csv");
+    EXPECT_EQ(c.tb.den, 2'500'000);
+    EXPECT_EQ(c.initial, w.initial);
+    EXPECT_EQ(c.end, w.end);
+    EXPECT_EQ(c.edges, w.edges);
+}
+
+TEST(WriterRoundTrip, PlainCsvWithRate) {
+    auto w = randomWave(Timebase::fromSampleRate(1000), 5, 1000, 9);
+    const std::string p = tempDir() + "/rt_plain.csv";
+    writeCsv(w, p, CsvDialect::Plain);
+    OpenOptions o;
+    o.rate_hz = 1000;
+    auto c = collectFile(p, {"clk", "data", "cs"}, o);
+    EXPECT_EQ(c.format, "plain-csv");
+    EXPECT_EQ(c.initial, w.initial);
+    EXPECT_EQ(c.edges, w.edges);
+}
+
+TEST(WriterRoundTrip, SaleaeLogic2Csv) {
+    for (Timebase tb : {Timebase{1, 1'000'000'000}, Timebase::fromSampleRate(24'000'000),
+                        Timebase{1, 1'000'000}}) {
+        auto w = randomWave(tb, 13, 2000, 50);
+        const std::string p = tempDir() + "/rt_saleae.csv";
+        writeCsv(w, p, CsvDialect::SaleaeLogic2);
+        auto c = collectFile(p, {"clk", "data", "cs"});
+        EXPECT_EQ(c.format, "saleae-csv");
+        EXPECT_EQ(c.initial, w.initial);
+        EXPECT_EQ(c.tb.toNs(c.end), w.timebase.toNs(w.end));
+        expectSameNs(inNs(c), wantNs(w), 0);
+    }
+}
+
+TEST(Writer, AtomicNoTemporaryLeftAndUnwritableIsAnError) {
+    auto w = randomWave(Timebase{1, 1'000'000'000}, 1, 10, 5);
+    const std::string dir = tempDir() + "/atomic";
+    std::filesystem::create_directories(dir);
+    writeVcd(w, dir + "/a.vcd");
+    writeCsv(w, dir + "/a.csv", CsvDialect::SaleaeLogic2);
+    int files = 0;
+    for (auto& e : std::filesystem::directory_iterator(dir)) {
+        ++files;
+        EXPECT_EQ(e.path().string().find(".tmp-"), std::string::npos);
+    }
+    EXPECT_EQ(files, 2);
+    EXPECT_THROW(writeVcd(w, dir + "/no/such/dir/a.vcd"), InputError);
+    w.timebase = Timebase{3, 10};  // 0.3 s per tick is not a whole sample rate
+    EXPECT_THROW(writeCsv(w, dir + "/x.csv", CsvDialect::SigrokDense), std::invalid_argument);
+    EXPECT_FALSE(std::filesystem::exists(dir + "/x.csv"));
+}
+
+}  // namespace
+}  // namespace busdecode::test
