@@ -1,0 +1,6 @@
+// decode-monitor: the same dashboard as `decode monitor`, as its own command.
+#include "lcm/lcm_sink.h"
+
+int main(int argc, char** argv) {
+    return busdecode::runMonitor(argc, argv);
+}
