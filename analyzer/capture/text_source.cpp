@@ -200,7 +200,11 @@ std::string_view TextSource::peek(std::size_t n) {
     const std::size_t want = std::min<std::size_t>(n, 64);
     while (std::size_t(end_ - pos_) < n && !eof_ && !stopRequested()) {
         if (fill() > 0) continue;
-        if (eof_ || std::size_t(end_ - pos_) >= want) break;
+        // Enough to tell the format: `want` bytes or one complete line (a live source
+        // may write a short first line and then pause).
+        if (eof_ || std::size_t(end_ - pos_) >= want ||
+            std::memchr(pos_, '\n', std::size_t(end_ - pos_)))
+            break;
         waitForData(50);
     }
     return std::string_view(pos_, std::min(n, std::size_t(end_ - pos_)));
