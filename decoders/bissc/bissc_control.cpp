@@ -26,13 +26,15 @@ Tick BisscControlReassembler::openSince() const {
 
 std::uint32_t BisscControlReassembler::cdmBits(int from, int n) const {
     std::uint32_t v = 0;
-    for (int i = 0; i < n; ++i) v = (v << 1) | std::uint32_t(frames_[from + i].cdm & 1);
+    for (int i = 0; i < n; ++i)
+        v = (v << 1) | std::uint32_t(frames_[from + i].cdm & 1);
     return v;
 }
 
 std::uint32_t BisscControlReassembler::cdsBits(int from, int n) const {
     std::uint32_t v = 0;
-    for (int i = 0; i < n; ++i) v = (v << 1) | std::uint32_t(frames_[from + i].cds & 1);
+    for (int i = 0; i < n; ++i)
+        v = (v << 1) | std::uint32_t(frames_[from + i].cds & 1);
     return v;
 }
 
@@ -71,8 +73,10 @@ void BisscControlReassembler::push(const ControlBits& frame) {
     if (frame.cdm < 0 || frame.cds < 0) {
         // A frame without both control bits breaks the access: the slave's and the
         // master's view of it can no longer be followed.
-        if (phase_ == Phase::Command) emitCommand(false, "abandoned");
-        else emitRegister(false, "abandoned");
+        if (phase_ == Phase::Command)
+            emitCommand(false, "abandoned");
+        else
+            emitRegister(false, "abandoned");
         toIdle(0);
         return;
     }
@@ -80,7 +84,8 @@ void BisscControlReassembler::push(const ControlBits& frame) {
     const int f = lastIndex();
 
     switch (phase_) {
-        case Phase::Idle: break;
+        case Phase::Idle:
+            break;
         case Phase::Header:
             if (f == 1) cts_ = frame.cdm;
             if (cts_ == 1 && f == kMasterStartFrame) {
@@ -163,14 +168,17 @@ void BisscControlReassembler::emitRegister(bool complete, const char* error) {
     const char* op = "unknown";
     bool crc_ok = header_parsed_ ? header_crc_ok_ : false;
     if (header_parsed_) {
-        if (rw_ == 0b10) op = "read";
-        else if (rw_ == 0b01) op = "write";
-        else e.error("rw");
+        if (rw_ == 0b10)
+            op = "read";
+        else if (rw_ == 0b01)
+            op = "write";
+        else
+            e.error("rw");
     }
     e.set("op", std::string(op));
     e.set("id", header_parsed_ ? Value(std::int64_t(id_)) : Value(Null{}));
-    e.set("address", header_parsed_ ? Value(std::int64_t((address_ + byte_index_) & 0x7F))
-                                    : Value(Null{}));
+    e.set("address",
+          header_parsed_ ? Value(std::int64_t((address_ + byte_index_) & 0x7F)) : Value(Null{}));
     if (header_parsed_ && !header_crc_ok_) e.error("control_crc");
 
     Value data = Null{};
@@ -199,12 +207,16 @@ void BisscControlReassembler::emitRegister(bool complete, const char* error) {
         // Refusal: the slave inverts the returned W bit (write -> 00, read -> 11); in a
         // sequential access it returns P = 1 instead (S1 p.13, S2 p.16).
         if (header_parsed_ && (rw_ == 0b10 || rw_ == 0b01)) {
-            if (rw_echo_ == (rw_ ^ 0b01)) refused = true;
-            else if (rw_echo_ != rw_) e.error("echo");
+            if (rw_echo_ == (rw_ ^ 0b01))
+                refused = true;
+            else if (rw_echo_ != rw_)
+                e.error("echo");
         }
         if (frames_[fs + 13].cds == 1) {
-            if (byte_index_ > 0) refused = true;
-            else e.error("stop_bit");
+            if (byte_index_ > 0)
+                refused = true;
+            else
+                e.error("stop_bit");
         }
     } else {
         crc_ok = false;
@@ -260,8 +272,8 @@ void BisscControlReassembler::emitCommand(bool executed, const char* error) {
         for (int i = 0; i < 8 && kCommandStartFrame + 1 + i <= lastIndex(); ++i)
             if (frames_[kCommandStartFrame + 1 + i].cds) ida |= std::int64_t(1) << i;
         e.set("ida", ida);
-        e.summary = fmt::format("command {} ids=0x{:02X}{}{}", cmd, ids, executed ? " executed" : "",
-                                crc_ok ? " crc ok" : " crc bad");
+        e.summary = fmt::format("command {} ids=0x{:02X}{}{}", cmd, ids,
+                                executed ? " executed" : "", crc_ok ? " crc ok" : " crc bad");
     } else {
         e.set("id", Null{});
         e.set("command", Null{});
@@ -275,8 +287,10 @@ void BisscControlReassembler::emitCommand(bool executed, const char* error) {
 
 void BisscControlReassembler::finish() {
     if (phase_ == Phase::Idle) return;
-    if (phase_ == Phase::Command) emitCommand(false, "short_frame");
-    else emitRegister(false, "short_frame");
+    if (phase_ == Phase::Command)
+        emitCommand(false, "short_frame");
+    else
+        emitRegister(false, "short_frame");
     toIdle(0);
 }
 

@@ -24,8 +24,7 @@ constexpr double kMinQuietNs = 20000.0;
 }  // namespace
 
 BisscDecoder::BisscDecoder(const Options& options)
-    : s_(BisscSettings::from(options)),
-      control_([this](Event&& e) { emit(std::move(e)); }) {}
+    : s_(BisscSettings::from(options)), control_([this](Event&& e) { emit(std::move(e)); }) {}
 
 void BisscDecoder::start(const DecoderContext& ctx) {
     Decoder::start(ctx);
@@ -44,11 +43,14 @@ Tick BisscDecoder::watermark(Tick now) const {
 }
 
 void BisscDecoder::edge(Tick t, int role, bool level) {
-    if (role == kSl) onSl(t, level);
-    else if (role == kMa) onMa(t, level);
+    if (role == kSl)
+        onSl(t, level);
+    else if (role == kMa)
+        onMa(t, level);
 }
 
 void BisscDecoder::advance(Tick now) {
+    scheduleUpTo(double(now));
     sampler_.advanceTo(now);
     drainSamples();
     checkQuiet(now);
@@ -78,21 +80,44 @@ double BisscDecoder::quietLimit() const {
 }
 
 void BisscDecoder::checkQuiet(Tick now) {
-    if (state_ == State::Idle && hold_rise_ != kNoTick && hold_fall_ == kNoTick) {
-        // MA rose from low and stayed high: the master went back to idle.
-        if (double(now - hold_rise_) > std::max(tb().fromNs(kMinQuietNs), 4.0 * last_period_)) {
-            hold_rise_ = kNoTick;
-            idle();
-        }
-        return;
-    }
     if (state_ != State::WaitAck && state_ != State::Data) return;
     if (last_ma_edge_ == kNoTick || double(now - last_ma_edge_) <= quietLimit()) return;
+    if (state_ == State::WaitAck && f_.from_hold && f_.rises.size() == 1) {
+        // MA rose from low and stayed high: the master went back to idle after CDM = 1.
+        state_ = State::Idle;
+        idle();
+        return;
+    }
     const char* why = state_ == State::WaitAck ? "no_ack"
                       : f_.slot == Slot::Busy  ? "no_start"
                                                : "short_frame";
     closeFrame(last_ma_edge_, kNoTick, why, true);
     state_ = sl_ ? State::Idle : State::WaitSlaveIdle;
+}
+
+void BisscDecoder::resolveHoldStart(Tick ack) {
+    // A frame that began with MA rising from low is either a Hold-CDM frame (that rise
+    // was LAT) or the master's return to idle after CDM = 1 followed by a normal frame
+    // (LAT is the rise after the next fall). The ACK follows the 2nd LAT-counted rise by
+    // the line delay: pick the reading whose delay matches the previous frame's, or, for
+    // a first frame, the one whose first high phase looks like a clock phase.
+    if (!f_.from_hold || f_.hold_fall == kNoTick || f_.rises.size() < 3 || ack < f_.rises[2])
+        return;
+    const double as_hold = double(ack - f_.rises[1]);
+    const double as_idle = double(ack - f_.rises[2]);
+    bool idle_return;
+    if (last_delay_ >= 0) {
+        idle_return = std::fabs(as_idle - last_delay_) < std::fabs(as_hold - last_delay_);
+    } else {
+        const double high = double(f_.hold_fall - f_.rises[0]);
+        const double low = double(f_.rises[1] - f_.hold_fall);
+        idle_return = high > kIdleReturnRatio * low;
+    }
+    if (!idle_return) return;
+    f_.rises.erase(f_.rises.begin());
+    f_.start = f_.hold_fall;
+    f_.from_hold = false;
+    setBusyFrom(f_.start);
 }
 
 void BisscDecoder::beginFrame(Tick start, bool from_hold) {
@@ -109,6 +134,7 @@ void BisscDecoder::beginFrame(Tick start, bool from_hold) {
 }
 
 void BisscDecoder::onMa(Tick t, bool level) {
+    scheduleUpTo(double(t));
     sampler_.advanceTo(t);
     drainSamples();
     checkQuiet(t);
@@ -116,36 +142,24 @@ void BisscDecoder::onMa(Tick t, bool level) {
     ma_ = level;
 
     switch (state_) {
-        case State::WaitSlaveIdle: break;
+        case State::WaitSlaveIdle:
+            break;
         case State::Idle:
             if (!level) {
-                if (hold_rise_ != kNoTick) hold_fall_ = t;
-                else beginFrame(t, false);
-            } else if (hold_rise_ == kNoTick) {
-                hold_rise_ = t;  // decided at the next rising edge
-                busyFrom(t);
-            } else if (hold_fall_ != kNoTick) {
-                const double high = double(hold_fall_ - hold_rise_);
-                const double low = double(t - hold_fall_);
-                if (high > kIdleReturnRatio * low) {
-                    beginFrame(hold_fall_, false);
-                    f_.rises.push_back(t);
-                } else {
-                    beginFrame(hold_rise_, true);
-                    f_.rises.push_back(hold_rise_);
-                    f_.rises.push_back(t);
-                }
-                hold_rise_ = hold_fall_ = kNoTick;
+                beginFrame(t, false);
+            } else {
+                beginFrame(t, true);  // MA rising from low: maybe LAT (see resolveHoldStart)
+                f_.rises.push_back(t);
             }
             break;
         case State::WaitAck:
-            if (level) f_.rises.push_back(t);
+            if (level)
+                f_.rises.push_back(t);
+            else if (f_.from_hold && f_.rises.size() == 1)
+                f_.hold_fall = t;
             break;
         case State::Data:
-            if (level) {
-                f_.rises.push_back(t);
-                scheduleSamples();
-            }
+            if (level) f_.rises.push_back(t);  // its sample is scheduled when due
             break;
         case State::Timeout:
             if (level) f_.rises.push_back(t);  // clocks past the stop bit
@@ -154,6 +168,7 @@ void BisscDecoder::onMa(Tick t, bool level) {
 }
 
 void BisscDecoder::onSl(Tick t, bool level) {
+    scheduleUpTo(double(t));
     sampler_.lineEdge(t, level);
     sl_ = level;
     drainSamples();
@@ -168,7 +183,6 @@ void BisscDecoder::onSl(Tick t, bool level) {
             break;
         case State::Idle:
             if (!level) {  // SL low outside a frame: not ours to decode
-                hold_rise_ = hold_fall_ = kNoTick;
                 state_ = State::WaitSlaveIdle;
                 idle();
             }
@@ -181,18 +195,21 @@ void BisscDecoder::onSl(Tick t, bool level) {
                 state_ = State::WaitSlaveIdle;
                 break;
             }
+            resolveHoldStart(t);
             f_.ack = t;
-            f_.delay = double(t - f_.rises[1]);
+            startDelayEstimate(double(t - f_.rises[1]));
             state_ = State::Data;
-            scheduleSamples();
             break;
         case State::Data: {
-            const double late = double(f_.rises.back()) + f_.delay + kLateSlEdgePeriods * meanPeriod();
-            if (sampler_.pending() == 0 && double(t) > late) {
+            const double late =
+                double(f_.rises.back()) + f_.delay + kLateSlEdgePeriods * meanPeriod();
+            if (f_.scheduled == f_.rises.size() && sampler_.pending() == 0 && double(t) > late) {
                 // SL moved long after the last clocked slot: the master stopped early and
                 // the slave timed out (or gave up).
                 closeFrame(t, kNoTick, f_.slot == Slot::Busy ? "no_start" : "short_frame", true);
                 state_ = level ? State::Idle : State::WaitSlaveIdle;
+            } else if (f_.slot != Slot::Done) {
+                refineDelay(t);
             }
             break;
         }
@@ -205,18 +222,57 @@ void BisscDecoder::onSl(Tick t, bool level) {
     }
 }
 
-void BisscDecoder::scheduleSamples() {
+double BisscDecoder::sampleTime(std::size_t k) const {
     // Slot k (k >= 1; 1 = ACK) is driven after rising edge k and valid from r_k + d to
     // r_{k+1} + d: sample its middle. T is the frame's mean period, which smooths the
     // quantisation of a capture sampled at only a few samples per bit.
-    const double half = meanPeriod() / 2.0;
+    return double(f_.rises[k]) + f_.delay + meanPeriod() / 2.0;
+}
+
+void BisscDecoder::scheduleUpTo(double t) {
+    // Samples are scheduled just before the sampled line could pass them, so each uses
+    // the line delay estimated from every SL edge seen until then.
+    if (state_ != State::Data) return;
     while (f_.scheduled < f_.rises.size()) {
-        double t = double(f_.rises[f_.scheduled]) + f_.delay + half;
-        t = std::max(t, f_.last_sample_t);
-        f_.last_sample_t = t;
-        sampler_.schedule(t, std::uint32_t(f_.scheduled));
+        double at = sampleTime(f_.scheduled);
+        if (at >= t) break;
+        at = std::max(at, f_.last_sample_t);
+        f_.last_sample_t = at;
+        sampler_.schedule(at, std::uint32_t(f_.scheduled));
         ++f_.scheduled;
     }
+}
+
+void BisscDecoder::startDelayEstimate(double ack_delay) {
+    // The ACK edge alone measures the delay to within one capture sample. The cable does
+    // not change between frames: when this ACK agrees with the previous frame's refined
+    // delay, that estimate (worth a few edges) steadies the samples taken before the
+    // frame's own data edges refine it, i.e. in the processing-time slots.
+    f_.delay_sum = ack_delay;
+    f_.delay_edges = 1;
+    const double tolerance = std::max(2.0, 0.25 * meanPeriod());
+    if (last_delay_ >= 0 && std::fabs(ack_delay - last_delay_) <= tolerance) {
+        constexpr int kPriorWeight = 8;
+        f_.delay_sum += kPriorWeight * last_delay_;
+        f_.delay_edges += kPriorWeight;
+    }
+    f_.delay = f_.delay_sum / f_.delay_edges;
+    f_.ack_delay = ack_delay;
+}
+
+void BisscDecoder::refineDelay(Tick t) {
+    // Every SL change in the frame is the slave answering an MA rising edge: the one
+    // whose slot has not been sampled yet (all samples before t are scheduled, the next
+    // slot's is after t). Its offset is one more measurement of the line delay; the mean
+    // resolves the delay to a fraction of a capture sample (the ACK edge alone is
+    // quantised to a whole sample, 0.4 bit at 2.4 samples per bit).
+    const double period = meanPeriod();
+    if (period <= 0 || f_.scheduled >= f_.rises.size()) return;
+    const double offset = double(t - f_.rises[f_.scheduled]);
+    if (std::fabs(offset - f_.delay) >= period / 2) return;
+    f_.delay_sum += offset;
+    ++f_.delay_edges;
+    f_.delay = f_.delay_sum / f_.delay_edges;
 }
 
 void BisscDecoder::drainSamples() {
@@ -273,7 +329,8 @@ void BisscDecoder::takeSample(int index, bool level, double t) {
                 state_ = State::Timeout;
             }
             break;
-        case Slot::Done: break;
+        case Slot::Done:
+            break;
     }
 }
 
@@ -283,7 +340,8 @@ void BisscDecoder::closeFrame(Tick end, Tick timeout_end, const char* error, boo
     e.type = "frame";
     e.start = f_.start;
     e.end = std::max(timeout_end != kNoTick ? timeout_end : end, f_.start);
-    for (const auto& err : f_.errors) e.error(err);
+    for (const auto& err : f_.errors)
+        e.error(err);
     if (error) e.error(error);
 
     const bool complete = f_.slot == Slot::Done;
@@ -326,6 +384,7 @@ void BisscDecoder::closeFrame(Tick end, Tick timeout_end, const char* error, boo
         clock_hz = 1.0 / (period * tb().secondsPerTick());
         last_period_ = period;
     }
+    if (f_.ack != kNoTick) last_delay_ = f_.delay;
     const bool acked = f_.ack != kNoTick;
 
     e.set("position", position);
@@ -337,20 +396,22 @@ void BisscDecoder::closeFrame(Tick end, Tick timeout_end, const char* error, boo
     e.set("crc_ok", crc_ok);
     e.set("cds", cds);
     e.set("cdm", cdm);
-    e.set("line_delay_ns", acked ? Value(std::int64_t(std::llround(tb().toNsF(f_.delay))))
-                                 : Value(Null{}));
+    e.set("line_delay_ns",
+          acked ? Value(std::int64_t(std::llround(tb().toNsF(f_.delay)))) : Value(Null{}));
     e.set("proc_cycles", f_.start_index >= 0 ? Value(std::int64_t(f_.proc_cycles)) : Value(Null{}));
+    e.set("ack_delay_ns",
+          acked ? Value(std::int64_t(std::llround(tb().toNsF(f_.ack_delay)))) : Value(Null{}));
     e.set("clock_hz", clock_hz);
     e.set("timeout_ns", timeout_ns);
-    e.set("extra_clocks",
-          f_.stop_index >= 0 ? Value(std::int64_t(f_.rises.size()) - 1 - f_.stop_index)
-                             : Value(Null{}));
+    e.set("extra_clocks", f_.stop_index >= 0
+                              ? Value(std::int64_t(f_.rises.size()) - 1 - f_.stop_index)
+                              : Value(Null{}));
     e.set("clocks", std::int64_t(f_.rises.size()));
     e.set("hold_cdm", f_.from_hold);
 
     if (complete) {
-        e.summary = fmt::format("pos={} (0x{:X}) nE={} nW={} crc=0x{:02X} {} cds={} cdm={}", pos, pos,
-                                f_.ne, f_.nw, f_.crc_rx, crc_good ? "ok" : "bad", f_.cds,
+        e.summary = fmt::format("pos={} (0x{:X}) nE={} nW={} crc=0x{:02X} {} cds={} cdm={}", pos,
+                                pos, f_.ne, f_.nw, f_.crc_rx, crc_good ? "ok" : "bad", f_.cds,
                                 isNull(cdm) ? "?" : std::to_string(asInt(cdm)));
     } else {
         e.summary = "incomplete frame";
@@ -372,13 +433,23 @@ void BisscDecoder::closeFrame(Tick end, Tick timeout_end, const char* error, boo
 }
 
 void BisscDecoder::finish(Tick end) {
+    scheduleUpTo(double(end));
     sampler_.advanceTo(end);
     drainSamples();
     switch (state_) {
         case State::WaitAck:
-        case State::Data: closeFrame(end, kNoTick, "short_frame", false); break;
-        case State::Timeout: closeFrame(end, kNoTick, nullptr, false); break;
-        default: break;
+            // MA rising from low and nothing after: the master's return to idle.
+            if (f_.from_hold && f_.rises.size() == 1) break;
+            closeFrame(end, kNoTick, "short_frame", false);
+            break;
+        case State::Data:
+            closeFrame(end, kNoTick, "short_frame", false);
+            break;
+        case State::Timeout:
+            closeFrame(end, kNoTick, nullptr, false);
+            break;
+        default:
+            break;
     }
     state_ = State::Idle;
     control_.finish();

@@ -47,10 +47,14 @@ private:
 
     struct Frame {
         Tick start = 0;
-        bool from_hold = false;   // started from MA low (Hold-CDM)
-        std::vector<Tick> rises;  // MA rising edges; rises[0] = LAT
+        bool from_hold = false;    // started from MA low (Hold-CDM)
+        Tick hold_fall = kNoTick;  // first MA fall after a start from MA low
+        std::vector<Tick> rises;   // MA rising edges; rises[0] = LAT
         Tick ack = kNoTick;
-        double delay = 0;         // line delay in ticks
+        double delay = 0;      // line delay in ticks: mean over the SL edges so far
+        double ack_delay = 0;  // 2nd MA rising edge -> ACK, as measured
+        double delay_sum = 0;
+        int delay_edges = 0;
         std::size_t scheduled = 1;  // rises with a scheduled sample (index 0 = LAT has none)
         double last_sample_t = -1e300;
         Slot slot = Slot::Ack;
@@ -69,7 +73,10 @@ private:
     void onMa(Tick t, bool level);
     void onSl(Tick t, bool level);
     void beginFrame(Tick start, bool from_hold);
-    void scheduleSamples();
+    double sampleTime(std::size_t k) const;
+    void scheduleUpTo(double t);
+    void startDelayEstimate(double ack_delay);
+    void refineDelay(Tick t);
     void drainSamples();
     void takeSample(int index, bool level, double t);
     double meanPeriod() const;  // ticks, over the frame's rising edges so far
@@ -79,6 +86,7 @@ private:
     void closeFrame(Tick end, Tick timeout_end, const char* error, bool feed_control);
     void addError(const std::string& e);
     void checkQuiet(Tick now);
+    void resolveHoldStart(Tick ack);
 
     BisscSettings s_;
     BisscControlReassembler control_;
@@ -87,10 +95,7 @@ private:
     Frame f_;
     bool ma_ = true, sl_ = true;
     Tick last_ma_edge_ = kNoTick;
-    // A rising MA edge from low while idle: either the LAT of a Hold-CDM frame or the
-    // master returning to idle after CDM = 1. Decided at the next rising edge.
-    Tick hold_rise_ = kNoTick;
-    Tick hold_fall_ = kNoTick;
+    double last_delay_ = -1;  // line delay of the previous frame (ticks), -1 unknown
     bool glitch_pending_ = false;
     double last_period_ = 0;  // mean clock period of the previous frame (ticks)
 };

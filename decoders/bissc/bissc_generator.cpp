@@ -14,7 +14,8 @@ BisscGenerator::BisscGenerator(BisscGenConfig cfg)
 
 int BisscGenerator::crcBits() const {
     int width = 0;
-    for (std::uint32_t p = cfg_.crc_poly; p > 1; p >>= 1) ++width;
+    for (std::uint32_t p = cfg_.crc_poly; p > 1; p >>= 1)
+        ++width;
     return width;
 }
 
@@ -55,19 +56,23 @@ const BisscFrameTruth& BisscGenerator::addFrame(const BisscFrameSpec& f) {
 
     // The slots the slave drives after each rising edge (index 0 = LAT: still idle 1).
     std::vector<int> slots = {1, 0};  // LAT, ACK
-    for (int i = 0; i < f.proc_cycles; ++i) slots.push_back(0);
+    for (int i = 0; i < f.proc_cycles; ++i)
+        slots.push_back(0);
     slots.push_back(1);  // start
     slots.push_back(f.cds & 1);
-    for (int i = cfg_.bits - 1; i >= 0; --i) slots.push_back(int((f.data >> i) & 1));
+    for (int i = cfg_.bits - 1; i >= 0; --i)
+        slots.push_back(int((f.data >> i) & 1));
     slots.push_back(f.ne & 1);
     slots.push_back(f.nw & 1);
     std::uint32_t crc = crcFor(f.data, f.ne, f.nw);
     if (f.corrupt_crc) crc ^= 1u;
     truth.crc_sent = crc;
     truth.crc_ok = !f.corrupt_crc;
-    for (int i = crc_bits - 1; i >= 0; --i) slots.push_back(int((crc >> i) & 1));
+    for (int i = crc_bits - 1; i >= 0; --i)
+        slots.push_back(int((crc >> i) & 1));
     slots.push_back(0);  // stop
-    for (int i = 0; i < f.extra_clocks; ++i) slots.push_back(0);
+    for (int i = 0; i < f.extra_clocks; ++i)
+        slots.push_back(0);
 
     int rises = int(slots.size());
     if (f.truncate_after >= 0 && f.truncate_after < rises) {
@@ -79,7 +84,8 @@ const BisscFrameTruth& BisscGenerator::addFrame(const BisscFrameSpec& f) {
     const double t0 = now_ns_;
     const bool from_hold = !ma_;  // previous frame left MA low (Hold-CDM)
     std::vector<double> rise_t(rises);
-    for (int k = 0; k < rises; ++k) rise_t[k] = (from_hold ? t0 : t0 + half) + k * period + jitter();
+    for (int k = 0; k < rises; ++k)
+        rise_t[k] = (from_hold ? t0 : t0 + half) + k * period + jitter();
     if (from_hold) rise_t[0] = t0;
     truth.start = wb_.ticksFromNs(t0);
 
@@ -91,7 +97,8 @@ const BisscFrameTruth& BisscGenerator::addFrame(const BisscFrameSpec& f) {
     }
     // SL: each slot appears `line_delay` after its rising edge.
     const double d = cfg_.line_delay_ns;
-    for (int k = 1; k < rises; ++k) setSl(rise_t[k] + d, slots[k] != 0);
+    for (int k = 1; k < rises; ++k)
+        setSl(rise_t[k] + d, slots[k] != 0);
     const double last_rise = rises > 0 ? rise_t[rises - 1] : t0;
     // The slave's timeout: SL low (after the stop bit) until timeout after the last clock.
     const double t_end = last_rise + d + cfg_.timeout_ns;
@@ -137,11 +144,13 @@ struct Bits {
     }
     void putCdm(int f, std::uint32_t v, int n) {
         ensure(f + n);
-        for (int i = 0; i < n; ++i) cdm[f + i] = int((v >> (n - 1 - i)) & 1);
+        for (int i = 0; i < n; ++i)
+            cdm[f + i] = int((v >> (n - 1 - i)) & 1);
     }
     void putCds(int f, std::uint32_t v, int n) {
         ensure(f + n);
-        for (int i = 0; i < n; ++i) cds[f + i] = int((v >> (n - 1 - i)) & 1);
+        for (int i = 0; i < n; ++i)
+            cds[f + i] = int((v >> (n - 1 - i)) & 1);
     }
 };
 
@@ -149,7 +158,8 @@ struct Bits {
 int addRegisterAccess(Bits& b, int f0, const ControlItemSpec& it,
                       std::vector<ControlEventTruth>& events) {
     const bool write = it.kind == ControlItemSpec::Kind::Write;
-    const std::uint32_t header = (1u << 10) | (std::uint32_t(it.id & 7) << 7) | std::uint32_t(it.address & 0x7F);
+    const std::uint32_t header =
+        (1u << 10) | (std::uint32_t(it.id & 7) << 7) | std::uint32_t(it.address & 0x7F);
     std::uint32_t hcrc = bissCrc4(header, 11);
     if (it.corrupt_header_crc) hcrc ^= 1u;
     b.putCdm(f0, 1, 1);  // S
@@ -176,7 +186,8 @@ int addRegisterAccess(Bits& b, int f0, const ControlItemSpec& it,
         t.refused = it.refuse;
         if (it.abandon_after_busy >= 0 && busy > it.abandon_after_busy) {
             // The master repeats S for a while, then gives up (CDM back to 0).
-            for (int k = 1; k <= it.abandon_after_busy; ++k) b.putCdm(g + k, 1, 1);
+            for (int k = 1; k <= it.abandon_after_busy; ++k)
+                b.putCdm(g + k, 1, 1);
             const int stop = g + it.abandon_after_busy + 1;
             b.ensure(stop + 1);
             t.last_frame = stop;
@@ -186,7 +197,8 @@ int addRegisterAccess(Bits& b, int f0, const ControlItemSpec& it,
             events.push_back(t);
             return stop + 1;
         }
-        for (int k = 1; k <= busy; ++k) b.putCdm(g + k, 1, 1);  // S repeats, CDS stays 0
+        for (int k = 1; k <= busy; ++k)
+            b.putCdm(g + k, 1, 1);  // S repeats, CDS stays 0
         const int fs = g + busy + 1;
         b.putCds(fs, 1, 1);  // slave S
         std::uint32_t dcrc = bissCrc4(data, 8);
@@ -194,7 +206,7 @@ int addRegisterAccess(Bits& b, int f0, const ControlItemSpec& it,
         if (write) {
             b.putCdm(fs, data, 8);
             b.putCdm(fs + 8, dcrc, 4);
-            b.putCdm(fs + 12, 0, 1);  // P
+            b.putCdm(fs + 12, 0, 1);    // P
             b.putCds(fs + 1, data, 8);  // echo, with the CRC the slave computes
             b.putCds(fs + 9, bissCrc4(data, 8), 4);
         } else {
@@ -220,7 +232,8 @@ int addRegisterAccess(Bits& b, int f0, const ControlItemSpec& it,
 int addCommand(Bits& b, int f0, const ControlItemSpec& it, std::vector<ControlEventTruth>& events) {
     // CTS = 0, IDS0 first, CMD1..0; CRC over CTS + IDS + CMD.
     std::uint32_t bits11 = 0;
-    for (int i = 0; i < 8; ++i) bits11 = (bits11 << 1) | std::uint32_t((it.ids >> i) & 1);
+    for (int i = 0; i < 8; ++i)
+        bits11 = (bits11 << 1) | std::uint32_t((it.ids >> i) & 1);
     bits11 = (bits11 << 2) | std::uint32_t(it.command & 3);
     std::uint32_t crc = bissCrc4(bits11, 11);
     if (it.corrupt_header_crc) crc ^= 1u;
@@ -228,7 +241,8 @@ int addCommand(Bits& b, int f0, const ControlItemSpec& it, std::vector<ControlEv
     b.putCdm(f0 + 1, bits11, 11);
     b.putCdm(f0 + 12, crc, 4);
     b.putCdm(f0 + 16, 1, 1);
-    for (int i = 0; i < 8; ++i) b.putCds(f0 + 17 + i, std::uint32_t((it.ida >> i) & 1), 1);
+    for (int i = 0; i < 8; ++i)
+        b.putCds(f0 + 17 + i, std::uint32_t((it.ida >> i) & 1), 1);
     ControlEventTruth t;
     t.type = "command";
     t.first_frame = f0;
@@ -260,8 +274,10 @@ ControlSequence buildControlSequence(const std::vector<ControlItemSpec>& items, 
     for (const auto& it : items) {
         f += it.idle_before;
         b.ensure(f);
-        if (it.kind == ControlItemSpec::Kind::Command) f = addCommand(b, f, it, events);
-        else f = addRegisterAccess(b, f, it, events);
+        if (it.kind == ControlItemSpec::Kind::Command)
+            f = addCommand(b, f, it, events);
+        else
+            f = addRegisterAccess(b, f, it, events);
     }
     b.ensure(f + trailing_idle);
     return ControlSequence{b.cdm, b.cds, events};

@@ -38,8 +38,8 @@ struct BisscFrameSpec {
     int ne = 1, nw = 1;      // as sent (1 = no error / warning)
     int cds = 0;
     int cdm = 0;
-    int proc_cycles = 0;      // busy clocks between ACK and start
-    int extra_clocks = 0;     // master clocks past the stop bit
+    int proc_cycles = 0;       // busy clocks between ACK and start
+    int extra_clocks = 0;      // master clocks past the stop bit
     bool corrupt_crc = false;  // flip the last CRC bit
     int truncate_after = -1;   // master stops after this many rising edges (short frame)
 };
@@ -51,7 +51,7 @@ struct BisscFrameTruth {
     std::uint32_t crc_sent = 0;
     bool crc_ok = true;
     bool truncated = false;
-    int rises = 0;          // MA rising edges clocked
+    int rises = 0;  // MA rising edges clocked
     double clock_hz = 0;
 };
 
@@ -96,8 +96,8 @@ private:
 
 struct ControlItemSpec {
     enum class Kind { Read, Write, Command } kind = Kind::Read;
-    int id = 0;        // register access: slave ID (0..7)
-    int address = 0;   // 0..127
+    int id = 0;       // register access: slave ID (0..7)
+    int address = 0;  // 0..127
     // Read: the slave's bytes; write: the master's bytes. More than one = sequential.
     std::vector<std::uint8_t> data;
     std::vector<int> busy;  // per byte: frames the slave delays its S (master repeats S)
@@ -114,7 +114,7 @@ struct ControlItemSpec {
 };
 
 struct ControlEventTruth {
-    std::string type;  // "register" / "command"
+    std::string type;                     // "register" / "command"
     int first_frame = 0, last_frame = 0;  // frame indices that carried it
     std::string op;
     int id = 0, address = 0;
@@ -133,6 +133,7 @@ struct ControlSequence {
 
 // Builds the per-frame bits for `items` one after another, then `trailing_idle` zero
 // frames so the last access completes.
-ControlSequence buildControlSequence(const std::vector<ControlItemSpec>& items, int trailing_idle = 16);
+ControlSequence buildControlSequence(const std::vector<ControlItemSpec>& items,
+                                     int trailing_idle = 16);
 
 }  // namespace busdecode

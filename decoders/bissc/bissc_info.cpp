@@ -37,7 +37,8 @@ DecoderInfo bisscInfo() {
     timeout.kind = OptionSpec::Kind::Float;
     timeout.default_value = "0";
     timeout.min = 0;
-    timeout.help = "flag timeout_short when SL rises sooner than this after the last MA rise (0: off)";
+    timeout.help =
+        "flag timeout_short when SL rises sooner than this after the last MA rise (0: off)";
     OptionSpec invert;
     invert.key = "crc_invert";
     invert.kind = OptionSpec::Kind::Bool;
@@ -45,8 +46,8 @@ DecoderInfo bisscInfo() {
     invert.help = "the CRC is sent inverted (BiSS); 0 for encoders that send the plain remainder";
     info.options = {
         intOption("bits", "26", 0, 64, "data bits between CDS and nE (position, MT+ST)"),
-        intOption("st_bits", "auto", 0, 64, "single-turn field width, LSB aligned (auto: bits - mt_bits)",
-                  true),
+        intOption("st_bits", "auto", 0, 64,
+                  "single-turn field width, LSB aligned (auto: bits - mt_bits)", true),
         intOption("mt_bits", "0", 0, 64, "multi-turn field width, above the single-turn field"),
         intOption("crc_poly", "0x43", 2, 0xFFFFFFFF,
                   "CRC polynomial in full notation (0x43 = x^6+x+1; 0x190D9 for CRC16)"),
@@ -57,13 +58,16 @@ DecoderInfo bisscInfo() {
         timeout,
     };
     info.events = {
-        {"frame", "one BiSS-C frame (single-cycle data) with its timeout",
+        {"frame",
+         "one BiSS-C frame (single-cycle data) with its timeout",
          {"position", "st", "mt", "nE", "nW", "crc_rx", "crc_ok", "cds", "cdm", "line_delay_ns",
           "proc_cycles", "clock_hz", "timeout_ns", "extra_clocks", "clocks", "hold_cdm"}},
-        {"register", "a register read or write carried by CDM/CDS over many frames",
+        {"register",
+         "a register read or write carried by CDM/CDS over many frames",
          {"op", "id", "address", "data", "crc_ok", "echo", "refused", "busy_frames", "sequence",
           "idl", "frames"}},
-        {"command", "a control command (CTS = 0)",
+        {"command",
+         "a control command (CTS = 0)",
          {"id", "command", "crc_ok", "broadcast", "targets", "ida", "executed"}},
     };
     return info;
@@ -81,7 +85,8 @@ BisscSettings BisscSettings::from(const Options& o) {
                                      s.st_bits, s.mt_bits, s.bits));
     const std::int64_t poly = o.integer("crc_poly");
     int width = 0;
-    for (std::int64_t p = poly; p > 1; p >>= 1) ++width;
+    for (std::int64_t p = poly; p > 1; p >>= 1)
+        ++width;
     s.crc_poly = std::uint32_t(poly);
     s.crc_bits = o.isAuto("crc_bits") ? width : int(o.integer("crc_bits"));
     if (s.crc_bits != 0 && s.crc_bits != width)

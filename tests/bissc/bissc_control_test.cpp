@@ -34,7 +34,9 @@ std::vector<Event> reassemble(const std::string& cdm, const std::string& cds, in
     return out;
 }
 
-bool boolField(const Event& e, const char* key) { return std::get<bool>(*e.get(key)); }
+bool boolField(const Event& e, const char* key) {
+    return std::get<bool>(*e.get(key));
+}
 
 }  // namespace
 
@@ -62,7 +64,8 @@ TEST(BisscCrc4, ControlVectors) {
 }
 
 TEST(BisscControlVectors, V20_read_7E) {
-    const auto ev = reassemble("11000111111011111010000000000000", "010000000000000001010001001011000");
+    const auto ev =
+        reassemble("11000111111011111010000000000000", "010000000000000001010001001011000");
     ASSERT_EQ(ev.size(), 1u);
     const Event& e = ev[0];
     EXPECT_EQ(e.type, "register");
@@ -83,11 +86,13 @@ TEST(BisscControlVectors, V20_MA_levels_are_inverted_CDM) {
     const std::string cdm = "11000111111011111010000000000000";
     const std::string ma = "00111000000100000101111111111111";
     ASSERT_EQ(cdm.size(), ma.size());
-    for (std::size_t i = 0; i < cdm.size(); ++i) EXPECT_NE(cdm[i], ma[i]);
+    for (std::size_t i = 0; i < cdm.size(); ++i)
+        EXPECT_NE(cdm[i], ma[i]);
 }
 
 TEST(BisscControlVectors, V21_read_42) {
-    const auto ev = reassemble("11000100001001111010000000000000", "010000000000000001011010010101000");
+    const auto ev =
+        reassemble("11000100001001111010000000000000", "010000000000000001011010010101000");
     ASSERT_EQ(ev.size(), 1u);
     EXPECT_EQ(std::get<std::string>(*ev[0].get("op")), "read");
     EXPECT_EQ(intField(ev[0], "address"), 0x42);
@@ -97,7 +102,8 @@ TEST(BisscControlVectors, V21_read_42) {
 }
 
 TEST(BisscControlVectors, V22_write_48) {
-    const auto ev = reassemble("11000100100010100111010010101000", "010000000000000000111010010101000");
+    const auto ev =
+        reassemble("11000100100010100111010010101000", "010000000000000000111010010101000");
     ASSERT_EQ(ev.size(), 1u);
     EXPECT_EQ(std::get<std::string>(*ev[0].get("op")), "write");
     EXPECT_EQ(intField(ev[0], "address"), 0x48);
@@ -159,7 +165,8 @@ TEST(BisscControlVectors, V24_sequential_read_like_the_iC_MHM_capture) {
 
 TEST(BisscControl, NoStartWithoutPreamble) {
     // V20 with only 10 zeros before S: not a control frame start.
-    const auto ev = reassemble("11000111111011111010000000000000", "010000000000000001010001001011000", 10);
+    const auto ev =
+        reassemble("11000111111011111010000000000000", "010000000000000001010001001011000", 10);
     EXPECT_TRUE(ev.empty());
 }
 
@@ -226,9 +233,11 @@ TEST(BisscControl, CaptureEndingMidAccessReportsWhatWasSeen) {
     const auto full = std::string("11000111111011111010000000000000");
     std::vector<Event> out;
     BisscControlReassembler r([&](Event&& e) { out.push_back(std::move(e)); });
-    for (int f = 0; f < 14; ++f) r.push({Tick(f), Tick(f), 0, 0});
+    for (int f = 0; f < 14; ++f)
+        r.push({Tick(f), Tick(f), 0, 0});
     const std::string cds = "010000000000000001010001";
-    for (int f = 0; f < 24; ++f) r.push({Tick(100 + f), Tick(100 + f), full[f] - '0', cds[f] - '0'});
+    for (int f = 0; f < 24; ++f)
+        r.push({Tick(100 + f), Tick(100 + f), full[f] - '0', cds[f] - '0'});
     EXPECT_EQ(r.openSince(), 100);
     r.finish();
     ASSERT_EQ(out.size(), 1u);
@@ -322,7 +331,8 @@ TEST_P(BisscControlCapture, AllFramesAndAccessesExact) {
     const auto frames = ofType(events, "frame");
     ASSERT_EQ(frames.size(), gen.frames().size());
     for (std::size_t i = 0; i < frames.size(); ++i) {
-        ASSERT_EQ(std::get<std::uint64_t>(*frames[i].get("position")), gen.frames()[i].spec.data) << i;
+        ASSERT_EQ(std::get<std::uint64_t>(*frames[i].get("position")), gen.frames()[i].spec.data)
+            << i;
         ASSERT_EQ(intField(frames[i], "cdm"), seq.cdm[i]) << i;
         ASSERT_EQ(intField(frames[i], "cds"), seq.cds[i]) << i;
         ASSERT_EQ(frames[i].hasError("crc"), i % 37 == 11) << i;
@@ -340,15 +350,19 @@ TEST_P(BisscControlCapture, AllFramesAndAccessesExact) {
         EXPECT_EQ(e.start, gen.frames()[t.first_frame].start);
         EXPECT_EQ(e.end, gen.frames()[t.last_frame].end);
         EXPECT_EQ(std::get<bool>(*e.get("crc_ok")), t.crc_ok);
-        if (t.error.empty()) EXPECT_TRUE(e.errors.empty());
-        else EXPECT_TRUE(e.hasError(t.error));
+        if (t.error.empty())
+            EXPECT_TRUE(e.errors.empty());
+        else
+            EXPECT_TRUE(e.hasError(t.error));
         if (t.type == "register") {
             EXPECT_EQ(std::get<std::string>(*e.get("op")), t.op);
             EXPECT_EQ(intField(e, "id"), t.id);
             EXPECT_EQ(intField(e, "address"), t.address);
             EXPECT_EQ(intField(e, "busy_frames"), t.busy);
-            if (t.error != "abandoned") EXPECT_EQ(intField(e, "data"), t.data);
-            else EXPECT_TRUE(nullField(e, "data"));
+            if (t.error != "abandoned")
+                EXPECT_EQ(intField(e, "data"), t.data);
+            else
+                EXPECT_TRUE(nullField(e, "data"));
         } else {
             EXPECT_EQ(intField(e, "id"), t.id);
             EXPECT_EQ(intField(e, "command"), t.data);
@@ -356,7 +370,8 @@ TEST_P(BisscControlCapture, AllFramesAndAccessesExact) {
         }
     }
     // Events come out in time order.
-    for (std::size_t i = 1; i < events.size(); ++i) EXPECT_LE(events[i - 1].start, events[i].start);
+    for (std::size_t i = 1; i < events.size(); ++i)
+        EXPECT_LE(events[i - 1].start, events[i].start);
 }
 
 INSTANTIATE_TEST_SUITE_P(Rates, BisscControlCapture,
