@@ -1,0 +1,215 @@
+#include "ssi_config.h"
+
+#include <cctype>
+#include <set>
+
+#include <fmt/format.h>
+
+#include "core/bit_word.h"
+
+namespace busdecode {
+
+namespace {
+
+OptionSpec intOpt(std::string key, std::string def, double min, double max, std::string help,
+                  bool allow_auto = false) {
+    OptionSpec o;
+    o.allow_auto = allow_auto;
+    o.key = std::move(key);
+    o.kind = OptionSpec::Kind::Int;
+    o.default_value = std::move(def);
+    o.min = min;
+    o.max = max;
+    o.help = std::move(help);
+    return o;
+}
+
+OptionSpec floatOpt(std::string key, std::string def, double min, std::string help,
+                    bool allow_auto = false) {
+    OptionSpec o;
+    o.key = std::move(key);
+    o.kind = OptionSpec::Kind::Float;
+    o.default_value = std::move(def);
+    o.min = min;
+    o.help = std::move(help);
+    o.allow_auto = allow_auto;
+    return o;
+}
+
+OptionSpec boolOpt(std::string key, std::string def, std::string help) {
+    OptionSpec o;
+    o.key = std::move(key);
+    o.kind = OptionSpec::Kind::Bool;
+    o.default_value = std::move(def);
+    o.help = std::move(help);
+    return o;
+}
+
+OptionSpec choiceOpt(std::string key, std::vector<std::string> choices, std::string help) {
+    OptionSpec o;
+    o.key = std::move(key);
+    o.kind = OptionSpec::Kind::Choice;
+    o.default_value = choices.front();
+    o.choices = std::move(choices);
+    o.help = std::move(help);
+    return o;
+}
+
+DecoderInfo makeInfo() {
+    DecoderInfo d;
+    d.id = "ssi";
+    d.name = "SSI absolute encoder";
+    d.description =
+        "Synchronous serial interface: clock from the master, data from the encoder. Words, "
+        "multi-turn/single-turn fields, Gray code, multiple transmission, monoflop time.";
+    d.roles = {
+        {"clk", true, {"clock", "sclk", "ma", "cl"}, "clock from the master (idle high)"},
+        {"data", true, {"dta", "do", "sl", "slo", "d"}, "data from the encoder (idle high)"},
+    };
+    OptionSpec status;
+    status.key = "status_bits";
+    status.kind = OptionSpec::Kind::String;
+    status.default_value = "";
+    status.help =
+        "names for bits above the position field, comma separated, lowest first (empty name "
+        "skips a bit); NAME@N names raw bit N, e.g. out_of_range@23,low_quality@22";
+    d.options = {
+        intOpt("bits", "25", 1, 64, "bits per word (the lead bit included)"),
+        intOpt("st_bits", "16", 0, 64, "single-turn field width (LSB aligned)"),
+        intOpt("mt_bits", "0", 0, 64, "multi-turn field width (above single-turn)"),
+        boolOpt("gray", "0", "the position field is Gray coded"),
+        floatOpt("tm_us", "20", 0,
+                 "nominal monoflop time: a burst starting while data is still low is a re-read "
+                 "of the same word"),
+        boolOpt("lead", "0", "count the level sampled at the first sampling edge as a bit"),
+        boolOpt("lsb_first", "0", "the first bit on the wire is raw bit 0"),
+        choiceOpt("sample_edge", {"falling", "rising"}, "clock edge on which the master samples"),
+        choiceOpt("parity", {"none", "even", "odd"},
+                  "parity over the whole word (even: the number of ones is even)"),
+        choiceOpt("parity_pos", {"lsb", "msb"}, "where the parity bit sits in the word"),
+        intOpt("pos_shift", "auto", 0, 63,
+               "bits below the position field (auto: 1 with parity at the LSB, else 0)", true),
+        status,
+        floatOpt("delay_ns", "0", 0,
+                 "sample this long after each sampling edge; auto: the measured data delay", true),
+        intOpt("ring_gap", "1", 0, 8, "zero bits between repeats of multiple transmission"),
+        floatOpt("clock_min_hz", "50e3", 0, "lowest allowed clock (else clock_range)"),
+        floatOpt("clock_max_hz", "2e6", 0, "highest allowed clock (else clock_range)"),
+        floatOpt("tm_min_us", "auto", 0, "shortest allowed tm (auto: tm_us/2)", true),
+        floatOpt("tm_max_us", "auto", 0, "longest allowed tm (auto: 2*tm_us)", true),
+        floatOpt("gap_bits", "3", 1.0, "the clock idle for this many clock periods ends a frame"),
+        boolOpt("summary", "1", "emit a summary event (tm min/median/max...) at the end"),
+    };
+    d.events = {
+        {"frame",
+         "one clock burst: the word and its fields",
+         {"raw", "bits", "position", "st", "mt", "angle", "repeats", "repeat_match", "clock_hz",
+          "tm_ns", "tp_ns", "delay_ns", "reread", "partial_bits", "repeat_diff_bits", "status",
+          "parity_ok", "glitches"}},
+        {"summary",
+         "statistics over the capture",
+         {"frames", "tm_min_ns", "tm_median_ns", "tm_max_ns", "clock_hz_min", "clock_hz_max",
+          "repeat_mismatches", "short_frames", "error_frames"}},
+    };
+    return d;
+}
+
+bool validName(const std::string& s) {
+    if (s.empty()) return false;
+    for (char c : s)
+        if (!(std::isalnum((unsigned char)c) || c == '_' || c == '-')) return false;
+    return true;
+}
+
+std::string trim(const std::string& s) {
+    auto a = s.find_first_not_of(" \t");
+    if (a == std::string::npos) return "";
+    auto b = s.find_last_not_of(" \t");
+    return s.substr(a, b - a + 1);
+}
+
+}  // namespace
+
+const DecoderInfo& ssiInfo() {
+    static const DecoderInfo info = makeInfo();
+    return info;
+}
+
+std::uint64_t SsiConfig::dataMask() const {
+    std::uint64_t m = lowBits(~std::uint64_t(0), bits);
+    if (lead) m &= ~(std::uint64_t(1) << bitIndex(0));
+    return m;
+}
+
+SsiConfig SsiConfig::fromOptions(const Options& o) {
+    auto bad = [](const std::string& what) { return InputError("decoder ssi: " + what); };
+    SsiConfig c;
+    c.bits = int(o.integer("bits"));
+    c.st_bits = int(o.integer("st_bits"));
+    c.mt_bits = int(o.integer("mt_bits"));
+    c.gray = o.flag("gray");
+    c.tm_us = o.number("tm_us");
+    c.lead = o.flag("lead");
+    c.lsb_first = o.flag("lsb_first");
+    c.sample_rising = o.text("sample_edge") == "rising";
+    const std::string par = o.text("parity");
+    c.parity = par == "even" ? SsiParity::Even : par == "odd" ? SsiParity::Odd : SsiParity::None;
+    c.parity_msb = o.text("parity_pos") == "msb";
+    if (o.isAuto("pos_shift"))
+        c.pos_shift = (c.parity != SsiParity::None && !c.parity_msb) ? 1 : 0;
+    else
+        c.pos_shift = int(o.integer("pos_shift"));
+    c.delay_auto = o.isAuto("delay_ns");
+    c.delay_ns = c.delay_auto ? 0 : o.number("delay_ns");
+    c.ring_gap = int(o.integer("ring_gap"));
+    c.clock_min_hz = o.number("clock_min_hz");
+    c.clock_max_hz = o.number("clock_max_hz");
+    c.tm_min_us = o.isAuto("tm_min_us") ? c.tm_us / 2 : o.number("tm_min_us");
+    c.tm_max_us = o.isAuto("tm_max_us") ? c.tm_us * 2 : o.number("tm_max_us");
+    c.gap_bits = o.number("gap_bits");
+    c.summary = o.flag("summary");
+
+    if (c.lead && c.bits < 2) throw bad("lead=1 needs bits >= 2 (the lead bit and data)");
+    if (c.st_bits + c.mt_bits + c.pos_shift > c.bits)
+        throw bad(fmt::format("st_bits+mt_bits+pos_shift = {} exceeds bits={}",
+                              c.st_bits + c.mt_bits + c.pos_shift, c.bits));
+    if (c.clock_min_hz > c.clock_max_hz) throw bad("clock_min_hz is above clock_max_hz");
+    if (c.tm_min_us > c.tm_max_us) throw bad("tm_min_us is above tm_max_us");
+
+    // status_bits: NAME or NAME@BIT, comma separated; plain names take the bits above the
+    // position field from the lowest up.
+    static const std::set<std::string> reserved = {
+        "raw",     "bits",         "position",         "st",     "mt",        "angle",
+        "repeats", "repeat_match", "clock_hz",         "tm_ns",  "tp_ns",     "delay_ns",
+        "reread",  "partial_bits", "repeat_diff_bits", "status", "parity_ok", "glitches"};
+    const std::string spec = o.text("status_bits");
+    int next_bit = c.pos_shift + c.st_bits + c.mt_bits;
+    std::set<std::string> seen;
+    std::size_t pos = 0;
+    while (!spec.empty() && pos <= spec.size()) {
+        auto comma = spec.find(',', pos);
+        std::string item =
+            trim(spec.substr(pos, comma == std::string::npos ? std::string::npos : comma - pos));
+        pos = comma == std::string::npos ? spec.size() + 1 : comma + 1;
+        int bit = next_bit;
+        if (auto at = item.find('@'); at != std::string::npos) {
+            auto n = parseInteger(trim(item.substr(at + 1)));
+            if (!n) throw bad("status_bits: bad bit number in '" + item + "'");
+            bit = int(*n);
+            item = trim(item.substr(0, at));
+        } else {
+            ++next_bit;
+        }
+        if (item.empty()) continue;  // an unnamed bit
+        if (!validName(item))
+            throw bad("status_bits: '" + item + "' is not a name (letters, digits, _ and -)");
+        if (bit < 0 || bit >= c.bits)
+            throw bad(fmt::format("status_bits: {} is bit {}, outside the {}-bit word", item, bit,
+                                  c.bits));
+        if (!seen.insert(item).second) throw bad("status_bits: '" + item + "' named twice");
+        c.status.push_back({reserved.count(item) ? "status_" + item : item, bit});
+    }
+    return c;
+}
+
+}  // namespace busdecode

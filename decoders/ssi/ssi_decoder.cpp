@@ -1,0 +1,378 @@
+#include "ssi_decoder.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include "core/line_sampler.h"
+#include "ssi_word.h"
+
+namespace busdecode {
+
+namespace {
+
+constexpr int kClk = 0;
+constexpr std::size_t kMaxClocks = 8192;  // a burst longer than this is cut (overlong)
+constexpr double kWaitTmFactor = 10;      // give up waiting for data high after 10 * tm_max
+
+std::string formatHz(double hz) {
+    if (hz >= 1e6) return fmt::format("{:.2f}MHz", hz / 1e6);
+    if (hz >= 1e3) return fmt::format("{:.1f}kHz", hz / 1e3);
+    return fmt::format("{:.0f}Hz", hz);
+}
+
+std::int64_t median(std::vector<std::int64_t> v) {
+    std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+    return v[v.size() / 2];
+}
+
+}  // namespace
+
+SsiDecoder::SsiDecoder(const Options& o) : SsiDecoder(SsiConfig::fromOptions(o)) {}
+
+SsiDecoder::SsiDecoder(SsiConfig cfg) : cfg_(std::move(cfg)) {}
+
+void SsiDecoder::start(const DecoderContext& ctx) {
+    Decoder::start(ctx);
+    clk_ = ctx.initial_levels.size() > 0 ? ctx.initial_levels[0] != 0 : true;
+    data_ = ctx.initial_levels.size() > 1 ? ctx.initial_levels[1] != 0 : true;
+}
+
+double SsiDecoder::periodTicks() const {
+    if (b_.falls.size() >= 2)
+        return double(b_.falls.back() - b_.falls.front()) / double(b_.falls.size() - 1);
+    if (!b_.rises.empty()) return 2.0 * double(b_.rises.front() - b_.falls.front());
+    return 0;
+}
+
+Tick SsiDecoder::lastClock() const {
+    Tick t = b_.falls.back();
+    if (!b_.rises.empty()) t = std::max(t, b_.rises.back());
+    return t;
+}
+
+void SsiDecoder::startBurst(Tick t) {
+    b_.falls.clear();
+    b_.rises.clear();
+    b_.data.clear();
+    b_.start = t;
+    b_.falls.push_back(t);
+    b_.data_at_start = data_;
+    // Data still low at the first falling edge: the encoder's monoflop has not expired
+    // since the last burst (a re-read of the latched word), or the encoder is not ready.
+    b_.reread = !data_ && last_clock_ != kNoTick && !data_rose_since_clock_;
+    b_.not_ready = !data_ && !b_.reread;
+    b_.tp = last_clock_ == kNoTick ? kNoTick : t - last_clock_;
+    b_.filtered_glitches = 0;
+    b_.overlong = false;
+    if (first_start_ == kNoTick) first_start_ = t;
+    state_ = State::Clocking;
+    busyFrom(t);
+}
+
+void SsiDecoder::checkTime(Tick now) {
+    if (state_ == State::Clocking && clk_) {
+        const double gap = cfg_.gap_bits * periodTicks();
+        if (gap > 0 && double(now - lastClock()) > gap) close(false);
+    }
+    if (state_ == State::WaitTm && now > wait_deadline_) emitFrame(std::nullopt, true);
+}
+
+void SsiDecoder::edge(Tick t, int role, bool level) {
+    checkTime(t);
+    if (role == kClk) {
+        clk_ = level;
+        if (!level) {
+            if (state_ == State::Clocking && b_.falls.size() >= kMaxClocks) {
+                b_.overlong = true;
+                close(false);
+            }
+            if (state_ == State::Clocking) {
+                b_.falls.push_back(t);
+            } else {
+                // A new burst while the last frame still waits for tm: data is low, so this
+                // is a re-read and that frame's tm stays unknown.
+                if (state_ == State::WaitTm) emitFrame(std::nullopt, false);
+                startBurst(t);
+            }
+        } else if (state_ == State::Clocking) {
+            b_.rises.push_back(t);
+        }
+        if (state_ == State::Clocking) last_clock_ = t;
+        data_rose_since_clock_ = false;
+        return;
+    }
+    data_ = level;
+    if (level) data_rose_since_clock_ = true;
+    if (state_ == State::Clocking) {
+        b_.data.push_back({t, level});
+    } else if (state_ == State::WaitTm && level) {
+        emitFrame(t, false);
+    }
+}
+
+void SsiDecoder::advance(Tick now) {
+    checkTime(now);
+}
+
+void SsiDecoder::glitch(Tick, int) {
+    if (state_ != State::Idle) ++b_.filtered_glitches;
+}
+
+void SsiDecoder::close(bool capture_end) {
+    const bool rising = cfg_.sample_rising;
+    const std::vector<Tick>& S = rising ? b_.rises : b_.falls;  // sampling edges
+    const std::vector<Tick>& L = rising ? b_.falls : b_.rises;  // edges that launch bits
+    const double T = periodTicks();
+    const Tick last = lastClock();
+
+    // Pulses far shorter than the clock period are glitches (when no glitch_ns filter
+    // removed them first). Their data edges carry no bit and say nothing about delay.
+    int glitches = b_.filtered_glitches;
+    std::vector<std::uint8_t> data_glitch(b_.data.size(), 0);
+    if (T > 0) {
+        const double shortest = T / 4;
+        for (std::size_t i = 0; i < b_.rises.size(); ++i) {
+            if (double(b_.rises[i] - b_.falls[i]) < shortest) ++glitches;
+            if (i + 1 < b_.falls.size() && double(b_.falls[i + 1] - b_.rises[i]) < shortest)
+                ++glitches;
+        }
+        for (std::size_t i = 1; i < b_.data.size(); ++i) {
+            if (double(b_.data[i].t - b_.data[i - 1].t) < shortest) {
+                if (!data_glitch[i - 1]) ++glitches;
+                data_glitch[i - 1] = data_glitch[i] = 1;
+            }
+        }
+    }
+
+    // Data delay: each data edge measured from the latest edge that launched a bit.
+    std::vector<std::int64_t> offsets;
+    std::vector<std::int64_t> launch_of(b_.data.size(), -1);
+    for (std::size_t i = 0; i < b_.data.size(); ++i) {
+        if (data_glitch[i] || L.empty()) continue;
+        const Tick e = b_.data[i].t;
+        auto it = std::upper_bound(L.begin(), L.end(), e);
+        if (it == L.begin()) continue;
+        const auto k = std::int64_t(it - L.begin()) - 1;
+        const Tick off = e - L[k];
+        if (T > 0 && double(off) >= T) continue;  // the monoflop return, not a bit
+        offsets.push_back(off);
+        launch_of[i] = k;
+    }
+    const std::int64_t measured = offsets.empty() ? 0 : median(offsets);
+    const double delay = cfg_.delay_auto ? double(measured) : tb().fromNs(cfg_.delay_ns);
+
+    // A data edge at or after the sample that should have seen it: that bit was misread.
+    bool late = false;
+    for (std::size_t i = 0; i < b_.data.size(); ++i) {
+        if (launch_of[i] < 0) continue;
+        const std::size_t s = std::size_t(launch_of[i]) + (rising ? 0 : 1);
+        if (s < S.size() && double(b_.data[i].t) >= double(S[s]) + delay) late = true;
+    }
+
+    LineSampler sampler;
+    sampler.reset(b_.data_at_start);
+    for (std::size_t i = 0; i < S.size(); ++i)
+        sampler.schedule(double(S[i]) + delay, 0);
+    for (const auto& d : b_.data)
+        sampler.lineEdge(d.t, d.level);
+    sampler.flush();
+    std::vector<std::uint8_t> samples;
+    samples.reserve(S.size());
+    bool first = true;
+    while (sampler.ready()) {
+        const bool bit = sampler.pop().level;
+        if (first && !cfg_.lead) {
+            first = false;  // the latch edge's sample is not a bit
+            continue;
+        }
+        first = false;
+        samples.push_back(bit);
+    }
+
+    const SsiWord w = assembleWord(samples, cfg_);
+    Event e;
+    e.proto = "ssi";
+    e.type = "frame";
+    e.start = b_.start;
+    e.end = last;
+    e.set("raw", w.raw);
+    e.set("bits", std::int64_t(w.bits));
+    std::vector<std::int64_t> diff = w.diff_bits;
+    bool match = w.repeat_match;
+    if (!w.short_frame) {
+        const SsiFields f = splitFields(w.raw, cfg_);
+        e.set("position", f.position);
+        e.set("st", f.st);
+        e.set("mt", f.mt);
+        e.set("angle", f.angle ? Value(*f.angle) : Value(Null{}));
+        if (b_.reread && prev_valid_) {
+            // The encoder has not updated since the last burst: the same word again.
+            const std::uint64_t d = (w.raw ^ prev_raw_) & cfg_.dataMask();
+            if (d) {
+                match = false;
+                for (auto b : bitList(d))
+                    if (std::find(diff.begin(), diff.end(), b) == diff.end()) diff.push_back(b);
+                std::sort(diff.begin(), diff.end());
+            }
+        }
+    } else {
+        e.set("position", Null{});
+        e.set("st", Null{});
+        e.set("mt", Null{});
+        e.set("angle", Null{});
+    }
+    e.set("repeats", std::int64_t(w.repeats));
+    e.set("repeat_match", match);
+    const double clock_hz = T > 0 ? 1.0 / (T * tb().secondsPerTick()) : 0.0;
+    e.set("clock_hz", T > 0 ? Value(clock_hz) : Value(Null{}));
+    e.set("tm_ns", Null{});
+    e.set("tp_ns", b_.tp == kNoTick ? Value(Null{}) : Value(tb().toNs(b_.tp)));
+    e.set("delay_ns", tb().toNs(measured));
+    e.set("reread", b_.reread);
+    e.set("partial_bits", std::int64_t(w.partial_bits));
+    e.set("repeat_diff_bits", diff);
+    if (!w.short_frame) {
+        const SsiFields f = splitFields(w.raw, cfg_);
+        e.set("status", f.status);
+        for (const auto& s : cfg_.status)
+            e.set(s.name, bool(w.raw >> s.bit & 1));
+        if (f.parity_ok) {
+            e.set("parity_ok", *f.parity_ok);
+            if (!*f.parity_ok) e.error("parity");
+        }
+    }
+    e.set("glitches", std::int64_t(glitches));
+
+    if (w.short_frame) e.error("short_frame");
+    if (!match) e.error("repeat_mismatch");
+    if (!w.separator_ok) e.error("ring_separator");
+    if (glitches > 0) e.error("glitch");
+    if (late) e.error("late_data");
+    if (T > 0 && (clock_hz < cfg_.clock_min_hz || clock_hz > cfg_.clock_max_hz))
+        e.error("clock_range");
+    if (b_.not_ready) e.error("not_ready");
+    if (b_.overlong) e.error("overlong");
+
+    // Summary text (tm is added when known).
+    std::string text;
+    if (w.short_frame) {
+        text = fmt::format("short frame: {} of {} bits raw=0x{:X}", w.bits, cfg_.bits, w.raw);
+    } else {
+        const SsiFields f = splitFields(w.raw, cfg_);
+        text = fmt::format("raw=0x{:X} pos=0x{:X}", w.raw, f.position);
+        if (cfg_.mt_bits > 0) text += fmt::format(" mt=0x{:X}", f.mt);
+        if (cfg_.st_bits > 0) text += fmt::format(" st=0x{:X} angle={:.2f}", f.st, *f.angle);
+        for (const auto& s : cfg_.status)
+            if (w.raw >> s.bit & 1) text += " " + s.name;
+        text += fmt::format(" repeats={}", w.repeats);
+        if (w.partial_bits) text += fmt::format("+{}b", w.partial_bits);
+        if (!diff.empty()) text += fmt::format(" diff_bits={}", fmt::join(diff, ","));
+    }
+    if (b_.reread) text += " reread";
+    if (T > 0) text += " clk=" + formatHz(clock_hz);
+    e.summary = std::move(text);
+    pending_ = std::move(e);
+    pending_checks_tm_ = !w.short_frame && w.partial_bits == 0 && !b_.overlong;
+
+    if (!w.short_frame) {
+        prev_valid_ = true;
+        prev_raw_ = w.raw;
+    } else {
+        prev_valid_ = false;
+    }
+
+    // tm: from the last clock edge to data returning high.
+    for (const auto& d : b_.data) {
+        if (d.t > last && d.level) {
+            emitFrame(d.t, false);
+            return;
+        }
+    }
+    if (data_ || capture_end) {
+        // Data high and no low period after the last clock: nothing to measure. A complete
+        // word must be followed by a low level (line break / no encoder otherwise).
+        if (!capture_end && pending_checks_tm_) pending_.error("tm_missing");
+        pending_checks_tm_ = false;
+        emitFrame(std::nullopt, false);
+        return;
+    }
+    state_ = State::WaitTm;
+    wait_deadline_ = last + Tick(std::llround(tb().fromNs(cfg_.tm_max_us * 1e3 * kWaitTmFactor)));
+}
+
+void SsiDecoder::emitFrame(std::optional<Tick> tm_end, bool deadline_passed) {
+    Event& e = pending_;
+    std::string tm_text = "tm=?";
+    if (tm_end) {
+        const std::int64_t tm_ns = tb().toNs(*tm_end - e.end);
+        e.set("tm_ns", tm_ns);
+        tm_text = fmt::format("tm={:.1f}us", double(tm_ns) / 1e3);
+        if (pending_checks_tm_) {
+            tm_values_.push_back(tm_ns);
+            if (double(tm_ns) < cfg_.tm_min_us * 1e3) e.error("timeout_short");
+            if (double(tm_ns) > cfg_.tm_max_us * 1e3) e.error("timeout_long");
+        }
+    } else if (deadline_passed && pending_checks_tm_) {
+        e.error("timeout_long");
+    }
+    e.summary += " " + tm_text;
+
+    ++frames_;
+    if (e.hasError("repeat_mismatch")) ++mismatches_;
+    if (e.hasError("short_frame")) ++shorts_;
+    if (!e.errors.empty()) ++error_frames_;
+    if (const Value* c = e.get("clock_hz"); c && !isNull(*c)) {
+        const double hz = asDouble(*c);
+        clock_min_ = frames_ == 1 || clock_min_ == 0 ? hz : std::min(clock_min_, hz);
+        clock_max_ = std::max(clock_max_, hz);
+    }
+    emit(std::move(e));
+    pending_ = Event{};
+    state_ = State::Idle;
+    idle();
+}
+
+void SsiDecoder::emitSummary(Tick end) {
+    Event e;
+    e.proto = "ssi";
+    e.type = "summary";
+    e.start = end;
+    e.end = end;
+    e.set("frames", frames_);
+    Value tmin = Null{}, tmed = Null{}, tmax = Null{};
+    if (!tm_values_.empty()) {
+        tmin = *std::min_element(tm_values_.begin(), tm_values_.end());
+        tmax = *std::max_element(tm_values_.begin(), tm_values_.end());
+        tmed = median(tm_values_);
+    }
+    e.set("tm_min_ns", tmin);
+    e.set("tm_median_ns", tmed);
+    e.set("tm_max_ns", tmax);
+    e.set("clock_hz_min", clock_max_ > 0 ? Value(clock_min_) : Value(Null{}));
+    e.set("clock_hz_max", clock_max_ > 0 ? Value(clock_max_) : Value(Null{}));
+    e.set("repeat_mismatches", mismatches_);
+    e.set("short_frames", shorts_);
+    e.set("error_frames", error_frames_);
+    std::string text = fmt::format("{} frames", frames_);
+    if (!tm_values_.empty())
+        text += fmt::format(" tm min/median/max={:.1f}/{:.1f}/{:.1f}us", asDouble(tmin) / 1e3,
+                            asDouble(tmed) / 1e3, asDouble(tmax) / 1e3);
+    if (clock_max_ > 0) text += " clk " + formatHz(clock_min_) + ".." + formatHz(clock_max_);
+    text += fmt::format(" repeat_mismatches={} short_frames={} error_frames={}", mismatches_,
+                        shorts_, error_frames_);
+    e.summary = std::move(text);
+    emit(std::move(e));
+}
+
+void SsiDecoder::finish(Tick end) {
+    checkTime(end);
+    if (state_ == State::Clocking) close(true);
+    if (state_ == State::WaitTm) emitFrame(std::nullopt, false);
+    if (cfg_.summary) emitSummary(end);
+    idle();
+}
+
+}  // namespace busdecode

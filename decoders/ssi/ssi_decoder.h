@@ -1,0 +1,77 @@
+#pragma once
+// SSI decoder: a state machine over the clock and data edges.
+//
+// A frame is one clock burst: it starts at the first falling clock edge and ends when the
+// clock stays high for `gap_bits` clock periods (framing by timeout). The burst's edges
+// are kept until then, so the data delay can be measured on the frame itself before its
+// bits are sampled (LineSampler, sampling edge + delay). After the burst the data line
+// stays low for the monoflop time tm and returns high; the frame is emitted once tm is
+// known, a new burst starts while data is still low (a re-read of the same word), or the
+// capture ends.
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "core/decoder.h"
+#include "ssi_config.h"
+
+namespace busdecode {
+
+class SsiDecoder : public Decoder {
+public:
+    explicit SsiDecoder(const Options& o);
+    explicit SsiDecoder(SsiConfig cfg);
+
+    void start(const DecoderContext& ctx) override;
+    void edge(Tick t, int role, bool level) override;
+    void advance(Tick now) override;
+    void finish(Tick end) override;
+    void glitch(Tick t, int role) override;
+
+private:
+    struct DataEdge {
+        Tick t;
+        bool level;
+    };
+    struct Burst {
+        Tick start = 0;
+        std::vector<Tick> falls, rises;
+        std::vector<DataEdge> data;  // data edges from the burst start on
+        bool data_at_start = true;
+        bool reread = false;     // started while data was still low after the last burst
+        bool not_ready = false;  // data low at the start, not explained by a re-read
+        Tick tp = kNoTick;       // pause since the previous burst's last clock edge
+        int filtered_glitches = 0;
+        bool overlong = false;
+    };
+    enum class State { Idle, Clocking, WaitTm };
+
+    void startBurst(Tick t);
+    void checkTime(Tick now);
+    void close(bool capture_end);
+    void emitFrame(std::optional<Tick> tm_end, bool deadline_passed);
+    double periodTicks() const;
+    Tick lastClock() const;
+    void emitSummary(Tick end);
+
+    SsiConfig cfg_;
+    bool clk_ = true;
+    bool data_ = true;
+    State state_ = State::Idle;
+    Burst b_;
+    Event pending_;                   // the closed burst's frame, waiting for tm
+    bool pending_checks_tm_ = false;  // tm is only checked for complete, unbroken words
+    Tick wait_deadline_ = 0;
+    Tick last_clock_ = kNoTick;  // last clock edge of the last burst
+    bool data_rose_since_clock_ = false;
+    bool prev_valid_ = false;  // the previous frame's word, for re-read comparison
+    std::uint64_t prev_raw_ = 0;
+
+    // For the summary event.
+    std::vector<std::int64_t> tm_values_;
+    double clock_min_ = 0, clock_max_ = 0;
+    std::int64_t frames_ = 0, mismatches_ = 0, shorts_ = 0, error_frames_ = 0;
+    Tick first_start_ = kNoTick;
+};
+
+}  // namespace busdecode
