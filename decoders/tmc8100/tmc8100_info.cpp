@@ -1,0 +1,76 @@
+#include "core/registry.h"
+#include "spi_info.h"
+#include "tmc8100_decoder.h"
+
+namespace busdecode {
+
+DecoderInfo tmc8100Info() {
+    using K = OptionSpec::Kind;
+    DecoderInfo info;
+    info.id = "tmc8100";
+    info.name = "TMC8100 SPI";
+    info.description =
+        "Trinamic/ADI TMC8100 encoder interface: 32-bit SPI datagrams of the example firmwares "
+        "(read encoder, version, protocol) and of the bootloader, replies paired with their "
+        "commands, cross-checked against an ssi or bissc decoder in the same pass";
+    info.roles = spiRoleSpecs();
+    info.roles.push_back(
+        {"avail",
+         false,
+         {"gpio6", "spi_data_available"},
+         "SPI_DATA_AVAILABLE (GPIO6): high while replies wait in the output buffer"});
+    info.options = spiOptionSpecs();  // passed through to the SPI layer, same defaults
+    info.options.push_back(
+        {"mode",
+         K::Choice,
+         "auto",
+         {"auto", "app", "bootloader"},
+         -1e300,
+         1e300,
+         "program on the chip: application firmware, bootloader, or detect "
+         "(chip id/revision queries or consecutive program writes mean bootloader)"});
+    info.options.push_back(
+        {"encoder",
+         K::Choice,
+         "auto",
+         {"auto", "ssi", "biss"},
+         -1e300,
+         1e300,
+         "encoder protocol of the firmware (auto: from the get_protocol reply, or "
+         "a 0x71 word after the flags)"});
+    info.events = {
+        {"command", "a host datagram on MOSI", {"code", "name", "word", "address", "data"}},
+        {"reply",
+         "a reply word on MISO paired with its command",
+         {"tag", "value", "meaning", "command", "word"}},
+        {"encoder_read",
+         "one complete 0x80 read",
+         {"gray", "binary", "flags", "consistent", "ssi_match", "encoder_st"}},
+        {"avail", "GPIO6 behaviour that contradicts the traffic", {"level"}},
+    };
+    info.need_one_of = {"mosi", "miso"};
+    return info;
+}
+
+namespace {
+class Tmc8100Factory : public DecoderFactory {
+public:
+    Tmc8100Factory() : info_(tmc8100Info()) {}
+    const DecoderInfo& info() const override { return info_; }
+    std::unique_ptr<Decoder> create(const Options& o) const override {
+        // The SPI layer is linked in; make sure the registry knows it even when the spi
+        // plugin itself was not loaded (the registry keeps the first of equal ids).
+        Registry::instance().add(makeSpiFactory());
+        return std::make_unique<Tmc8100Decoder>(o);
+    }
+
+private:
+    DecoderInfo info_;
+};
+}  // namespace
+
+std::shared_ptr<const DecoderFactory> makeTmc8100Factory() {
+    return std::make_shared<Tmc8100Factory>();
+}
+
+}  // namespace busdecode
