@@ -44,7 +44,7 @@ TEST(Cli, ListShowsEveryBuiltInDecoderWithRolesAndOptions) {
     auto r = runDecode({"--list"});
     ASSERT_EQ(r.status, 0) << r.err;
     for (const char* id : {"bissc", "spi", "ssi", "tmc8100", "tmcl", "uart"})
-        EXPECT_NE(r.out.find(std::string("\n") + id + "  "), std::string::npos) << id << "\n" << r.out;
+        EXPECT_NE(("\n" + r.out).find(std::string("\n") + id + "  "), std::string::npos) << id << "\n" << r.out;
     EXPECT_NE(r.out.find("glitch_ns"), std::string::npos);
     EXPECT_NE(r.out.find("cpol"), std::string::npos);
 }
@@ -119,7 +119,7 @@ INSTANTIATE_TEST_SUITE_P(
         BadInput{{"@", "--proto", "nosuch"}, "unknown decoder 'nosuch' (available: "},
         BadInput{{"@", "--proto", "ssi"}, "role 'clk' is not bound"},
         BadInput{{"@", "--proto", "ssi"}, "signals: top.cs, top.sclk, top.mosi, top.miso, top.tx"},
-        BadInput{{"@", "--proto", "spi", "--opt", "cpol=2"}, "cpol=2: expected 0 or 1"},
+        BadInput{{"@", "--proto", "spi", "--opt", "cpol=2"}, "option cpol=2: expected an integer from 0 to 1"},
         BadInput{{"@", "--proto", "spi", "--opt", "speed=3"}, "unknown option 'speed'"},
         BadInput{{"@", "--proto", "uart", "--opt", "parity=maybe"}, "one of"},
         BadInput{{"@", "--proto", "spi", "--map", "sclk=nosuch"}, "--map sclk=nosuch: no such signal"},
