@@ -142,13 +142,15 @@ TEST(CsvReaderErrors, Messages) {
 // sigrok-cli's CSV export of the same session as the .sr: identical edges, tick for tick.
 TEST(CsvReader, DifferentialSigrokCsvAgainstSr) {
     const std::string base = sharedCaptures() + "/biss-renishaw/";
-    auto sr = collectFile(base + "sr/renishaw_biss_1MHz.sr", {"MA", "SLO"});
-    auto csv = collectFile(base + "sigrok-csv/renishaw_biss_1MHz.csv", {"MA", "SLO"});
-    ASSERT_GT(sr.edges.size(), 400u);
-    EXPECT_EQ(csv.tb.den, sr.tb.den);
-    EXPECT_EQ(csv.initial, sr.initial);
-    EXPECT_EQ(csv.edges, sr.edges);
-    EXPECT_EQ(csv.end, sr.end);
+    for (std::string rate : {"1MHz", "10MHz"}) {
+        auto sr = collectFile(base + "sr/renishaw_biss_" + rate + ".sr", {"MA", "SLO"});
+        auto csv = collectFile(base + "sigrok-csv/renishaw_biss_" + rate + ".csv", {"MA", "SLO"});
+        ASSERT_GT(sr.edges.size(), 400u);
+        EXPECT_EQ(csv.tb.den, sr.tb.den);
+        EXPECT_EQ(csv.initial, sr.initial);
+        EXPECT_EQ(csv.edges, sr.edges) << rate;
+        EXPECT_EQ(csv.end, sr.end);
+    }
 }
 
 // One SPI flash read (0x03 + 24-bit address, 16 bytes back) captured by four vendors'

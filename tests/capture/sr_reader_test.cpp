@@ -116,6 +116,8 @@ TEST(SrReaderErrors, MissingChunkUnitsizeAndRate) {
     EXPECT_EQ(errorOf(p), p + ": 9 probes do not fit in unitsize=1");
 }
 
+void compareSrWithSigrokVcd(const std::string& sr_path, const std::string& vcd_path);
+
 // The same session read from the .sr and sigrok-cli's VCD (100 ps timescale) gives the
 // same edges in nanoseconds. sigrok-cli 0.7.2 exports this session (only probes 2 and 4
 // enabled) wrongly: it writes sample bits 0 and 1 under the names of the enabled probes,
@@ -123,8 +125,16 @@ TEST(SrReaderErrors, MissingChunkUnitsizeAndRate) {
 // with like; the bit-3 SLO data is not in sigrok's exports at all.
 TEST(SrReader, DifferentialAgainstSigrokVcdExport) {
     const std::string base = sharedCaptures() + "/biss-renishaw/";
-    auto sr = collectFile(base + "sr/renishaw_biss_1MHz.sr", {"D0", "MA"});
-    auto vcd = collectFile(base + "sigrok-vcd/renishaw_biss_1MHz.vcd", {"MA", "SLO"});
+    for (std::string rate : {"250kHz", "1MHz", "2MHz", "5MHz", "10MHz"}) {
+        SCOPED_TRACE(rate);
+        compareSrWithSigrokVcd(base + "sr/renishaw_biss_" + rate + ".sr",
+                               base + "sigrok-vcd/renishaw_biss_" + rate + ".vcd");
+    }
+}
+
+void compareSrWithSigrokVcd(const std::string& sr_path, const std::string& vcd_path) {
+    auto sr = collectFile(sr_path, {"D0", "MA"});
+    auto vcd = collectFile(vcd_path, {"MA", "SLO"});
     ASSERT_GT(sr.edges.size(), 300u);
     EXPECT_EQ(sr.initial, vcd.initial);
     ASSERT_EQ(sr.edges.size(), vcd.edges.size());
