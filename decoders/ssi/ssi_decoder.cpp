@@ -128,17 +128,25 @@ void SsiDecoder::close(bool capture_end) {
     const double T = periodTicks();
     const Tick last = lastClock();
 
-    // Pulses far shorter than the clock period are glitches (when no glitch_ns filter
-    // removed them first). Their data edges carry no bit and say nothing about delay.
+    // Pulses far shorter than their kind are glitches (when no glitch_ns filter removed
+    // them first): a clock phase under a quarter of the median phase of its level (clock
+    // duty cycles are far from 50 % on some devices), a data pulse under a quarter period.
+    // Glitch data edges carry no bit and say nothing about delay.
     int glitches = b_.filtered_glitches;
     std::vector<std::uint8_t> data_glitch(b_.data.size(), 0);
     if (T > 0) {
-        const double shortest = T / 4;
+        std::vector<std::int64_t> lows, highs;
         for (std::size_t i = 0; i < b_.rises.size(); ++i) {
-            if (double(b_.rises[i] - b_.falls[i]) < shortest) ++glitches;
-            if (i + 1 < b_.falls.size() && double(b_.falls[i + 1] - b_.rises[i]) < shortest)
-                ++glitches;
+            lows.push_back(b_.rises[i] - b_.falls[i]);
+            if (i + 1 < b_.falls.size()) highs.push_back(b_.falls[i + 1] - b_.rises[i]);
         }
+        for (const auto* phases : {&lows, &highs}) {
+            if (phases->empty()) continue;
+            const double shortest = double(median(*phases)) / 4;
+            for (auto p : *phases)
+                if (double(p) < shortest) ++glitches;
+        }
+        const double shortest = T / 4;
         for (std::size_t i = 1; i < b_.data.size(); ++i) {
             if (double(b_.data[i].t - b_.data[i - 1].t) < shortest) {
                 if (!data_glitch[i - 1]) ++glitches;
