@@ -1,0 +1,197 @@
+#include "capture_stats.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "sinks/event_format.h"
+
+namespace busdecode {
+
+namespace {
+
+bool endsWith(const std::string& s, const char* suffix) {
+    const std::string_view sv(suffix);
+    return s.size() >= sv.size() && s.compare(s.size() - sv.size(), sv.size(), sv) == 0;
+}
+
+bool isNumber(const Value& v) {
+    return std::holds_alternative<std::int64_t>(v) || std::holds_alternative<std::uint64_t>(v) ||
+           std::holds_alternative<double>(v);
+}
+
+// BiSS status bits are sent active low: 1 = no error / warning.
+bool isActiveLowFlag(const std::string& key) {
+    return key == "nE" || key == "nW";
+}
+
+}  // namespace
+
+bool isTimingField(const std::string& key) {
+    return endsWith(key, "_ns") || endsWith(key, "_us") || endsWith(key, "_hz") ||
+           endsWith(key, "_cycles") || key == "repeats";
+}
+
+void PositionTrace::add(double t_ns, double value) {
+    if (!points_.empty() && points_.back().n < stride_) {
+        auto& p = points_.back();
+        p.lo = std::min(p.lo, value);
+        p.hi = std::max(p.hi, value);
+        ++p.n;
+        return;
+    }
+    if (points_.size() == kMaxPoints) halve();
+    if (!points_.empty() && points_.back().n < stride_) {
+        add(t_ns, value);
+        return;
+    }
+    points_.push_back(Point{t_ns, value, value, 1});
+}
+
+void PositionTrace::halve() {
+    std::vector<Point> merged;
+    merged.reserve(points_.size() / 2 + 1);
+    for (std::size_t i = 0; i < points_.size(); i += 2) {
+        Point p = points_[i];
+        if (i + 1 < points_.size()) {
+            const Point& q = points_[i + 1];
+            p.lo = std::min(p.lo, q.lo);
+            p.hi = std::max(p.hi, q.hi);
+            p.n += q.n;
+        }
+        merged.push_back(p);
+    }
+    points_ = std::move(merged);
+    stride_ *= 2;
+}
+
+QuantileSketch& GroupStats::timingField(const std::string& key) {
+    for (auto& [k, s] : timing)
+        if (k == key) return s;
+    timing.emplace_back(key, QuantileSketch{});
+    return timing.back().second;
+}
+
+GroupStats::FlagCount& GroupStats::flag(const std::string& key) {
+    for (auto& [k, f] : flags)
+        if (k == key) return f;
+    flags.emplace_back(key, FlagCount{});
+    return flags.back().second;
+}
+
+void CaptureStats::begin(const CaptureFacts& facts) {
+    facts_ = facts;
+    for (const auto& p : facts.protos)
+        noteInstance(p);
+}
+
+void CaptureStats::end(const CaptureFacts& facts) {
+    facts_ = facts;
+}
+
+void CaptureStats::noteInstance(const std::string& instance) {
+    if (std::find(instances_.begin(), instances_.end(), instance) == instances_.end())
+        instances_.push_back(instance);
+}
+
+GroupStats& CaptureStats::group(const Event& e) {
+    const std::string& inst = e.instance.empty() ? e.proto : e.instance;
+    for (auto& g : groups_)
+        if (g.instance == inst && g.type == e.type) return g;
+    noteInstance(inst);
+    GroupStats g;
+    g.instance = inst;
+    g.proto = e.proto;
+    g.type = e.type;
+    groups_.push_back(std::move(g));
+    return groups_.back();
+}
+
+void CaptureStats::add(const Event& e) {
+    const Timebase& tb = facts_.timebase;
+    GroupStats& g = group(e);
+    if (g.count == 0) {
+        g.first_start = e.start;
+    } else {
+        g.pause_ns.add(tb.toNsF(double(e.start - g.last_end)));
+    }
+    ++g.count;
+    g.last_end = std::max(g.last_end, e.end);
+    ++total_events_;
+
+    for (const auto& f : e.fields) {
+        if (isNull(f.value)) continue;
+        if (auto b = std::get_if<bool>(&f.value)) {
+            auto& c = g.flag(f.key);
+            ++(*b ? c.true_count : c.false_count);
+        } else if (isActiveLowFlag(f.key) && isNumber(f.value)) {
+            auto& c = g.flag(f.key);
+            ++(asInt(f.value) == 0 ? c.false_count : c.true_count);
+        } else if (isTimingField(f.key) && isNumber(f.value)) {
+            g.timingField(f.key).add(asDouble(f.value));
+        }
+    }
+
+    const std::string& inst = g.instance;
+    if (const Value* pos = e.get("position"); pos && isNumber(*pos)) {
+        const double v = asDouble(*pos);
+        auto& p = positions_[inst];
+        if (p.count == 0) {
+            p.min = p.max = v;
+        } else {
+            p.min = std::min(p.min, v);
+            p.max = std::max(p.max, v);
+            const double jump = std::fabs(v - p.last);
+            if (jump > p.max_jump) {
+                p.max_jump = jump;
+                p.max_jump_at = e.start;
+            }
+        }
+        p.last = v;
+        ++p.count;
+        p.trace.add(tb.toNsF(double(e.start)), v);
+    }
+
+    if (e.type == "register") {
+        const Value* addr = e.get("address");
+        const Value* data = e.get("data");
+        auto& regs = registers_[inst];
+        if (addr && isNumber(*addr) && (regs.size() < kMaxRegisters || regs.count(asInt(*addr)))) {
+            auto& r = regs[asInt(*addr)];
+            const Value* op = e.get("op");
+            const bool write = op && std::holds_alternative<std::string>(*op) &&
+                               std::get<std::string>(*op) == "write";
+            ++(write ? r.writes : r.reads);
+            if (data && isNumber(*data)) r.last_data = asInt(*data);
+            if (const Value* ok = e.get("crc_ok"); ok && !asInt(*ok)) r.crc_failed = true;
+        }
+    }
+
+    if (!e.errors.empty()) {
+        ++g.faulty;
+        ++total_faults_;
+        for (const auto& err : e.errors)
+            ++g.errors[err];
+        if (faults_.size() < kMaxFaults) faults_.push_back({e.start, inst, eventToText(e, tb)});
+        if (!first_faulty_) first_faulty_ = e;
+    }
+}
+
+std::vector<const GroupStats*> CaptureStats::groupsOf(const std::string& instance) const {
+    std::vector<const GroupStats*> out;
+    for (const auto& g : groups_)
+        if (g.instance == instance) out.push_back(&g);
+    return out;
+}
+
+const PositionStats* CaptureStats::position(const std::string& instance) const {
+    auto it = positions_.find(instance);
+    return it == positions_.end() ? nullptr : &it->second;
+}
+
+const std::map<std::int64_t, RegisterStats>* CaptureStats::registers(
+    const std::string& instance) const {
+    auto it = registers_.find(instance);
+    return it == registers_.end() ? nullptr : &it->second;
+}
+
+}  // namespace busdecode

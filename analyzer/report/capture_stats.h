@@ -1,0 +1,121 @@
+#pragma once
+// Everything a report says about one decode pass, gathered while the events stream by:
+// no event is kept (except the first faulty one, for its picture), no second pass, and
+// memory stays bounded whatever the capture length (sketches, capped tables, a
+// decimated position trace).
+//
+// The statistics are generic: they work from the field names present in the events, per
+// decoder instance and event type. Numeric fields whose names end in `_ns`, `_us`, `_hz`
+// or `_cycles` (and `repeats`) get min / median / p99 / max; bool fields count their
+// false values; `nE` / `nW` count active (0) bits; `position` gets its range, largest
+// jump and a trace over time; `register` events with `address` and `data` fill a
+// register table.
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/event.h"
+#include "core/session.h"
+#include "quantile_sketch.h"
+
+namespace busdecode {
+
+// Position over time with at most kMaxPoints points: when full, neighbouring points are
+// merged (keeping their min and max, so spikes stay visible) and the stride doubles.
+class PositionTrace {
+public:
+    static constexpr std::size_t kMaxPoints = 1024;
+    struct Point {
+        double t_ns;  // time of the first event in the point
+        double lo, hi;
+        std::uint64_t n;
+    };
+    void add(double t_ns, double value);
+    const std::vector<Point>& points() const { return points_; }
+
+private:
+    void halve();
+    std::vector<Point> points_;
+    std::uint64_t stride_ = 1;  // events per point
+};
+
+struct GroupStats {
+    std::string instance, proto, type;
+    std::uint64_t count = 0;
+    std::uint64_t faulty = 0;  // events with a non-empty `errors`
+    std::map<std::string, std::uint64_t> errors;
+    // Timing-like numeric fields, in first-seen order.
+    std::vector<std::pair<std::string, QuantileSketch>> timing;
+    // Bool fields: how many events had them false / true. nE and nW count active (= 0).
+    struct FlagCount {
+        std::uint64_t false_count = 0, true_count = 0;
+    };
+    std::vector<std::pair<std::string, FlagCount>> flags;
+    QuantileSketch pause_ns;  // from the end of one event to the start of the next
+    Tick first_start = 0, last_end = 0;
+
+    QuantileSketch& timingField(const std::string& key);
+    FlagCount& flag(const std::string& key);
+};
+
+struct PositionStats {
+    std::uint64_t count = 0;
+    double min = 0, max = 0;
+    double last = 0;
+    double max_jump = 0;  // largest |difference| between consecutive positions
+    Tick max_jump_at = 0;
+    PositionTrace trace;
+};
+
+struct RegisterStats {
+    std::uint64_t reads = 0, writes = 0;
+    std::int64_t last_data = 0;
+    bool crc_failed = false;
+};
+
+struct FaultRecord {
+    Tick start = 0;
+    std::string instance;
+    std::string text;  // the event as one human line (eventToText)
+};
+
+class CaptureStats {
+public:
+    static constexpr std::size_t kMaxFaults = 10;
+    static constexpr std::size_t kMaxRegisters = 256;  // per instance
+
+    void begin(const CaptureFacts& facts);
+    void add(const Event& e);
+    void end(const CaptureFacts& facts);
+
+    const CaptureFacts& facts() const { return facts_; }
+    // Instances in first-seen order (--proto order first).
+    const std::vector<std::string>& instances() const { return instances_; }
+    std::vector<const GroupStats*> groupsOf(const std::string& instance) const;
+    const PositionStats* position(const std::string& instance) const;
+    const std::map<std::int64_t, RegisterStats>* registers(const std::string& instance) const;
+    std::uint64_t totalEvents() const { return total_events_; }
+    std::uint64_t totalFaults() const { return total_faults_; }
+    const std::vector<FaultRecord>& firstFaults() const { return faults_; }
+    const std::optional<Event>& firstFaultyEvent() const { return first_faulty_; }
+
+private:
+    GroupStats& group(const Event& e);
+    void noteInstance(const std::string& instance);
+
+    CaptureFacts facts_;
+    std::vector<std::string> instances_;
+    std::vector<GroupStats> groups_;  // few (instances x types): linear search is fine
+    std::map<std::string, PositionStats> positions_;
+    std::map<std::string, std::map<std::int64_t, RegisterStats>> registers_;
+    std::vector<FaultRecord> faults_;
+    std::optional<Event> first_faulty_;
+    std::uint64_t total_events_ = 0, total_faults_ = 0;
+};
+
+// Field names the statistics treat as timing values.
+bool isTimingField(const std::string& key);
+
+}  // namespace busdecode

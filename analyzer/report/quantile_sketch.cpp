@@ -1,0 +1,95 @@
+#include "quantile_sketch.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace busdecode {
+
+namespace {
+// Magnitudes below this count as zero (a femto-anything is noise in a bus capture).
+constexpr double kZero = 1e-15;
+}  // namespace
+
+int QuantileSketch::indexOf(double m) const {
+    return int(std::ceil(std::log(m) / std::log(kGamma)));
+}
+
+double QuantileSketch::valueOf(int i) const {
+    // Midpoint (in relative terms) of [g^(i-1), g^i): the estimate with the smallest
+    // worst-case relative error.
+    return 2.0 * std::pow(kGamma, i) / (kGamma + 1.0);
+}
+
+void QuantileSketch::cap(std::map<int, std::uint64_t>& b) {
+    while (b.size() > kMaxBuckets) {
+        auto first = b.begin();
+        auto second = std::next(first);
+        second->second += first->second;
+        b.erase(first);
+    }
+}
+
+void QuantileSketch::add(double v) {
+    if (!std::isfinite(v)) return;
+    if (count_ == 0) {
+        min_ = max_ = v;
+    } else {
+        min_ = std::min(min_, v);
+        max_ = std::max(max_, v);
+    }
+    ++count_;
+    sum_ += v;
+    if (std::fabs(v) < kZero) {
+        ++zeros_;
+    } else if (v > 0) {
+        ++positive_[indexOf(v)];
+        cap(positive_);
+    } else {
+        ++negative_[indexOf(-v)];
+        cap(negative_);
+    }
+}
+
+template <class F>
+void QuantileSketch::forEachBucket(F&& f) const {
+    for (auto it = negative_.rbegin(); it != negative_.rend(); ++it)
+        f(-valueOf(it->first), it->second);
+    if (zeros_) f(0.0, zeros_);
+    for (const auto& [i, n] : positive_)
+        f(valueOf(i), n);
+}
+
+double QuantileSketch::quantile(double q) const {
+    if (count_ == 0) return std::numeric_limits<double>::quiet_NaN();
+    if (q <= 0) return min_;
+    if (q >= 1) return max_;
+    // The value of rank floor(q * (n - 1)), 0-based, as numpy's "lower" method.
+    const auto rank = std::uint64_t(q * double(count_ - 1));
+    std::uint64_t seen = 0;
+    double result = max_;
+    bool found = false;
+    forEachBucket([&](double value, std::uint64_t n) {
+        if (found) return;
+        seen += n;
+        if (seen > rank) {
+            result = value;
+            found = true;
+        }
+    });
+    return std::clamp(result, min_, max_);
+}
+
+std::vector<std::uint64_t> QuantileSketch::histogram(int bins) const {
+    if (count_ == 0 || bins <= 0) return {};
+    std::vector<std::uint64_t> out(std::size_t(bins), 0);
+    const double width = (max_ - min_) / bins;
+    forEachBucket([&](double value, std::uint64_t n) {
+        value = std::clamp(value, min_, max_);
+        int b = width > 0 ? int((value - min_) / width) : 0;
+        out[std::size_t(std::clamp(b, 0, bins - 1))] += n;
+    });
+    return out;
+}
+
+}  // namespace busdecode

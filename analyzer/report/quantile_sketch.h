@@ -1,0 +1,46 @@
+#pragma once
+// Streaming quantiles with bounded memory and no second pass: a log-bucketed histogram
+// (the DDSketch idea). Every value lands in the bucket [g^(i-1), g^i) of its magnitude,
+// so a quantile is known to a relative error of (g-1)/2 whatever the distribution, and
+// the number of buckets grows with the logarithm of the value range, not with the count.
+// Minimum and maximum are kept exactly.
+#include <cstdint>
+#include <map>
+#include <vector>
+
+namespace busdecode {
+
+class QuantileSketch {
+public:
+    // 1 % buckets: quantiles within 0.5 %; at most kMaxBuckets buckets per sign (the
+    // smallest magnitudes are merged first when a wider range shows up).
+    static constexpr double kGamma = 1.01;
+    static constexpr std::size_t kMaxBuckets = 2048;
+
+    void add(double v);
+    std::uint64_t count() const { return count_; }
+    bool empty() const { return count_ == 0; }
+    double min() const { return min_; }
+    double max() const { return max_; }
+    double mean() const { return count_ ? sum_ / double(count_) : 0.0; }
+    // q in [0, 1]; 0 and 1 give the exact min and max. NaN when empty.
+    double quantile(double q) const;
+    double median() const { return quantile(0.5); }
+    // Counts in `bins` equal-width bins between min() and max() (approximate: each bucket
+    // counts where its representative value falls). Empty when nothing was added.
+    std::vector<std::uint64_t> histogram(int bins) const;
+
+private:
+    int indexOf(double magnitude) const;
+    double valueOf(int index) const;  // representative magnitude of a bucket
+    static void cap(std::map<int, std::uint64_t>& buckets);
+    template <class F>
+    void forEachBucket(F&& f) const;  // ascending value order: f(value, count)
+
+    std::map<int, std::uint64_t> positive_, negative_;  // bucket index -> count
+    std::uint64_t zeros_ = 0;
+    std::uint64_t count_ = 0;
+    double sum_ = 0, min_ = 0, max_ = 0;
+};
+
+}  // namespace busdecode

@@ -1,0 +1,147 @@
+#include "verdict.h"
+
+#include <ctime>
+
+#include <unistd.h>
+
+#include <fmt/format.h>
+
+namespace busdecode {
+
+bool CaptureVerdict::passed() const {
+    if (input_error) return false;
+    for (const auto& o : outcomes)
+        if (!o.passed) return false;
+    return true;
+}
+
+std::string verdictLine(const CaptureVerdict& v) {
+    if (v.input_error) return fmt::format("ERROR {}  {}", v.capture, v.error);
+    if (v.passed())
+        return fmt::format("PASS  {}  ({}; {} rules)", v.capture,
+                           v.events.empty() ? "no events" : v.events, v.outcomes.size());
+    std::string why;
+    for (const auto& o : v.outcomes) {
+        if (o.passed) continue;
+        why += fmt::format("{}{}: {}", why.empty() ? "" : "; ", o.name(), o.message);
+    }
+    return fmt::format("FAIL  {}  {}", v.capture, why);
+}
+
+std::string summaryLine(const std::vector<CaptureVerdict>& all) {
+    std::size_t pass = 0, fail = 0, err = 0, checks = 0, failed_checks = 0;
+    for (const auto& v : all) {
+        if (v.input_error)
+            ++err;
+        else if (v.passed())
+            ++pass;
+        else
+            ++fail;
+        for (const auto& o : v.outcomes) {
+            ++checks;
+            if (!o.passed) ++failed_checks;
+        }
+    }
+    return fmt::format(
+        "{} capture{}: {} passed, {} failed, {} unreadable; {} rule checks, {} failed", all.size(),
+        all.size() == 1 ? "" : "s", pass, fail, err, checks, failed_checks);
+}
+
+std::string xmlEscape(const std::string& s) {
+    std::string out;
+    out.reserve(s.size());
+    for (unsigned char c : s) {
+        switch (c) {
+            case '&':
+                out += "&amp;";
+                break;
+            case '<':
+                out += "&lt;";
+                break;
+            case '>':
+                out += "&gt;";
+                break;
+            case '"':
+                out += "&quot;";
+                break;
+            case '\'':
+                out += "&apos;";
+                break;
+            case '\n':
+                out += "&#10;";
+                break;
+            case '\t':
+                out += "&#9;";
+                break;
+            default:
+                if (c < 0x20) continue;  // not allowed in XML 1.0
+                out += char(c);
+        }
+    }
+    return out;
+}
+
+std::string junitXml(const std::vector<CaptureVerdict>& all, const std::string& rules_file) {
+    std::size_t tests = 0, failures = 0, errors = 0;
+    double total = 0;
+    for (const auto& v : all) {
+        total += v.seconds;
+        if (v.input_error) {
+            ++tests;
+            ++errors;
+            continue;
+        }
+        tests += v.outcomes.size();
+        for (const auto& o : v.outcomes)
+            failures += o.passed ? 0 : 1;
+    }
+    char stamp[32] = "1970-01-01T00:00:00";
+    const std::time_t now = std::time(nullptr);
+    std::tm tm{};
+    if (gmtime_r(&now, &tm)) std::strftime(stamp, sizeof stamp, "%Y-%m-%dT%H:%M:%S", &tm);
+    char host[256] = "localhost";
+    gethostname(host, sizeof host - 1);
+
+    std::string x = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
+    x += fmt::format(
+        "<testsuites name=\"decode verify\" tests=\"{}\" failures=\"{}\" errors=\"{}\" "
+        "time=\"{:.3f}\">\n",
+        tests, failures, errors, total);
+    x += fmt::format(
+        "  <testsuite name=\"decode verify\" tests=\"{}\" failures=\"{}\" errors=\"{}\" "
+        "skipped=\"0\" "
+        "time=\"{:.3f}\" timestamp=\"{}\" hostname=\"{}\">\n",
+        tests, failures, errors, total, stamp, xmlEscape(host));
+    x += fmt::format("    <properties><property name=\"rules\" value=\"{}\"/></properties>\n",
+                     xmlEscape(rules_file));
+    for (const auto& v : all) {
+        const std::string cls = xmlEscape(v.capture);
+        if (v.input_error) {
+            x += fmt::format("    <testcase name=\"decode\" classname=\"{}\" time=\"{:.3f}\">\n",
+                             cls, v.seconds);
+            x += fmt::format("      <error message=\"{}\" type=\"input\">{}</error>\n",
+                             xmlEscape(v.error), xmlEscape(v.error));
+            x += "    </testcase>\n";
+            continue;
+        }
+        // The capture's decode time is shared by its rules (they all ran in one pass).
+        const double each = v.outcomes.empty() ? 0 : v.seconds / double(v.outcomes.size());
+        for (const auto& o : v.outcomes) {
+            x += fmt::format("    <testcase name=\"{}\" classname=\"{}\" time=\"{:.3f}\"",
+                             xmlEscape(o.name()), cls, each);
+            if (o.passed) {
+                x += fmt::format("><system-out>{}</system-out></testcase>\n", xmlEscape(o.message));
+            } else {
+                x += ">\n";
+                x += fmt::format("      <failure message=\"{}\" type=\"{}\">{}</failure>\n",
+                                 xmlEscape(o.message), xmlEscape(o.rule),
+                                 xmlEscape(o.name() + ": " + o.message));
+                x += "    </testcase>\n";
+            }
+        }
+    }
+    x += "  </testsuite>\n</testsuites>\n";
+    return x;
+}
+
+}  // namespace busdecode

@@ -1,0 +1,32 @@
+#pragma once
+// The result of verifying one capture, and how it is told: one line on stdout per
+// capture, a summary line, and the JUnit XML file (one testsuite, one testcase per
+// capture and rule; a capture that could not be read is one testcase with an <error>).
+#include <string>
+#include <vector>
+
+#include "rule_checker.h"
+
+namespace busdecode {
+
+struct CaptureVerdict {
+    std::string capture;
+    bool input_error = false;  // unreadable capture, unbound role...: exit 2
+    std::string error;
+    std::vector<RuleOutcome> outcomes;
+    std::string events;  // "bissc 1000 frames"
+    double seconds = 0;  // decode time
+    bool passed() const;
+};
+
+// "PASS cap.vcd  (bissc 1000 frames; 7 rules)" / "FAIL cap.vcd  bissc.max_crc_errors: ...; ..."
+// / "ERROR cap.vcd  <message>".
+std::string verdictLine(const CaptureVerdict& v);
+// "3 captures: 2 passed, 1 failed, 0 unreadable; 21 rule checks, 1 failed".
+std::string summaryLine(const std::vector<CaptureVerdict>& all);
+// JUnit XML (the common Jenkins/Ant schema).
+std::string junitXml(const std::vector<CaptureVerdict>& all, const std::string& rules_file);
+// Escapes text for XML attributes and character data; drops characters XML 1.0 forbids.
+std::string xmlEscape(const std::string& s);
+
+}  // namespace busdecode

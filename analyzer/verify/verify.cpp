@@ -1,0 +1,57 @@
+#include "verify.h"
+
+#include <cstdio>
+
+#include <unistd.h>
+
+#include <fmt/format.h>
+
+#include "batch.h"
+#include "core/options.h"
+#include "core/registry.h"
+#include "report/atomic_file.h"
+#include "rules.h"
+
+namespace busdecode {
+
+int runVerify(const DecodeArgs& args) {
+    try {
+        loadPlugins();
+        std::vector<std::string> known;
+        for (const auto* f : Registry::instance().all())
+            known.push_back(f->info().id);
+        const Rules rules = loadRules(args.rules, known);
+        const DecodeChoice choice = combineDecodeChoice(rules, args.protos, args.maps, args.opts);
+        const auto requests = buildRequests(choice.protos, choice.maps, choice.opts);
+        if (args.captures.empty()) throw InputError("decode verify: no capture given");
+
+        OpenOptions open;
+        open.rate_hz = args.rate_hz > 0 ? args.rate_hz : rules.decode.rate_hz;
+        BatchOptions batch;
+        batch.jobs = args.jobs;
+        batch.progress = ::isatty(STDERR_FILENO) && args.captures.size() > 1;
+        const auto verdicts = verifyCaptures(args.captures, rules, requests, open, batch,
+                                             [](const CaptureVerdict& v) {
+                                                 fmt::print("{}\n", verdictLine(v));
+                                                 std::fflush(stdout);
+                                             });
+        fmt::print("{}\n", summaryLine(verdicts));
+        std::fflush(stdout);
+        if (!args.junit.empty()) writeFileAtomically(args.junit, junitXml(verdicts, args.rules));
+
+        bool any_error = false, any_fail = false;
+        for (const auto& v : verdicts) {
+            any_error = any_error || v.input_error;
+            any_fail = any_fail || !v.passed();
+        }
+        for (const auto& v : verdicts)
+            if (v.input_error) fmt::print(stderr, "decode verify: {}: {}\n", v.capture, v.error);
+        return any_error ? 2 : any_fail ? 1 : 0;
+    } catch (const InputError& e) {
+        std::fflush(stdout);
+        fmt::print(stderr, "decode verify: {}\n", e.what());
+        return 2;
+    }
+}
+
+}  // namespace busdecode

@@ -1,0 +1,123 @@
+// CaptureStats from hand-made events: counts, errors by kind, flags, timing sketches,
+// position range and jump, registers, faults, bounded memory.
+#include <gtest/gtest.h>
+
+#include "report/capture_stats.h"
+#include "test_events.h"
+
+namespace busdecode {
+namespace {
+
+using test::bisscFrame;
+
+TEST(CaptureStats, CountsErrorsFlagsAndTimingPerGroup) {
+    CaptureStats s;
+    s.begin(test::facts(10'000'000));
+    for (int i = 0; i < 100; ++i) {
+        const bool bad_crc = i == 40 || i == 70;
+        s.add(bisscFrame(Tick(i) * 100000, 1000 + i, !bad_crc, i == 50 ? 0 : 1, 1, 1e6, 100 + i));
+    }
+    s.add(test::bisscRegister(5'000'000, 0x78, 0x4D));
+    s.end(test::facts(10'000'000));
+
+    ASSERT_EQ(s.instances(), std::vector<std::string>{"bissc"});
+    const auto groups = s.groupsOf("bissc");
+    ASSERT_EQ(groups.size(), 2u);
+    const GroupStats& f = *groups[0];
+    EXPECT_EQ(f.type, "frame");
+    EXPECT_EQ(f.count, 100u);
+    EXPECT_EQ(f.faulty, 2u);
+    EXPECT_EQ(f.errors.at("crc"), 2u);
+    bool saw_crc_flag = false, saw_ne = false;
+    for (const auto& [k, c] : f.flags) {
+        if (k == "crc_ok") {
+            saw_crc_flag = true;
+            EXPECT_EQ(c.false_count, 2u);
+            EXPECT_EQ(c.true_count, 98u);
+        }
+        if (k == "nE") {
+            saw_ne = true;
+            EXPECT_EQ(c.false_count, 1u);  // active
+        }
+    }
+    EXPECT_TRUE(saw_crc_flag);
+    EXPECT_TRUE(saw_ne);
+    const QuantileSketch* delay = nullptr;
+    for (const auto& [k, sk] : f.timing)
+        if (k == "line_delay_ns") delay = &sk;
+    ASSERT_NE(delay, nullptr);
+    EXPECT_DOUBLE_EQ(delay->min(), 100);
+    EXPECT_DOUBLE_EQ(delay->max(), 199);
+    EXPECT_NEAR(delay->median(), 149, 1.5);
+    // Frames start every 100 us and last 60 us: 40 us pauses.
+    EXPECT_EQ(f.pause_ns.count(), 99u);
+    EXPECT_NEAR(f.pause_ns.median(), 40000, 200);
+
+    const auto* regs = s.registers("bissc");
+    ASSERT_NE(regs, nullptr);
+    EXPECT_EQ(regs->at(0x78).reads, 1u);
+    EXPECT_EQ(regs->at(0x78).last_data, 0x4D);
+
+    ASSERT_EQ(s.firstFaults().size(), 2u);
+    EXPECT_EQ(s.firstFaults()[0].start, 40 * 100000);
+    ASSERT_TRUE(s.firstFaultyEvent().has_value());
+    EXPECT_EQ(s.firstFaultyEvent()->start, 40 * 100000);
+}
+
+TEST(CaptureStats, PositionRangeAndLargestJump) {
+    CaptureStats s;
+    s.begin(test::facts(1'000'000'000));
+    std::int64_t pos = 500;
+    for (int i = 0; i < 1000; ++i) {
+        pos += (i == 600) ? 7000 : 3;  // one big jump at frame 600
+        s.add(bisscFrame(Tick(i) * 100000, pos));
+    }
+    const auto* p = s.position("bissc");
+    ASSERT_NE(p, nullptr);
+    EXPECT_EQ(p->count, 1000u);
+    EXPECT_DOUBLE_EQ(p->min, 503);
+    EXPECT_DOUBLE_EQ(p->max, 500 + 999 * 3 + 7000);
+    EXPECT_DOUBLE_EQ(p->max_jump, 7000);
+    EXPECT_EQ(p->max_jump_at, 600 * 100000);
+}
+
+TEST(CaptureStats, MemoryStaysBoundedOnLongCaptures) {
+    CaptureStats s;
+    s.begin(test::facts(0));
+    for (int i = 0; i < 200000; ++i)
+        s.add(bisscFrame(Tick(i) * 50000, i % 5000, i % 1000 != 7));
+    const auto* p = s.position("bissc");
+    ASSERT_NE(p, nullptr);
+    EXPECT_LE(p->trace.points().size(), PositionTrace::kMaxPoints);
+    EXPECT_GE(p->trace.points().size(), PositionTrace::kMaxPoints / 2);
+    std::uint64_t n = 0;
+    for (const auto& pt : p->trace.points())
+        n += pt.n;
+    EXPECT_EQ(n, 200000u);  // every frame is in some point
+    EXPECT_EQ(s.firstFaults().size(), CaptureStats::kMaxFaults);
+    EXPECT_EQ(s.totalFaults(), 200u);
+    // Spikes survive decimation: the trace still spans the full range.
+    double lo = 1e9, hi = -1e9;
+    for (const auto& pt : p->trace.points()) {
+        lo = std::min(lo, pt.lo);
+        hi = std::max(hi, pt.hi);
+    }
+    EXPECT_EQ(lo, 0);
+    EXPECT_EQ(hi, 4999);
+}
+
+TEST(CaptureStats, SeveralBusesKeepSeparateGroups) {
+    CaptureStats s;
+    auto f = test::facts(10'000'000);
+    f.protos = {"bissc", "ssi"};
+    s.begin(f);
+    s.add(bisscFrame(0, 10));
+    s.add(test::ssiFrame(100, 0x1234, false));
+    s.add(bisscFrame(200000, 11));
+    EXPECT_EQ(s.instances(), (std::vector<std::string>{"bissc", "ssi"}));
+    EXPECT_EQ(s.groupsOf("bissc")[0]->count, 2u);
+    EXPECT_EQ(s.groupsOf("ssi")[0]->errors.at("repeat_mismatch"), 1u);
+}
+
+}  // namespace
+}  // namespace busdecode

@@ -1,0 +1,24 @@
+#pragma once
+// Captures with known faults, made by the BiSS-C and SSI generators and written as VCD
+// files: one clean capture and one per kind of fault the rules catch, each with the
+// time of its first faulty frame (the truth a rule's "first at" must match).
+#include <string>
+#include <vector>
+
+namespace busdecode::test {
+
+struct FaultCapture {
+    std::string path;
+    std::string proto;         // "bissc" / "ssi"
+    std::string failing_rule;  // "" for a clean capture, else "bissc.max_crc_errors"...
+    double first_ns = 0;       // start of the first offending frame
+};
+
+// Writes the captures into `dir` (once per process) and returns them, BiSS-C first.
+const std::vector<FaultCapture>& faultCaptures(const std::string& dir);
+
+// Rules under which the clean captures pass and each faulty one fails its rule only.
+extern const char* const kBisscRules;
+extern const char* const kSsiRules;
+
+}  // namespace busdecode::test

@@ -1,0 +1,123 @@
+// JUnit XML parsed back with QXmlStreamReader: well-formed, one testsuite, one testcase
+// per capture and rule, failures and errors counted right; and the verdict lines.
+#include <gtest/gtest.h>
+
+#include <QString>
+#include <QXmlStreamReader>
+
+#include "verify/verdict.h"
+
+namespace busdecode {
+namespace {
+
+RuleOutcome outcome(const std::string& proto, const std::string& rule, bool passed,
+                    std::string msg) {
+    RuleOutcome o;
+    o.proto = proto;
+    o.rule = rule;
+    o.passed = passed;
+    o.message = std::move(msg);
+    return o;
+}
+
+std::vector<CaptureVerdict> sampleVerdicts() {
+    CaptureVerdict clean;
+    clean.capture = "caps/clean.vcd";
+    clean.outcomes = {
+        outcome("bissc", "max_crc_errors", true, "0 events with CRC errors (limit 0)"),
+        outcome("bissc", "min_frames", true, "100 frames (minimum 10)")};
+    clean.events = "bissc 100 frames";
+    CaptureVerdict bad;
+    bad.capture = "caps/crc & <odd> \"name\".vcd";
+    bad.outcomes = {
+        outcome("bissc", "max_crc_errors", false,
+                "2 events with CRC errors (limit 0), first at 1.000 ms"),
+        outcome("bissc", "min_frames", true, "100 frames (minimum 10)"),
+        outcome("bissc", "clock_hz", false, "1 of 100 values outside [1 MHz, 2 MHz]\x01")};
+    CaptureVerdict broken;
+    broken.capture = "caps/missing.vcd";
+    broken.input_error = true;
+    broken.error = "caps/missing.vcd: cannot open";
+    return {clean, bad, broken};
+}
+
+struct Parsed {
+    int suites = 0, cases = 0, failures = 0, errors = 0;
+    int attr_tests = -1, attr_failures = -1, attr_errors = -1;
+    std::vector<std::string> names;
+    std::vector<std::string> failure_messages;
+    std::string error;
+};
+
+Parsed parse(const std::string& xml) {
+    Parsed p;
+    QXmlStreamReader r(QString::fromStdString(xml));
+    while (!r.atEnd()) {
+        r.readNext();
+        if (!r.isStartElement()) continue;
+        const auto name = r.name().toString();
+        const auto attr = [&](const char* a) {
+            return r.attributes().value(QString(a)).toString();
+        };
+        if (name == "testsuite") {
+            ++p.suites;
+            p.attr_tests = attr("tests").toInt();
+            p.attr_failures = attr("failures").toInt();
+            p.attr_errors = attr("errors").toInt();
+        } else if (name == "testcase") {
+            ++p.cases;
+            p.names.push_back((attr("classname") + " " + attr("name")).toStdString());
+        } else if (name == "failure") {
+            ++p.failures;
+            p.failure_messages.push_back(attr("message").toStdString());
+        } else if (name == "error") {
+            ++p.errors;
+        }
+    }
+    if (r.hasError()) p.error = r.errorString().toStdString();
+    return p;
+}
+
+TEST(Junit, WellFormedWithTheRightCounts) {
+    const std::string xml = junitXml(sampleVerdicts(), "rules.toml");
+    const Parsed p = parse(xml);
+    ASSERT_EQ(p.error, "") << xml;
+    EXPECT_EQ(p.suites, 1);
+    EXPECT_EQ(p.cases, 6);  // 2 + 3 rules, 1 unreadable capture
+    EXPECT_EQ(p.failures, 2);
+    EXPECT_EQ(p.errors, 1);
+    EXPECT_EQ(p.attr_tests, 6);
+    EXPECT_EQ(p.attr_failures, 2);
+    EXPECT_EQ(p.attr_errors, 1);
+    EXPECT_EQ(p.names[0], "caps/clean.vcd bissc.max_crc_errors");
+    EXPECT_EQ(p.names[2], "caps/crc & <odd> \"name\".vcd bissc.max_crc_errors");
+    EXPECT_EQ(p.names[5], "caps/missing.vcd decode");
+    EXPECT_EQ(p.failure_messages[0], "2 events with CRC errors (limit 0), first at 1.000 ms");
+    EXPECT_EQ(p.failure_messages[1],
+              "1 of 100 values outside [1 MHz, 2 MHz]");  // control char dropped
+}
+
+TEST(Junit, EmptyBatchIsStillWellFormed) {
+    const Parsed p = parse(junitXml({}, "r.toml"));
+    EXPECT_EQ(p.error, "");
+    EXPECT_EQ(p.suites, 1);
+    EXPECT_EQ(p.cases, 0);
+}
+
+TEST(VerdictLines, PassFailErrorAndSummary) {
+    const auto v = sampleVerdicts();
+    EXPECT_EQ(verdictLine(v[0]), "PASS  caps/clean.vcd  (bissc 100 frames; 2 rules)");
+    const std::string fail = verdictLine(v[1]);
+    EXPECT_EQ(fail.rfind("FAIL  caps/crc", 0), 0u);
+    EXPECT_NE(fail.find("bissc.max_crc_errors: 2 events with CRC errors (limit 0), first at 1.000 "
+                        "ms; bissc.clock_hz:"),
+              std::string::npos)
+        << fail;
+    EXPECT_EQ(fail.find("min_frames"), std::string::npos);
+    EXPECT_EQ(verdictLine(v[2]), "ERROR caps/missing.vcd  caps/missing.vcd: cannot open");
+    EXPECT_EQ(summaryLine(v),
+              "3 captures: 1 passed, 1 failed, 1 unreadable; 5 rule checks, 2 failed");
+}
+
+}  // namespace
+}  // namespace busdecode

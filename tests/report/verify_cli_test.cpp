@@ -1,0 +1,226 @@
+// `decode verify` end to end on generated captures: a clean capture passes, each kind of
+// fault fails the right rule at the time of its first faulty frame, JUnit is well-formed
+// with the right counts, --jobs 2 prints exactly what --jobs 1 prints, bad input exits 2.
+#include <gtest/gtest.h>
+
+#include <QString>
+#include <QXmlStreamReader>
+#include <cmath>
+#include <regex>
+#include <sstream>
+
+#include "fault_captures.h"
+#include "support/paths.h"
+
+namespace busdecode {
+namespace {
+
+using test::FaultCapture;
+
+std::string dir() {
+    return test::tempDir() + "/verify";
+}
+
+std::vector<FaultCapture> capturesOf(const std::string& proto) {
+    std::vector<FaultCapture> out;
+    for (const auto& c : test::faultCaptures(dir()))
+        if (c.proto == proto) out.push_back(c);
+    return out;
+}
+
+std::string rulesFile(const std::string& name, const char* text) {
+    const std::string path = dir() + "/" + name;
+    test::writeFile(path, text);
+    return path;
+}
+
+std::vector<std::string> lines(const std::string& s) {
+    std::vector<std::string> out;
+    std::istringstream in(s);
+    for (std::string l; std::getline(in, l);)
+        out.push_back(l);
+    return out;
+}
+
+double toNs(double v, const std::string& unit) {
+    if (unit == "s") return v * 1e9;
+    if (unit == "ms") return v * 1e6;
+    if (unit == "us") return v * 1e3;
+    return v;
+}
+
+// The time a failed rule names: "first at X" (limit 0) or "limit passed at X".
+double failTime(const std::string& line, const std::string& rule) {
+    auto p = line.find(rule + ":");
+    if (p == std::string::npos) return NAN;
+    std::string rest = line.substr(p);
+    rest = rest.substr(0, rest.find("; "));
+    std::smatch m;
+    const std::regex passed("limit passed at ([0-9.]+) (s|ms|us|ns)");
+    const std::regex first("first at ([0-9.]+) (s|ms|us|ns)");
+    if (std::regex_search(rest, m, passed) || std::regex_search(rest, m, first))
+        return toNs(std::stod(m[1]), m[2]);
+    return NAN;
+}
+
+std::vector<std::string> verifyArgs(const std::vector<FaultCapture>& caps,
+                                    const std::string& rules) {
+    std::vector<std::string> a{"verify"};
+    for (const auto& c : caps)
+        a.push_back(c.path);
+    a.push_back("--rules");
+    a.push_back(rules);
+    return a;
+}
+
+void expectRightRulesFail(const std::vector<FaultCapture>& caps, const std::string& rules) {
+    const auto r = test::runDecode(verifyArgs(caps, rules));
+    EXPECT_EQ(r.status, 1) << r.out << r.err;
+    const auto out = lines(r.out);
+    ASSERT_EQ(out.size(), caps.size() + 1) << r.out << r.err;
+    for (std::size_t i = 0; i < caps.size(); ++i) {
+        const auto& c = caps[i];
+        const std::string& l = out[i];
+        SCOPED_TRACE(l);
+        EXPECT_NE(l.find(c.path), std::string::npos);
+        if (c.failing_rule.empty()) {
+            EXPECT_EQ(l.rfind("PASS", 0), 0u);
+            continue;
+        }
+        EXPECT_EQ(l.rfind("FAIL", 0), 0u);
+        // The right rule, and no other (except max_faults, which any error trips).
+        std::smatch m;
+        std::string rest = l;
+        const std::regex failed("(" + c.proto + "\\.[a-z_]+): ");
+        while (std::regex_search(rest, m, failed)) {
+            const std::string rule = m[1];
+            EXPECT_TRUE(rule == c.failing_rule || rule == c.proto + ".max_faults") << rule;
+            rest = m.suffix();
+        }
+        const double t = failTime(l, c.failing_rule);
+        ASSERT_FALSE(std::isnan(t)) << "no time for " << c.failing_rule;
+        // Within a few bit times of the faulty frame's first edge (frames are > 40 us apart).
+        EXPECT_NEAR(t, c.first_ns, 5000) << c.failing_rule;
+    }
+}
+
+TEST(VerifyCli, BisscCleanPassesAndEachFaultFailsItsRuleAtItsTime) {
+    expectRightRulesFail(capturesOf("bissc"), rulesFile("bissc.toml", test::kBisscRules));
+}
+
+TEST(VerifyCli, SsiCleanPassesAndEachFaultFailsItsRuleAtItsTime) {
+    expectRightRulesFail(capturesOf("ssi"), rulesFile("ssi.toml", test::kSsiRules));
+}
+
+TEST(VerifyCli, AllCleanExitsZero) {
+    const auto caps = capturesOf("bissc");
+    const auto r = test::runDecode(
+        {"verify", caps[0].path, "--rules", rulesFile("bissc.toml", test::kBisscRules)});
+    EXPECT_EQ(r.status, 0) << r.out << r.err;
+    EXPECT_NE(r.out.find("1 capture: 1 passed, 0 failed, 0 unreadable; 10 rule checks, 0 failed"),
+              std::string::npos)
+        << r.out;
+}
+
+struct JunitCounts {
+    int suites = 0, cases = 0, failures = 0, errors = 0;
+    int tests_attr = -1, failures_attr = -1, errors_attr = -1;
+    std::string error;
+    std::string stripped;  // the XML without times, timestamp and host
+};
+
+JunitCounts readJunit(const std::string& xml) {
+    JunitCounts c;
+    QXmlStreamReader r(QString::fromStdString(xml));
+    while (!r.atEnd()) {
+        r.readNext();
+        if (!r.isStartElement()) continue;
+        const QString n = r.name().toString();
+        if (n == "testsuite") {
+            ++c.suites;
+            c.tests_attr = r.attributes().value(QString("tests")).toInt();
+            c.failures_attr = r.attributes().value(QString("failures")).toInt();
+            c.errors_attr = r.attributes().value(QString("errors")).toInt();
+        }
+        if (n == "testcase") ++c.cases;
+        if (n == "failure") ++c.failures;
+        if (n == "error") ++c.errors;
+    }
+    if (r.hasError()) c.error = r.errorString().toStdString();
+    c.stripped = std::regex_replace(xml, std::regex(" (time|timestamp|hostname)=\"[^\"]*\""), "");
+    return c;
+}
+
+TEST(VerifyCli, JunitIsWellFormedWithTheRightCountsAndJobsDoNotChangeResults) {
+    auto caps = capturesOf("bissc");
+    const std::string rules = rulesFile("bissc.toml", test::kBisscRules);
+    auto args = verifyArgs(caps, rules);
+    args.push_back("--junit");
+    auto one = args, two = args;
+    one.insert(one.end(), {dir() + "/j1.xml", "--jobs", "1"});
+    two.insert(two.end(), {dir() + "/j2.xml", "--jobs", "2"});
+    const auto r1 = test::runDecode(one);
+    const auto r2 = test::runDecode(two);
+    EXPECT_EQ(r1.status, 1) << r1.err;
+    EXPECT_EQ(r2.status, 1) << r2.err;
+    EXPECT_EQ(r1.out, r2.out);
+    const auto j1 = readJunit(test::readFile(dir() + "/j1.xml"));
+    const auto j2 = readJunit(test::readFile(dir() + "/j2.xml"));
+    ASSERT_EQ(j1.error, "");
+    EXPECT_EQ(j1.suites, 1);
+    EXPECT_EQ(j1.cases, int(caps.size()) * 10);  // 10 rules per capture
+    EXPECT_EQ(j1.tests_attr, j1.cases);
+    // Every faulty capture fails its rule; those with error strings also max_faults.
+    int expected_failures = 0;
+    for (const auto& c : caps) {
+        if (c.failing_rule.empty()) continue;
+        const bool has_error_string = c.failing_rule == "bissc.max_crc_errors";
+        expected_failures += has_error_string ? 2 : 1;
+    }
+    EXPECT_EQ(j1.failures, expected_failures) << r1.out;
+    EXPECT_EQ(j1.failures_attr, j1.failures);
+    EXPECT_EQ(j1.errors, 0);
+    EXPECT_EQ(j1.stripped, j2.stripped);
+}
+
+TEST(VerifyCli, UnreadableCaptureIsAnErrorExitTwo) {
+    const auto caps = capturesOf("bissc");
+    const std::string rules = rulesFile("bissc.toml", test::kBisscRules);
+    const auto r = test::runDecode({"verify", caps[0].path, dir() + "/missing.vcd", "--rules",
+                                    rules, "--junit", dir() + "/err.xml"});
+    EXPECT_EQ(r.status, 2) << r.out << r.err;
+    EXPECT_NE(r.out.find("ERROR " + dir() + "/missing.vcd"), std::string::npos) << r.out;
+    const auto j = readJunit(test::readFile(dir() + "/err.xml"));
+    EXPECT_EQ(j.error, "");
+    EXPECT_EQ(j.errors, 1);
+    EXPECT_EQ(j.errors_attr, 1);
+}
+
+TEST(VerifyCli, BadRulesExitTwoWithFileLineAndKey) {
+    const auto caps = capturesOf("bissc");
+    const std::string rules =
+        rulesFile("bad.toml", "[bissc]\nmin_frames = 1\nmax_line_delay = 5\n");
+    const auto r = test::runDecode({"verify", caps[0].path, "--rules", rules});
+    EXPECT_EQ(r.status, 2);
+    EXPECT_NE(r.err.find(rules + ":3: [bissc] max_line_delay: unknown key"), std::string::npos)
+        << r.err;
+    EXPECT_EQ(r.out, "");
+}
+
+TEST(VerifyCli, DecodeTableInTheRulesPicksTheDecoderAndOptions) {
+    const auto caps = capturesOf("ssi");
+    // Without --proto, [decode] (or else the rule tables) picks the decoder; its options
+    // are checked like --opt.
+    const std::string good =
+        rulesFile("ssi_decode.toml",
+                  "[ssi]\nmin_frames = 30\n[decode]\nproto = \"ssi\"\nopt = { bits = 25 }\n");
+    EXPECT_EQ(test::runDecode({"verify", caps[0].path, "--rules", good}).status, 0);
+    const std::string bad =
+        rulesFile("ssi_bad_opt.toml", "[ssi]\nmin_frames = 30\n[decode]\nopt = { bitz = 25 }\n");
+    const auto r = test::runDecode({"verify", caps[0].path, "--rules", bad});
+    EXPECT_EQ(r.status, 2);
+    EXPECT_NE(r.err.find("bitz"), std::string::npos) << r.err;
+}
+
+}  // namespace
+}  // namespace busdecode
