@@ -44,7 +44,10 @@ void TmclDecoder::start(const DecoderContext& ctx) {
     auto bound = [&](int role) {
         return role < int(ctx.initial_levels.size()) && ctx.initial_levels[role] >= 0;
     };
-    if (bound(kHost) || bound(kModule)) {
+    // A bus line carries both directions. Automatic binding may also find lines named
+    // tx/rx beside it; decoding them too would report every datagram twice, so the bus
+    // wins and host/module are ignored when it is bound.
+    if (!bound(kBus) && (bound(kHost) || bound(kModule))) {
         lines_ = std::make_unique<LowerStack>(
             "uart", options_, std::vector<int>{kUartTx, kUartRx, -1}, [this](Event&& e) {
                 const auto* line = e.get("line");

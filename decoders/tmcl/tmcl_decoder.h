@@ -3,6 +3,7 @@
 // to module) and `module` (module to host), or `bus`, one half-duplex RS-485 line that
 // carries both directions: there a datagram is a reply when it follows a command and
 // answers it (same command number) or has a reply's shape (status code + command).
+// When `bus` is bound, `host` and `module` are ignored.
 // Bytes are grouped by 9; a pause longer than `gap_bytes` character times inside a
 // datagram resynchronises and reports the cut datagram (`short_frame`). Each reply is
 // paired with the command before it: `rtt_ns` (command start to reply end) and

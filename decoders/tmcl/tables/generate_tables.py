@@ -3,7 +3,7 @@
 TMCL firmware manual (V1.03, Rev 1 04/25), so the tables are data taken from the manual
 rather than code branches.
 
-    generate_tables.py MANUAL.txt OUT_DIR
+    generate_tables.py MANUAL.txt OUT_DIR && clang-format -i OUT_DIR/tmcl_*_table.cpp
 
 Taken from the manual: the command overview (Table 5), CALL and UF0..UF7 (3.5.7, 3.6.50),
 the control commands (Table 14), the status codes (Table 4), the axis parameters
