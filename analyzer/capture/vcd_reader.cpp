@@ -272,7 +272,7 @@ private:
         signals_.push_back({ref, full, width});
     }
 
-    int lookup(const char* s, std::size_t n) const {
+    [[gnu::always_inline]] int lookup(const char* s, std::size_t n) const {
         const auto* u = reinterpret_cast<const unsigned char*>(s);
         if (n == 1) {
             unsigned i = unsigned(u[0]) - 33;
@@ -310,7 +310,7 @@ private:
         initial_ = false;
     }
 
-    void set(std::uint32_t line, std::uint8_t level, EdgeBlock* block) {
+    [[gnu::always_inline]] void set(std::uint32_t line, std::uint8_t level, EdgeBlock* block) {
         if (level_[line] == level) return;
         level_[line] = level;
         if (block) block->edges.push_back({cur_, line, level});
@@ -455,12 +455,16 @@ private:
         }
     }
 
-    const Code& codeFor(const char* id, const char* q) const {
+    // Hot path: a lookup; the message is built out of line.
+    [[gnu::always_inline]] const Code& codeFor(const char* id, const char* q) const {
         int code = lookup(id, std::size_t(q - id));
-        if (code < 0)
-            fail(fmt::format("value change for undeclared identifier '{}'",
-                             printable(std::string_view(id, std::size_t(q - id)))));
+        if (code < 0) [[unlikely]]
+            undeclared(id, q);
         return codes_[std::size_t(code)];
+    }
+    [[noreturn, gnu::noinline, gnu::cold]] void undeclared(const char* id, const char* q) const {
+        fail(fmt::format("value change for undeclared identifier '{}'",
+                         printable(std::string_view(id, std::size_t(q - id)))));
     }
 
     std::unique_ptr<TextSource> src_;
