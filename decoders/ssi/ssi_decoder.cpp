@@ -124,7 +124,6 @@ void SsiDecoder::glitch(Tick, int) {
 void SsiDecoder::close(bool capture_end) {
     const bool rising = cfg_.sample_rising;
     const std::vector<Tick>& S = rising ? b_.rises : b_.falls;  // sampling edges
-    const std::vector<Tick>& L = rising ? b_.falls : b_.rises;  // edges that launch bits
     const double T = periodTicks();
     const Tick last = lastClock();
 
@@ -155,7 +154,10 @@ void SsiDecoder::close(bool capture_end) {
         }
     }
 
-    // Data delay: each data edge measured from the latest edge that launched a bit.
+    // Data delay: each data edge measured from the latest rising edge (the encoder shifts
+    // on rising edges; a bit launched by rising edge k is sampled by sampling edge k+1, the
+    // first one after it, in both sampling modes).
+    const std::vector<Tick>& L = b_.rises;
     std::vector<std::int64_t> offsets;
     std::vector<std::int64_t> launch_of(b_.data.size(), -1);
     for (std::size_t i = 0; i < b_.data.size(); ++i) {
@@ -170,14 +172,28 @@ void SsiDecoder::close(bool capture_end) {
         launch_of[i] = k;
     }
     const std::int64_t measured = offsets.empty() ? 0 : median(offsets);
-    const double delay = cfg_.delay_auto ? double(measured) : tb().fromNs(cfg_.delay_ns);
+    double delay = tb().fromNs(cfg_.delay_ns);
+    if (cfg_.delay_auto) {
+        // Sample in the middle of each bit's window [launch + delay, next launch + delay).
+        double to_sample = 0;
+        int n = 0;
+        for (std::size_t k = 0; k + 1 < S.size() && k < L.size(); ++k, ++n)
+            to_sample += double(S[k + 1] - L[k]);
+        to_sample = n > 0 ? to_sample / n : (rising ? T : T / 2);
+        delay = double(measured) + T / 2 - to_sample;
+    }
 
-    // A data edge at or after the sample that should have seen it: that bit was misread.
-    bool late = false;
+    // Each bit must be sampled inside its window. A data edge at or after the sample
+    // that should have seen it: the data came too late (`late_data`). A data edge at or
+    // before the sample of the bit it ends: the sampling offset is too late
+    // (`sample_late`). Either way a bit was misread.
+    bool late = false, sample_late = false;
     for (std::size_t i = 0; i < b_.data.size(); ++i) {
         if (launch_of[i] < 0) continue;
-        const std::size_t s = std::size_t(launch_of[i]) + (rising ? 0 : 1);
-        if (s < S.size() && double(b_.data[i].t) >= double(S[s]) + delay) late = true;
+        const auto k = std::size_t(launch_of[i]);
+        const double e = double(b_.data[i].t);
+        if (k + 1 < S.size() && e >= double(S[k + 1]) + delay) late = true;
+        if (k < S.size() && e <= double(S[k]) + delay) sample_late = true;
     }
 
     LineSampler sampler;
@@ -259,6 +275,7 @@ void SsiDecoder::close(bool capture_end) {
     if (!w.separator_ok) e.error("ring_separator");
     if (glitches > 0) e.error("glitch");
     if (late) e.error("late_data");
+    if (sample_late) e.error("sample_late");
     if (T > 0 && (clock_hz < cfg_.clock_min_hz || clock_hz > cfg_.clock_max_hz))
         e.error("clock_range");
     if (b_.not_ready) e.error("not_ready");

@@ -128,6 +128,7 @@ TEST(SsiCaliper, FramesWhereSigrokFindsMeasurements) {
             EXPECT_FALSE(e.hasError("short_frame"));
             EXPECT_FALSE(e.hasError("glitch"));
             EXPECT_FALSE(e.hasError("late_data"));
+            EXPECT_FALSE(e.hasError("sample_late"));
             EXPECT_FALSE(e.hasError("clock_range"));
         }
     }

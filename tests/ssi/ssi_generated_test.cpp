@@ -394,3 +394,57 @@ TEST(SsiGenerated, SummaryEventHasTmStatistics) {
     for (std::size_t i = 1; i < all.size(); ++i)
         EXPECT_LE(all[i - 1].start, all[i].start);
 }
+
+TEST(SsiGenerated, RisingEdgeSamplerRejectsThePauseBit) {
+    // TR's rising-edge master: the first rising-edge sample is the pause 1 (dropped with
+    // lead=0), then MSB..LSB; the data must lag the clock for this to work at all.
+    SsiGenConfig cfg;
+    cfg.delay_ns = 150;
+    cfg.jitter_ns = 30;
+    auto frames = randomFrames(8, 25, 61);
+    frames[3].repeats = 3;
+    const auto g = generateSsi(cfg, frames);
+    auto o = opts(25, 16, 9, false);
+    o["sample_edge"] = "rising";
+    expectTruth(decodeFrames(g.wave, o), g);
+    o["delay_ns"] = "auto";
+    const auto ev = decodeFrames(g.wave, o);
+    expectTruth(ev, g);
+    for (const auto& e : ev)
+        EXPECT_EQ(i64(e, "delay_ns"), 150);
+    // A fixed offset beyond the data change reads the next bit and says so.
+    o["delay_ns"] = "200";
+    const auto wrong = decodeFrames(g.wave, o);
+    ASSERT_EQ(wrong.size(), g.frames.size());
+    for (const auto& e : wrong)
+        EXPECT_TRUE(e.hasError("sample_late")) << describe(e);
+}
+
+TEST(SsiGenerated, RandomEdgesNeverBreakTheDecoder) {
+    // Noise on both lines: frames of any shape, but every one well-formed and in order.
+    std::mt19937_64 rng(77);
+    for (int round = 0; round < 20; ++round) {
+        WaveBuilder wb(Timebase{1, 1'000'000'000}, {"clk", "data"}, {1, 1});
+        Tick t = 0;
+        bool lv[2] = {true, true};
+        for (int i = 0; i < 3000; ++i) {
+            t += Tick(1 + rng() % (round % 2 ? 3000 : 400));
+            const int line = int(rng() % 3 == 0);
+            lv[line] = !lv[line];
+            wb.set(line, t, lv[line]);
+        }
+        std::map<std::string, std::string> o = opts(25, 16, 9, round % 3 == 0);
+        if (round % 4 == 1) o["delay_ns"] = "auto";
+        if (round % 4 == 2) o["sample_edge"] = "rising";
+        if (round % 5 == 3) o["glitch_ns"] = "30";
+        const auto ev = decodeFrames(wb.build(t + 100000), o);
+        EXPECT_FALSE(ev.empty());
+        for (std::size_t i = 0; i < ev.size(); ++i) {
+            EXPECT_LE(ev[i].start, ev[i].end);
+            if (i) EXPECT_LT(ev[i - 1].end, ev[i].start);
+            for (const char* key : {"raw", "bits", "position", "st", "mt", "angle", "repeats",
+                                    "repeat_match", "clock_hz", "tm_ns"})
+                EXPECT_TRUE(ev[i].has(key)) << key;
+        }
+    }
+}
