@@ -220,5 +220,40 @@ TEST_F(TmclTraffic, RepliesWithoutCommandsOnTheModuleLine) {
     EXPECT_EQ(std::get<std::string>(*events[1].get("status_text")), "Invalid value");
 }
 
+TEST_F(TmclTraffic, AddressesSettleAmbiguousDatagramsOnABus) {
+    // "SAP 100, 1, 7" has a reply's shape (100 = OK, 1 = ROR). At the start of a capture
+    // nothing tells it apart; with the addresses given it is a command.
+    WaveBuilder wb(Timebase{1, 1'000'000'000}, {"rs485"}, {1});
+    TmclTrafficGenerator gen(wb, 0, 0, 115200);
+    gen.exchange(gen.charNs(), makeCommand(1, 5, 100, 1, 7), makeReply(2, 1, 100, 5, 7),
+                 gen.charNs());
+    const auto w = wb.build(wb.lastTick() + 100000);
+    const auto guessed = tmclEvents(w, {{"baud", "115200"}});
+    ASSERT_EQ(guessed.size(), 2u);
+    EXPECT_EQ(guessed[0].type, "reply");  // the documented limit of guessing
+    const auto told =
+        tmclEvents(w, {{"baud", "115200"}, {"host_address", "2"}, {"module_address", "1"}});
+    ASSERT_EQ(told.size(), 2u);
+    EXPECT_EQ(told[0].type, "command");
+    EXPECT_EQ(told[0].summary, "SAP 100, 1, 7  // Velocity I");
+    EXPECT_EQ(told[1].type, "reply");
+    EXPECT_TRUE(told[1].has("rtt_ns"));
+}
+
+TEST_F(TmclTraffic, InvertedLines) {
+    WaveBuilder wb(Timebase{1, 1'000'000'000}, {"host", "module"}, {0, 0});
+    UartFormat f;
+    f.baud = 9600;
+    f.invert = true;
+    UartGenerator host(wb, 0, f), module(wb, 1, f);
+    const Datagram cmd = makeCommand(1, 1, 0, 0, 500), reply = makeReply(2, 1, 100, 1, 500);
+    double t = host.sendChars(1e5, {cmd.begin(), cmd.end()});
+    module.sendChars(t + 1e6, {reply.begin(), reply.end()});
+    const auto events = tmclEvents(wb.build(wb.lastTick() + 1000000), {{"invert", "1"}});
+    ASSERT_EQ(events.size(), 2u);
+    EXPECT_EQ(events[0].summary, "ROR 0, 500");
+    EXPECT_EQ(asInt(*events[1].get("status")), 100);
+}
+
 }  // namespace
 }  // namespace busdecode

@@ -264,5 +264,27 @@ TEST_F(UartTest, BadOptionsAreRejectedWithTheValidChoices) {
     EXPECT_THROW(decodeWaveform(none.build(100), {{"uart", {}, {}}}), InputError);
 }
 
+TEST_F(UartTest, GlitchFilterRemovesASpikeAtTheSamplePoint) {
+    UartFormat f;
+    f.baud = 9600;
+    WaveBuilder wb(Timebase{1, 1'000'000'000}, {"tx"}, {1});
+    UartGenerator gen(wb, 0, f);
+    // 0x00: every data bit low; a 300 ns spike high right at the middle of bit 3.
+    gen.sendChar(1000, 0x00);
+    WaveBuilder spiked(Timebase{1, 1'000'000'000}, {"tx"}, {1});
+    const double bit = gen.bitNs();
+    spiked.setNs(0, 1000, false);
+    spiked.setNs(0, 1000 + 4.5 * bit - 150, true);
+    spiked.setNs(0, 1000 + 4.5 * bit + 150, false);
+    spiked.setNs(0, 1000 + 9 * bit, true);
+    const auto w = spiked.build(spiked.ticksFromNs(1e6));
+    auto raw = ofType(decodeWaveform(w, {{"uart", {}, {}}}), "byte");
+    ASSERT_EQ(raw.size(), 1u);
+    EXPECT_EQ(asInt(*raw[0].get("value")), 0x08);
+    auto filtered = ofType(decodeWaveform(w, {{"uart", {}, {{"glitch_ns", "500"}}}}), "byte");
+    ASSERT_EQ(filtered.size(), 1u);
+    EXPECT_EQ(asInt(*filtered[0].get("value")), 0x00);
+}
+
 }  // namespace
 }  // namespace busdecode
