@@ -376,7 +376,9 @@ void Tmc8100Decoder::correlate(Event& e, const EventWindow& window) {
         const bool match = wire_st == std::uint64_t(asInt(*gray));
         e.set("ssi_match", match);
         e.set("encoder_st", std::int64_t(wire_st));
-        if (!match) {
+        if (match) {
+            e.summary += fmt::format(" - the {} frame agrees", proto);
+        } else {
             e.error("ssi_mismatch");
             e.summary +=
                 fmt::format(" - {} frame on the encoder bus carried 0x{:04X}", proto, wire_st);
