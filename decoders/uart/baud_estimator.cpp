@@ -13,18 +13,40 @@ void BaudEstimator::addEdge(Tick t, int line) {
 
 std::optional<double> BaudEstimator::measuredBaud(const Timebase& tb) const {
     if (widths_.empty()) return std::nullopt;
-    const double shortest = double(*std::min_element(widths_.begin(), widths_.end()));
-    // Average over pulses of 1..12 bits: sampling quantises each edge by up to a tick,
-    // and long pulses measure the bit time far more precisely than the shortest one.
-    double sum_width = 0, sum_bits = 0;
-    for (Tick w : widths_) {
-        const double n = std::round(double(w) / shortest);
-        if (n < 1 || n > 12) continue;
-        if (std::fabs(double(w) / n - shortest) > 0.25 * shortest) continue;
-        sum_width += double(w);
-        sum_bits += n;
+    std::vector<Tick> sorted = widths_;
+    std::sort(sorted.begin(), sorted.end());
+    // The bit time is the shortest pulse that most pulses are whole multiples of; a
+    // glitch is shorter still but explains nothing else, so it is passed over.
+    auto fit = [&](double bit, double& sum_width, double& sum_bits) {
+        std::size_t consistent = 0;
+        sum_width = sum_bits = 0;
+        for (Tick w : widths_) {
+            const double n = std::round(double(w) / bit);
+            if (n < 1 || n > 12) continue;
+            // Within a quarter bit of a whole number of bits (not a quarter per bit: a
+            // candidate a fraction of the real bit would fit every long pulse).
+            if (std::fabs(double(w) - n * bit) > 0.25 * bit) continue;
+            sum_width += double(w);
+            sum_bits += n;
+            ++consistent;
+        }
+        return consistent;
+    };
+    double bit_ticks = double(sorted.front());
+    Tick tried = -1;
+    int candidates = 0;
+    for (Tick w : sorted) {
+        if (w == tried) continue;
+        tried = w;
+        if (++candidates > 32) break;
+        double sum_width, sum_bits;
+        if (2 * fit(double(w), sum_width, sum_bits) >= widths_.size()) {
+            // Averaged over every pulse of 1..12 bits: sampling quantises each edge by up
+            // to a tick, and long pulses measure the bit time more precisely.
+            bit_ticks = sum_width / sum_bits;
+            break;
+        }
     }
-    const double bit_ticks = sum_bits > 0 ? sum_width / sum_bits : shortest;
     return 1.0 / (bit_ticks * tb.secondsPerTick());
 }
 

@@ -286,5 +286,29 @@ TEST_F(UartTest, GlitchFilterRemovesASpikeAtTheSamplePoint) {
     EXPECT_EQ(asInt(*filtered[0].get("value")), 0x00);
 }
 
+TEST_F(UartTest, AutoBaudIsNotFooledByGlitches) {
+    std::mt19937 rng(11);
+    UartFormat f;
+    f.baud = 57600;
+    WaveBuilder wb(Timebase{1, 1'000'000'000}, {"rx"}, {1});
+    UartGenerator gen(wb, 0, f);
+    // Three 40 ns spikes on the idle line first, then traffic.
+    for (int i = 0; i < 3; ++i) {
+        wb.setNs(0, 1000 + i * 5000, false);
+        wb.setNs(0, 1040 + i * 5000, true);
+    }
+    const auto values = randomValues(rng, 100, 8);
+    const double end = gen.sendChars(50000, values, gen.bitNs());
+    auto events =
+        decodeWaveform(wb.build(wb.ticksFromNs(end + 1e5)), {{"uart", {}, {{"baud", "auto"}}}});
+    auto bauds = ofType(events, "baud");
+    ASSERT_EQ(bauds.size(), 1u);
+    EXPECT_DOUBLE_EQ(asDouble(*bauds[0].get("baud")), 57600);
+    std::vector<std::uint32_t> got;
+    for (const auto& e : ofType(events, "byte"))
+        if (e.errors.empty()) got.push_back(std::uint32_t(asInt(*e.get("value"))));
+    EXPECT_EQ(got, values);  // the spikes are too short to pass the start-bit check
+}
+
 }  // namespace
 }  // namespace busdecode
