@@ -79,7 +79,9 @@ bool TextSource::stopRequested() const {
 void TextSource::releaseMapped() {
     // Give back whole pages behind the cursor; they are re-read from the file if needed.
     const std::uintptr_t page = std::uintptr_t(sysconf(_SC_PAGESIZE));
-    auto upto = std::uintptr_t(pos_) & ~(page - 1);
+    constexpr std::uintptr_t kMargin = 4 << 20;  // beyond any fault-around or folio
+    if (std::uintptr_t(pos_) < std::uintptr_t(map_) + kMargin) return;
+    auto upto = (std::uintptr_t(pos_) - kMargin) & ~(page - 1);
     if (upto > std::uintptr_t(released_)) {
         madvise(const_cast<char*>(released_), upto - std::uintptr_t(released_), MADV_DONTNEED);
         released_ = reinterpret_cast<const char*>(upto);
@@ -153,10 +155,10 @@ TextSource::Status TextSource::slowNextLine(std::string_view& line) {
         if (len > kMaxLine)
             throw InputError(at(line_no_ + 1, "line longer than 1 MiB (not a text capture?)"));
         if (nl) {
+            if (mapped_ && std::size_t(pos_ - released_) > kReleaseStep) releaseMapped();
             line = trimCr(pos_, nl);
             pos_ = nl + 1;
             ++line_no_;
-            if (mapped_ && std::size_t(pos_ - released_) > kReleaseStep) releaseMapped();
             return Status::Line;
         }
         if (!mapped_ && !eof_ && !stopRequested()) {

@@ -36,10 +36,10 @@ public:
         const char* nl =
             static_cast<const char*>(std::memchr(pos_, '\n', std::size_t(end_ - pos_)));
         if (nl && std::size_t(nl - pos_) <= kMaxLine) {
+            if (mapped_ && std::size_t(pos_ - released_) > kReleaseStep) releaseMapped();
             line = trimCr(pos_, nl);
             pos_ = nl + 1;
             ++line_no_;
-            if (mapped_ && std::size_t(pos_ - released_) > kReleaseStep) releaseMapped();
             return Status::Line;
         }
         return slowNextLine(line);
@@ -73,6 +73,8 @@ private:
     // Reads more into the buffer; returns bytes added (0 = nothing now or at the end).
     std::size_t fill();
     bool stopRequested() const;
+    // Gives back mapped pages well behind the cursor (never one still in use: touching a
+    // released page again would map it back together with its neighbours).
     void releaseMapped();
 
     std::string name_;
