@@ -59,7 +59,8 @@ void BisscDecoder::advance(Tick now) {
 void BisscDecoder::glitch(Tick t, int role) {
     (void)t;
     (void)role;
-    if (state_ == State::WaitAck || state_ == State::Data || state_ == State::Timeout)
+    if (state_ == State::WaitAck || state_ == State::Data || state_ == State::Timeout ||
+        state_ == State::TimeoutEnded)
         addError("glitch");
     else
         glitch_pending_ = true;
@@ -80,6 +81,14 @@ double BisscDecoder::quietLimit() const {
 }
 
 void BisscDecoder::checkQuiet(Tick now) {
+    if (state_ == State::TimeoutEnded) {
+        // The clock did not go on within a clock phase of its last edge: frame over.
+        if (!isClockPhase(double(now - last_ma_edge_), !ma_) && now >= f_.timeout_end) {
+            closeFrame(f_.timeout_end, f_.timeout_end, nullptr, true);
+            state_ = sl_ ? State::Idle : State::WaitSlaveIdle;
+        }
+        return;
+    }
     if (state_ != State::WaitAck && state_ != State::Data) return;
     if (last_ma_edge_ == kNoTick || double(now - last_ma_edge_) <= quietLimit()) return;
     if (state_ == State::WaitAck && f_.from_hold && f_.rises.size() == 1) {
@@ -93,6 +102,14 @@ void BisscDecoder::checkQuiet(Tick now) {
                                                : "short_frame";
     closeFrame(last_ma_edge_, kNoTick, why, true);
     state_ = sl_ ? State::Idle : State::WaitSlaveIdle;
+}
+
+bool BisscDecoder::isClockPhase(double length, bool level) const {
+    // A rising edge ends a low phase. BiSS keeps clock phases well below the slave's
+    // timeout, so a phase much longer than any in the frame is not clocking.
+    constexpr double kPhaseTolerance = 1.25;
+    const double longest = level ? f_.max_low : f_.max_high;
+    return longest > 0 && length <= kPhaseTolerance * longest;
 }
 
 void BisscDecoder::resolveHoldStart(Tick ack) {
@@ -138,6 +155,11 @@ void BisscDecoder::onMa(Tick t, bool level) {
     sampler_.advanceTo(t);
     drainSamples();
     checkQuiet(t);
+    if ((state_ == State::WaitAck || state_ == State::Data) && !f_.rises.empty() &&
+        last_ma_edge_ != kNoTick) {
+        double& longest = level ? f_.max_low : f_.max_high;
+        longest = std::max(longest, double(t - last_ma_edge_));
+    }
     last_ma_edge_ = t;
     ma_ = level;
 
@@ -163,6 +185,14 @@ void BisscDecoder::onMa(Tick t, bool level) {
             break;
         case State::Timeout:
             if (level) f_.rises.push_back(t);  // clocks past the stop bit
+            break;
+        case State::TimeoutEnded:
+            // Still clocking (checkQuiet above closed the frame otherwise): the slave's
+            // timeout ended early; these clocks still belong to the master's frame.
+            f_.retriggered = true;
+            f_.timeout_end = kNoTick;
+            state_ = State::Timeout;
+            if (level) f_.rises.push_back(t);
             break;
     }
 }
@@ -215,8 +245,17 @@ void BisscDecoder::onSl(Tick t, bool level) {
         }
         case State::Timeout:
             if (level) {
-                closeFrame(t, t, nullptr, true);
-                state_ = State::Idle;
+                // Decided at the next MA edge or when the clock has been quiet a period.
+                f_.timeout_end = t;
+                f_.ma_at_timeout_end = ma_;
+                state_ = State::TimeoutEnded;
+                checkQuiet(t);
+            }
+            break;
+        case State::TimeoutEnded:
+            if (!level) {  // SL fell again with MA quiet: not ours
+                closeFrame(f_.timeout_end, f_.timeout_end, nullptr, true);
+                state_ = State::WaitSlaveIdle;
             }
             break;
     }
@@ -373,7 +412,7 @@ void BisscDecoder::closeFrame(Tick end, Tick timeout_end, const char* error, boo
     if (f_.cds >= 0) cds = std::int64_t(f_.cds);
     Value timeout_ns = Null{};
     if (timeout_end != kNoTick && complete) {
-        cdm = std::int64_t(ma_ ? 0 : 1);  // MA low in the timeout means CDM = 1
+        cdm = std::int64_t(f_.ma_at_timeout_end ? 0 : 1);  // MA low in the timeout: CDM = 1
         const std::int64_t to = tb().toNs(timeout_end - f_.rises.back());
         timeout_ns = to;
         if (s_.timeout_min_ns > 0 && double(to) < s_.timeout_min_ns) e.error("timeout_short");
@@ -408,6 +447,7 @@ void BisscDecoder::closeFrame(Tick end, Tick timeout_end, const char* error, boo
                               : Value(Null{}));
     e.set("clocks", std::int64_t(f_.rises.size()));
     e.set("hold_cdm", f_.from_hold);
+    e.set("retriggered", f_.retriggered);
 
     if (complete) {
         e.summary = fmt::format("pos={} (0x{:X}) nE={} nW={} crc=0x{:02X} {} cds={} cdm={}", pos,
@@ -447,6 +487,9 @@ void BisscDecoder::finish(Tick end) {
             break;
         case State::Timeout:
             closeFrame(end, kNoTick, nullptr, false);
+            break;
+        case State::TimeoutEnded:
+            closeFrame(f_.timeout_end, f_.timeout_end, nullptr, true);
             break;
         default:
             break;

@@ -41,6 +41,7 @@ private:
         WaitAck,        // clocking, waiting for SL to fall (ACK)
         Data,           // ACK seen: sampling the frame's slots
         Timeout,        // stop bit seen: waiting for SL to rise (end of the slave's timeout)
+        TimeoutEnded,   // SL rose: is the master's clock still running (clocks past the stop)?
     };
     // Where the slot parser is within the frame.
     enum class Slot { Ack, Busy, Cds, Data, NE, NW, Crc, Stop, Done };
@@ -67,6 +68,12 @@ private:
         int ne = -1, nw = -1;
         std::uint32_t crc_rx = 0;
         int crc_count = 0;
+        Tick timeout_end = kNoTick;  // SL rising edge ending the slave's timeout
+        bool ma_at_timeout_end = true;
+        // The slave timed out while the master was still clocking past the stop bit, and
+        // took the remaining clocks for a new request (the MB5U with a RESOLUTE does this).
+        bool retriggered = false;
+        double max_high = 0, max_low = 0;  // longest MA clock phases seen in the frame
         std::vector<std::string> errors;
     };
 
@@ -87,6 +94,8 @@ private:
     void addError(const std::string& e);
     void checkQuiet(Tick now);
     void resolveHoldStart(Tick ack);
+    // Could an MA phase of this length (ending with an edge to `level`) be a clock phase?
+    bool isClockPhase(double length, bool level) const;
 
     BisscSettings s_;
     BisscControlReassembler control_;

@@ -312,7 +312,8 @@ TEST_P(BisscControlCapture, AllFramesAndAccessesExact) {
     cfg.bits = c.bits;
     cfg.line_delay_ns = c.delay_ns;
     cfg.hold_cdm = c.hold;
-    cfg.timeout_ns = 13000;
+    // The slave's timeout must exceed the clock phases (12.5 us at 80 kHz: use 20 us).
+    cfg.timeout_ns = c.clock_hz < 100e3 ? 20000 : 13000;
     cfg.idle_ns = 2000;
     cfg.jitter_ns = 0.02e9 / c.clock_hz;
     BisscGenerator gen(cfg);

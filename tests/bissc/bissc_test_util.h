@@ -12,14 +12,18 @@
 
 namespace busdecode::test {
 
-inline std::vector<Event> decodeBissc(const Waveform& w,
-                                      const std::map<std::string, std::string>& options,
-                                      const std::string& ma = "MA", const std::string& sl = "SLO") {
+inline void registerBissc() {
     static const bool registered = [] {
         Registry::instance().add(makeBisscFactory());
         return true;
     }();
     (void)registered;
+}
+
+inline std::vector<Event> decodeBissc(const Waveform& w,
+                                      const std::map<std::string, std::string>& options,
+                                      const std::string& ma = "MA", const std::string& sl = "SLO") {
+    registerBissc();
     DecoderRequest r;
     r.proto = "bissc";
     r.map = {{"ma", ma}, {"sl", sl}};
