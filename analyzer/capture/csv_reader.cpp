@@ -268,16 +268,26 @@ private:
         ncols_ = f.size();
         const std::string first = lower(f[0]);
         std::vector<std::string> names;
-        bool all_logic =
-            std::all_of(f.begin(), f.end(), [](std::string_view s) { return lower(s) == "logic"; });
+        // sigrok's header form: a row of channel types, the names only in the comment
+        auto isType = [](std::string_view s) {
+            const std::string l = lower(s);
+            return l == "logic" || l == "analog";
+        };
+        const bool all_logic = std::all_of(f.begin(), f.end(), isType);
+        const bool typed_after_time = f.size() > 1 && std::all_of(f.begin() + 1, f.end(), isType);
         if (first.rfind("time", 0) == 0) {
             timed_ = true;
             first_col_ = 1;
             format_ = first == "times"                            ? "scanastudio-csv"
                       : first == "time [s]" || first == "time[s]" ? "saleae-csv"
                                                                   : "time-csv";
-            for (std::size_t i = 1; i < f.size(); ++i)
-                names.emplace_back(f[i]);
+            if (typed_after_time && channel_names.size() + 1 == f.size()) {
+                names = channel_names;
+                format_ = "sigrok-csv";
+            } else {
+                for (std::size_t i = 1; i < f.size(); ++i)
+                    names.emplace_back(f[i]);
+            }
         } else if (all_logic) {
             format_ = "sigrok-csv";
             if (channel_names.size() == f.size()) {

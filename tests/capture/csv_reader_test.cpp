@@ -32,6 +32,15 @@ TEST(CsvReader, SigrokDense) {
     EXPECT_EQ(c.edges, (Edges{{2, 0, 0}, {3, 1, 0}, {4, 0, 1}}));
 }
 
+TEST(CsvReader, SigrokWithTimeColumn) {
+    auto p = tempCapture("sigrok_time.csv",
+                         "; Channels (2/2): MA, SLO\n; Samplerate: 1 MHz\nTime,logic,logic\n"
+                         "0.000000,1,1\n0.000001,0,1\n0.000002,0,0\n");
+    auto c = collectFile(p, {"MA", "SLO"});
+    EXPECT_EQ(c.format, "sigrok-csv");
+    EXPECT_EQ(c.edges, (Edges{{1000, 0, 0}, {2000, 1, 0}}));
+}
+
 TEST(CsvReader, SaleaeLogic2NegativeTimesOneRowPerChange) {
     auto p = tempCapture("logic2.csv",
                          "Time [s],CLK,DATA\n-0.000001000,1,0\n0.000000000,0,0\n0.000000500,1,1\n"
