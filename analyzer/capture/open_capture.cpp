@@ -100,7 +100,6 @@ std::unique_ptr<CaptureReader> openCapture(const std::string& path, const OpenOp
         return openSr(path, -1, name, opts);
     }
     std::string_view text = head;
-    if (text.substr(0, 3) == "\xef\xbb\xbf") text.remove_prefix(3);  // UTF-8 byte order mark
     while (!text.empty() && (text.front() == ' ' || text.front() == '\t' || text.front() == '\r' ||
                              text.front() == '\n'))
         text.remove_prefix(1);

@@ -177,6 +177,14 @@ TextSource::Status TextSource::slowNextLine(std::string_view& line) {
     }
 }
 
+void TextSource::skipByteOrderMark() {
+    // Windows tools start UTF-8 text with EF BB BF; it is not part of the first line.
+    if (line_no_ != 0 || bytesRead() != 0) return;
+    while (!mapped_ && !eof_ && std::size_t(end_ - pos_) < 3 && fill() > 0) {
+    }
+    if (std::size_t(end_ - pos_) >= 3 && std::memcmp(pos_, "\xef\xbb\xbf", 3) == 0) pos_ += 3;
+}
+
 void TextSource::drainTo(int out_fd) {
     auto writeAll = [&](const char* p, std::size_t n) {
         while (n > 0) {
@@ -198,6 +206,7 @@ void TextSource::drainTo(int out_fd) {
 }
 
 std::string_view TextSource::peek(std::size_t n) {
+    skipByteOrderMark();
     if (mapped_) return std::string_view(pos_, std::min(n, std::size_t(end_ - pos_)));
     const std::size_t want = std::min<std::size_t>(n, 64);
     while (std::size_t(end_ - pos_) < n && !eof_ && !stopRequested()) {

@@ -73,6 +73,7 @@ private:
     // Reads more into the buffer; returns bytes added (0 = nothing now or at the end).
     std::size_t fill();
     bool stopRequested() const;
+    void skipByteOrderMark();
     // Gives back mapped pages well behind the cursor (never one still in use: touching a
     // released page again would map it back together with its neighbours).
     void releaseMapped();

@@ -104,6 +104,12 @@ TEST(CsvReader, UsbeeOneRowPerSampleWithTimeColumn) {
     EXPECT_EQ(c.edges, (Edges{{250, 0, 0}, {750, 0, 1}, {750, 1, 0}}));
 }
 
+TEST(CsvReader, ByteOrderMarkBeforeTheHeader) {
+    auto c = collectFile(tempCapture("bom.csv", "\xef\xbb\xbfTime [s],A\n0,0\n1e-9,1\n"));
+    EXPECT_EQ(c.format, "saleae-csv");
+    EXPECT_EQ(c.edges, (Edges{{1, 0, 1}}));
+}
+
 TEST(CsvReader, ScientificTimes) {
     auto p = tempCapture("sci.csv", "Time [s],A\n0,0\n1.5e-06,1\n2E-6,0\n");
     auto c = collectFile(p);
