@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <chrono>
 #include <condition_variable>
 #include <cstdlib>
 #include <deque>
@@ -64,6 +65,14 @@ LcmSinkOptions LcmSinkOptions::fromEnvironment() {
         o.queue_capacity = std::size_t(n);
     }
     if (const char* d = std::getenv("BUSDECODE_LCM_DROP")) o.drop_when_full = std::string(d) == "1";
+    if (const char* r = std::getenv("BUSDECODE_LCM_RATE")) {
+        char* end = nullptr;
+        double v = std::strtod(r, &end);
+        if (!end || *end || end == r || !(v >= 0))
+            throw InputError(fmt::format(
+                "BUSDECODE_LCM_RATE='{}': expected events per second (0 = no limit)", r));
+        o.max_events_per_s = v;
+    }
     return o;
 }
 
@@ -114,6 +123,7 @@ struct LcmSink::Impl {
             not_full.notify_one();
             if (auto* ev = std::get_if<EventItem>(&item)) {
                 if (opt.before_publish) opt.before_publish();
+                pace();
                 LcmPublishResult r = publishEventToLcm(*lc, ev->event, ev->tb, ev->seq);
                 std::lock_guard lock(mu);
                 (r.failures ? counts.failed : counts.published)++;
@@ -126,6 +136,20 @@ struct LcmSink::Impl {
             }
             drained.notify_all();
         }
+    }
+
+    // Waits for the next publishing slot when a rate is set. A publisher that fell behind
+    // (the decoder was slower) starts afresh instead of bursting to catch up.
+    std::chrono::steady_clock::time_point next_slot{};
+    void pace() {
+        if (opt.max_events_per_s <= 0) return;
+        using namespace std::chrono;
+        auto now = steady_clock::now();
+        auto period =
+            duration_cast<steady_clock::duration>(duration<double>(1.0 / opt.max_events_per_s));
+        if (next_slot < now - 10 * period) next_slot = now;
+        if (next_slot > now) std::this_thread::sleep_until(next_slot);
+        next_slot += period;
     }
 
     void push(Item item, bool may_drop) {

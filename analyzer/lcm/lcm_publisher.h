@@ -22,12 +22,16 @@ struct LcmSinkOptions {
     // When the queue is full: false = the decoder waits (nothing is lost), true = the
     // event is dropped and counted. BUSDECODE_LCM_DROP=1 sets it.
     bool drop_when_full = false;
+    // Events published per second at most (0 = as fast as they come). UDP subscribers
+    // (lcm-logger, lcm-spy) lose datagrams when a file is decoded far faster than they
+    // read; pacing the publisher thread keeps them whole. BUSDECODE_LCM_RATE sets it.
+    double max_events_per_s = 0;
     // Where the end-of-capture drop/failure counts go.
     std::FILE* report = stderr;
     // Test hook: called by the publisher thread before each event it publishes.
     std::function<void()> before_publish;
 
-    // Defaults with BUSDECODE_LCM_QUEUE / BUSDECODE_LCM_DROP applied.
+    // Defaults with BUSDECODE_LCM_QUEUE / BUSDECODE_LCM_DROP / BUSDECODE_LCM_RATE applied.
     static LcmSinkOptions fromEnvironment();
 };
 

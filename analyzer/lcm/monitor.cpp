@@ -203,9 +203,10 @@ int runMonitor(int argc, char** argv) {
     g_interrupted = false;
     auto old_int = std::signal(SIGINT, onMonitorSignal);
     auto old_term = std::signal(SIGTERM, onMonitorSignal);
+    Monitor monitor(*lc, opt);
     // Tell a script (or a test) that the subscription is in place.
     fmt::print(stderr, "decode monitor: listening on {}\n", url.empty() ? kDefaultUrl : url);
-    int rc = Monitor(*lc, opt).run(stdout);
+    int rc = monitor.run(stdout);
     std::signal(SIGINT, old_int);
     std::signal(SIGTERM, old_term);
     return rc;

@@ -1,0 +1,314 @@
+// The real round trip: the real `lcm-logger` records `decode --lcm` on LCM's default
+// multicast URL, and the log, read back with LCM's EventLog API (lcm::LogFile), holds
+// one typed message and one annotation per decoded event, on the contract's channels,
+// with fields equal to the `--format jsonl` output of the same run.
+//
+// Isolation: the logger and the decoder run in a child process that has its own network
+// namespace (unshare(CLONE_NEWNET), as root) with multicast enabled on its loopback, so
+// the test needs no network and cannot see or disturb other LCM traffic on the machine.
+// Without the privilege for that, the child uses the host's network if a multicast route
+// exists, and the test is skipped (saying why) if neither works.
+#include <gtest/gtest.h>
+#include <sched.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+#include <QJsonArray>
+#include <QJsonDocument>
+#include <QJsonObject>
+
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <iostream>
+#include <lcm/lcm-cpp.hpp>
+#include <set>
+#include <sstream>
+#include <thread>
+
+#include "busdecode_lcm/decode_status_t.hpp"
+#include "busdecode_lcm/event_annotation_t.hpp"
+#include "lcm/lcm_channels.h"
+#include "lcm_message_view.h"
+#include "support/paths.h"
+#include "value_compare.h"
+
+namespace busdecode {
+namespace {
+
+using namespace std::chrono_literals;
+
+constexpr const char* kUrl = "udpm://239.255.76.67:7667?ttl=0";
+// The decoder publishes as fast as it decodes: the logger gets a socket buffer that holds
+// a whole capture's messages (the kernel caps it at net.core.rmem_max).
+constexpr const char* kLoggerUrlOptions = "&recv_buf_size=4194304";
+constexpr const char* kRate = "1000";
+
+struct Case {
+    std::string name;
+    std::vector<std::string> args;    // capture and decoder arguments
+    std::vector<std::string> protos;  // protocols it must produce events of
+};
+
+// Real captures, so every protocol is decoded from traffic nobody here made up; nulls
+// (short frames), errors (checksum) and two decoders in one pass included.
+std::vector<Case> cases() {
+    const std::string s = test::sharedCaptures();
+    return {
+        {"bissc",
+         {s + "/biss-renishaw/sr/renishaw_biss_1MHz.sr", "--proto", "bissc", "--opt", "bits=32"},
+         {"bissc"}},
+        {"ssi",
+         {s + "/sigrok-dumps/caliper/caliper0.55mm.sr", "--proto", "ssi", "--opt", "bits=24"},
+         {"ssi"}},
+        {"spi",
+         {s + "/sigrok-dumps/spi/adf4351/set-4000mhz.sr", "--proto", "spi", "--opt", "cpol=0",
+          "--opt", "cpha=0"},
+         {"spi"}},
+        {"tmc8100",
+         {s + "/sigrok-dumps/spi/adf4351/set-4000mhz.sr", "--proto", "tmc8100"},
+         {"tmc8100"}},
+        {"uart+tmcl",
+         {s + "/sigrok-dumps/uart/modbus_rtu/wizmodbus/wizmodbus.sr", "--proto", "uart", "--proto",
+          "tmcl"},
+         {"uart", "tmcl"}},
+    };
+}
+
+bool fileContains(const std::string& path, const std::string& needle) {
+    std::ifstream f(path, std::ios::binary);
+    std::stringstream ss;
+    ss << f.rdbuf();
+    return ss.str().find(needle) != std::string::npos;
+}
+
+// Publishes `channel` until the logger has written it to `log` (the logger flushes every
+// 20 ms): proves the logger is subscribed, or that everything before it was logged.
+bool publishUntilLogged(lcm::LCM& lc, const std::string& channel, const std::string& log) {
+    for (int i = 0; i < 400; ++i) {
+        lc.publish(channel, "x", 1);
+        std::this_thread::sleep_for(50ms);
+        if (fileContains(log, channel)) return true;
+    }
+    return false;
+}
+
+void writeText(const std::string& path, const std::string& text) {
+    std::ofstream(path) << text;
+}
+
+// The child: network, logger, monitor, decodes, logger stopped. Communicates through
+// files in `dir` only. Exit codes: 0 ok, 20+ setup failures (see `dir`/setup.txt).
+int runChild(const std::string& dir) {
+    std::string network = "host";
+    if (::unshare(CLONE_NEWNET) == 0) {
+        network = "namespace";
+        if (std::system("ip link set lo up && ip link set lo multicast on && "
+                        "ip route add 224.0.0.0/4 dev lo") != 0) {
+            writeText(dir + "/setup.txt", "could not enable multicast on the namespace's loopback");
+            return 20;
+        }
+    }
+    writeText(dir + "/network.txt", network);
+    lcm::LCM probe(kUrl);
+    if (!probe.good()) {
+        writeText(dir + "/setup.txt", "no multicast route (and no network namespace: not root?)");
+        return 21;
+    }
+    const std::string log = dir + "/decode.lcmlog";
+    pid_t logger = ::fork();
+    if (logger == 0) {
+        std::string url_arg = std::string("--lcm-url=") + kUrl + kLoggerUrlOptions;
+        ::execlp("lcm-logger", "lcm-logger", "-f", "-q", "--flush-interval=20", url_arg.c_str(),
+                 log.c_str(), (char*)nullptr);
+        ::_exit(127);
+    }
+    if (!publishUntilLogged(probe, "BUSDECODE_PROBE", log)) {
+        ::kill(logger, SIGKILL);
+        writeText(dir + "/setup.txt", "lcm-logger did not start (is liblcm-bin installed?)");
+        return 22;
+    }
+    // The dashboard watches the first run and must exit by itself when it ends.
+    const std::string bin = test::binDir() + "/decode";
+    std::string monitor_cmd = test::shellQuote(bin) + " monitor --once --duration 60 --lcm " +
+                              test::shellQuote(kUrl) + " > " + dir + "/monitor.txt 2> " + dir +
+                              "/monitor_err.txt & echo $! > " + dir + "/monitor.pid";
+    std::system(monitor_cmd.c_str());
+    for (int i = 0; i < 400 && !fileContains(dir + "/monitor_err.txt", "listening"); ++i)
+        std::this_thread::sleep_for(25ms);
+
+    // Paced so that the logger (and the monitor) read every datagram: UDP has no flow
+    // control, and a file decodes much faster than they read.
+    ::setenv("BUSDECODE_LCM_RATE", kRate, 1);
+    auto all = cases();
+    for (std::size_t i = 0; i < all.size(); ++i) {
+        std::string cmd = test::shellQuote(bin);
+        for (const auto& a : all[i].args)
+            cmd += " " + test::shellQuote(a);
+        cmd += " --format jsonl --lcm " + test::shellQuote(kUrl);
+        std::string base = dir + "/case" + std::to_string(i);
+        int st = std::system((cmd + " > " + base + ".jsonl 2> " + base + ".err").c_str());
+        writeText(base + ".status", std::to_string(WIFEXITED(st) ? WEXITSTATUS(st) : -1));
+    }
+    std::system(("wait $(cat " + dir + "/monitor.pid) 2>/dev/null; sleep 0").c_str());
+    bool flushed = publishUntilLogged(probe, "BUSDECODE_PROBE_END", log);
+    ::kill(logger, SIGINT);
+    int st = 0;
+    ::waitpid(logger, &st, 0);
+    if (!flushed) {
+        writeText(dir + "/setup.txt", "lcm-logger stopped logging");
+        return 23;
+    }
+    return 0;
+}
+
+Value fromJson(const QJsonValue& v) {
+    if (v.isNull() || v.isUndefined()) return Null{};
+    if (v.isBool()) return v.toBool();
+    if (v.isString()) return v.toString().toStdString();
+    if (v.isArray()) {
+        std::vector<std::int64_t> out;
+        for (const auto& x : v.toArray())
+            out.push_back(x.toInteger());
+        return out;
+    }
+    double d = v.toDouble();
+    if (d == std::floor(d) && std::fabs(d) < 9e15) return std::int64_t(v.toInteger());
+    return d;
+}
+
+std::vector<QJsonObject> readJsonl(const std::string& path) {
+    std::vector<QJsonObject> out;
+    std::ifstream f(path);
+    std::string line;
+    while (std::getline(f, line)) {
+        QJsonParseError err;
+        auto doc = QJsonDocument::fromJson(QByteArray::fromStdString(line), &err);
+        EXPECT_TRUE(doc.isObject()) << path << ": " << line;
+        out.push_back(doc.object());
+    }
+    return out;
+}
+
+struct LoggedRun {
+    std::vector<std::string> lines_json;  // annotations' json, in log order
+    std::vector<busdecode_lcm::event_annotation_t> notes;
+    std::vector<std::pair<std::string, std::vector<std::uint8_t>>> typed;
+    std::vector<busdecode_lcm::decode_status_t> status;
+};
+
+std::vector<LoggedRun> readLog(const std::string& path) {
+    std::vector<LoggedRun> runs;
+    lcm::LogFile log(path, "r");
+    EXPECT_TRUE(log.good()) << path;
+    while (const lcm::LogEvent* ev = log.readNextEvent()) {
+        if (ev->channel.rfind("BUSDECODE_PROBE", 0) == 0 || ev->channel == "LCM_SELF_TEST")
+            continue;
+        if (ev->channel == kLcmStatusChannel) {
+            busdecode_lcm::decode_status_t s;
+            EXPECT_GE(s.decode(ev->data, 0, ev->datalen), 0);
+            if (s.state == "start") runs.emplace_back();
+            if (!runs.empty()) runs.back().status.push_back(s);
+            continue;
+        }
+        EXPECT_FALSE(runs.empty()) << "message before any run: " << ev->channel;
+        if (runs.empty()) continue;
+        if (ev->channel == kLcmEventsChannel) {
+            busdecode_lcm::event_annotation_t a;
+            EXPECT_GE(a.decode(ev->data, 0, ev->datalen), 0);
+            runs.back().notes.push_back(a);
+        } else {
+            auto p = static_cast<const std::uint8_t*>(ev->data);
+            runs.back().typed.emplace_back(ev->channel,
+                                           std::vector<std::uint8_t>(p, p + ev->datalen));
+        }
+    }
+    return runs;
+}
+
+TEST(LcmRoundTrip, LoggerRecordsEveryEventOfEveryProtocolAsTheJsonlSaysIt) {
+    if (std::system("command -v lcm-logger > /dev/null") != 0)
+        GTEST_SKIP() << "lcm-logger not installed";
+    const std::string dir = test::tempDir() + "/roundtrip";
+    ASSERT_EQ(std::system(("mkdir -p " + dir).c_str()), 0);
+    std::fflush(nullptr);
+    pid_t child = ::fork();
+    if (child == 0) ::_exit(runChild(dir));
+    int st = 0;
+    ASSERT_EQ(::waitpid(child, &st, 0), child);
+    ASSERT_TRUE(WIFEXITED(st));
+    if (WEXITSTATUS(st) == 21) GTEST_SKIP() << test::readFile(dir + "/setup.txt");
+    ASSERT_EQ(WEXITSTATUS(st), 0) << test::readFile(dir + "/setup.txt");
+    std::cout << "network: " << test::readFile(dir + "/network.txt") << "\n";
+
+    auto all = cases();
+    auto runs = readLog(dir + "/decode.lcmlog");
+    ASSERT_EQ(runs.size(), all.size()) << "one decode run per case";
+    std::size_t total = 0;
+    for (std::size_t i = 0; i < all.size(); ++i) {
+        SCOPED_TRACE(all[i].name);
+        std::string base = dir + "/case" + std::to_string(i);
+        ASSERT_EQ(test::readFile(base + ".status"), "0") << test::readFile(base + ".err");
+        auto lines = readJsonl(base + ".jsonl");
+        const LoggedRun& run = runs[i];
+        ASSERT_FALSE(lines.empty());
+        std::set<std::string> protos;
+        for (const auto& o : lines)
+            protos.insert(o["proto"].toString().toStdString());
+        for (const auto& p : all[i].protos)
+            EXPECT_TRUE(protos.count(p)) << "no " << p << " events";
+
+        // One annotation and one typed message per jsonl line, in order.
+        ASSERT_EQ(run.notes.size(), lines.size());
+        ASSERT_EQ(run.typed.size(), lines.size());
+        std::ifstream jf(base + ".jsonl");
+        std::string raw_line;
+        for (std::size_t k = 0; k < lines.size(); ++k) {
+            std::getline(jf, raw_line);
+            const QJsonObject& o = lines[k];
+            const auto& note = run.notes[k];
+            std::string proto = o["proto"].toString().toStdString(),
+                        type = o["type"].toString().toStdString();
+            std::string channel = "DECODE_" +
+                                  QString::fromStdString(proto).toUpper().toStdString() + "_" +
+                                  QString::fromStdString(type).toUpper().toStdString();
+            EXPECT_EQ(note.seq, std::int64_t(k));
+            EXPECT_EQ(note.json, raw_line) << "annotation json = jsonl line";
+            EXPECT_EQ(note.channel, channel);
+
+            const auto& [ch, bytes] = run.typed[k];
+            EXPECT_EQ(ch, channel) << "line " << k;
+            auto v = test::viewEventMessage(ch, bytes.data(), int(bytes.size()));
+            ASSERT_TRUE(v);
+            EXPECT_EQ(v->seq, std::int64_t(k));
+            EXPECT_EQ(v->start_ns, o["start_ns"].toInteger()) << "line " << k;
+            EXPECT_EQ(v->end_ns, o["end_ns"].toInteger()) << "line " << k;
+            std::vector<std::string> errors;
+            for (const auto& e : o["errors"].toArray())
+                errors.push_back(e.toString().toStdString());
+            EXPECT_EQ(v->errors, errors) << "line " << k;
+            for (const auto& [key, value] : v->fields) {
+                QJsonValue jv = o.value(QString::fromStdString(key));
+                Value want = fromJson(jv);
+                EXPECT_EQ(test::compareValues(value, jv.isUndefined() ? nullptr : &want), "")
+                    << ch << " line " << k << " field " << key << ": " << raw_line;
+            }
+        }
+        ASSERT_FALSE(run.status.empty());
+        EXPECT_EQ(run.status.back().state, "end");
+        EXPECT_EQ(run.status.back().events, std::int64_t(lines.size()));
+        EXPECT_EQ(run.status.back().dropped, 0);
+        total += lines.size();
+    }
+    std::cout << "logged " << total << " events of " << all.size() << " captures\n";
+
+    // The dashboard saw the first run (BiSS-C frames) and exited by itself.
+    std::string monitor = test::readFile(dir + "/monitor.txt");
+    EXPECT_NE(monitor.find("[ended]"), std::string::npos) << monitor;
+    EXPECT_NE(monitor.find("renishaw_biss_1MHz.sr"), std::string::npos) << monitor;
+    EXPECT_NE(monitor.find("bissc"), std::string::npos) << monitor;
+}
+
+}  // namespace
+}  // namespace busdecode
