@@ -127,7 +127,9 @@ std::size_t TextSource::fill() {
     }
     if (opts_.follow && !pipe_) {
         struct stat st {};
-        if (fstat(fd_, &st) != 0 || st.st_nlink == 0 || std::uint64_t(st.st_size) < file_off_)
+        if (fstat(fd_, &st) != 0 || st.st_nlink == 0)
+            throw InputError(fmt::format("{}: deleted while following", name_));
+        if (std::uint64_t(st.st_size) < file_off_)
             throw InputError(fmt::format("{}: truncated while following", name_));
         return 0;
     }
