@@ -174,7 +174,11 @@ struct Session::Impl : EventSink {
                     if (o.is_glitch) s.decoder->glitch(o.t, o.role);
                     else s.decoder->edge(o.t, o.role, o.level);
                 });
-            s.decoder->advance(t);
+            // Edges the filter still holds lie before t: the decoder may only be told
+            // that time has passed up to the oldest of them.
+            Tick upto = t;
+            if (s.glitch && s.glitch->oldest() != kNoTick) upto = std::min(t, s.glitch->oldest());
+            s.decoder->advance(upto);
         }
     }
 };
