@@ -1,10 +1,14 @@
-// Writes the SSI example captures (captures/ssi_*.vcd, .csv) from the generator.
+// Writes the SSI example captures (captures/ssi_*.vcd, .csv) from the generator, and
+// beside each its golden output (ssi_*.golden.jsonl).
 // Usage: make_ssi_examples OUTDIR
 #include <cstdio>
+#include <fstream>
 #include <string>
 
 #include "capture/capture_writer.h"
+#include "core/registry.h"
 #include "ssi_examples.h"
+#include "ssi_factory.h"
 
 int main(int argc, char** argv) {
     if (argc != 2) {
@@ -12,6 +16,7 @@ int main(int argc, char** argv) {
         return 2;
     }
     const std::string dir = argv[1];
+    busdecode::Registry::instance().add(busdecode::makeSsiFactory());
     for (const auto& ex : busdecode::ssiExamples()) {
         const std::string path = dir + "/" + ex.file;
         if (ex.format == "vcd")
@@ -20,6 +25,9 @@ int main(int argc, char** argv) {
             busdecode::writeCsv(ex.gen.wave, path, busdecode::CsvDialect::SigrokDense);
         else
             busdecode::writeCsv(ex.gen.wave, path, busdecode::CsvDialect::SaleaeLogic2);
+        // The golden output: what `decode FILE --proto ssi --format jsonl` prints.
+        std::ofstream(dir + "/" + busdecode::goldenName(ex.file), std::ios::binary)
+            << busdecode::decodeToJsonl(path, ex.options);
         std::string opts;
         for (const auto& [k, v] : ex.options)
             opts += " --opt " + k + "=" + v;

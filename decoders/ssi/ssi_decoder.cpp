@@ -250,7 +250,7 @@ void SsiDecoder::close(bool capture_end) {
     }
     e.set("repeats", std::int64_t(w.repeats));
     e.set("repeat_match", match);
-    const double clock_hz = T > 0 ? 1.0 / (T * tb().secondsPerTick()) : 0.0;
+    const double clock_hz = T > 0 ? tb().sampleRateHz() / T : 0.0;
     e.set("clock_hz", T > 0 ? Value(clock_hz) : Value(Null{}));
     e.set("tm_ns", Null{});
     e.set("tp_ns", b_.tp == kNoTick ? Value(Null{}) : Value(tb().toNs(b_.tp)));

@@ -1,6 +1,9 @@
 #include "ssi_examples.h"
 
+#include "capture/capture_reader.h"
 #include "core/gray.h"
+#include "core/session.h"
+#include "sinks/event_format.h"
 
 namespace busdecode {
 
@@ -102,6 +105,28 @@ SsiExample saleae() {
 
 std::vector<SsiExample> ssiExamples() {
     return {tmc8100(), posital(), ringShift(), saleae()};
+}
+
+std::string decodeToJsonl(const std::string& path,
+                          const std::map<std::string, std::string>& options) {
+    auto reader = openCapture(path, OpenOptions{});
+    DecoderRequest r;
+    r.proto = "ssi";
+    r.options = options;
+    Session session({r}, *reader, path);
+    struct Jsonl : OutputSink {
+        std::string text;
+        void onEvent(const Event& e, const CaptureFacts& f) override {
+            text += eventToJson(e, f.timebase) + "\n";
+        }
+    } sink;
+    session.addSink(&sink);
+    session.run();
+    return sink.text;
+}
+
+std::string goldenName(const std::string& file) {
+    return file.substr(0, file.rfind('.')) + ".golden.jsonl";
 }
 
 }  // namespace busdecode
