@@ -1,0 +1,163 @@
+// make_capture: writes the large captures bench/run.sh times.
+//
+//   make_capture BUS FORMAT SIZE_MB OUT     (BUS: spi, bissc, ...; FORMAT: vcd or csv)
+//
+// One chunk of traffic is made with the decoder's own generator and written with the
+// project's writers (writeVcd, writeCsv: sigrok dense CSV) into a temporary file; the
+// chunk ends at the levels it started with, so its body is then repeated, VCD timestamps
+// shifted by one chunk period each time, until the file reaches SIZE_MB. The result is
+// what the writer would produce for the whole long capture, without holding it in memory.
+#include <cinttypes>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "bench_captures.h"
+#include "capture/capture_writer.h"
+
+namespace {
+
+using namespace busdecode;
+
+std::string slurp(const std::string& path) {
+    std::ifstream f(path, std::ios::binary);
+    std::ostringstream ss;
+    ss << f.rdbuf();
+    return ss.str();
+}
+
+std::vector<std::string_view> splitLines(std::string_view text) {
+    std::vector<std::string_view> lines;
+    while (!text.empty()) {
+        auto nl = text.find('\n');
+        if (nl == std::string_view::npos) nl = text.size() - 1;
+        lines.push_back(text.substr(0, nl + 1));
+        text.remove_prefix(nl + 1);
+    }
+    return lines;
+}
+
+// A timestamp line "#123 ..." -> 123; other lines -> -1.
+std::int64_t timestampOf(std::string_view line) {
+    if (line.empty() || line[0] != '#') return -1;
+    return std::strtoll(std::string(line.substr(1, 24)).c_str(), nullptr, 10);
+}
+
+class Output {
+public:
+    explicit Output(const std::string& path) : f_(std::fopen(path.c_str(), "wb")) {
+        if (!f_) throw std::runtime_error("cannot write " + path);
+        std::setvbuf(f_, nullptr, _IOFBF, 1 << 20);
+    }
+    ~Output() {
+        if (f_) std::fclose(f_);
+    }
+    void put(std::string_view s) {
+        std::fwrite(s.data(), 1, s.size(), f_);
+        bytes_ += s.size();
+    }
+    std::uint64_t bytes() const { return bytes_; }
+
+private:
+    std::FILE* f_;
+    std::uint64_t bytes_ = 0;
+};
+
+void repeatVcd(const std::string& chunk_file, const Waveform& chunk, std::uint64_t target,
+               Output& out) {
+    const std::string text = slurp(chunk_file);
+    const auto lines = splitLines(text);
+    // Header: everything up to the line with $enddefinitions; then the initial dump (all
+    // lines before the first timestamp after the chunk start); then the edges.
+    std::size_t body = 0;
+    while (body < lines.size() && lines[body].find("$enddefinitions") == std::string_view::npos)
+        ++body;
+    if (body == lines.size()) throw std::runtime_error("writeVcd output has no $enddefinitions");
+    ++body;
+    std::size_t edges = body;
+    while (edges < lines.size() && timestampOf(lines[edges]) <= chunk.start)
+        ++edges;
+    for (std::size_t i = 0; i < edges; ++i)
+        out.put(lines[i]);
+
+    const std::int64_t period = chunk.end - chunk.start;
+    std::uint64_t body_bytes = 0;
+    for (std::size_t i = edges; i < lines.size(); ++i)
+        body_bytes += lines[i].size();
+    char stamp[32];
+    for (std::int64_t k = 0;; ++k) {
+        const bool last = out.bytes() + body_bytes >= target;
+        for (std::size_t i = edges; i < lines.size(); ++i) {
+            std::string_view line = lines[i];
+            const std::int64_t t = timestampOf(line);
+            if (t < 0) {
+                out.put(line);
+                continue;
+            }
+            const auto digits = line.find_first_not_of("0123456789", 1);
+            std::string_view rest = line.substr(digits);
+            // The chunk's closing timestamp (no values after it) only ends the file.
+            if (!last && t >= chunk.end && (rest == "\n" || rest == "\r\n")) continue;
+            std::snprintf(stamp, sizeof stamp, "#%" PRId64, t + k * period);
+            out.put(stamp);
+            out.put(rest);
+        }
+        if (last) break;
+    }
+}
+
+void repeatCsv(const std::string& chunk_file, std::uint64_t target, Output& out) {
+    const std::string text = slurp(chunk_file);
+    // Header: comment lines and the row of column names; every later line is a sample.
+    std::size_t pos = 0;
+    while (pos < text.size()) {
+        const char c = text[pos];
+        if (c >= '0' && c <= '9') break;
+        auto nl = text.find('\n', pos);
+        pos = nl == std::string::npos ? text.size() : nl + 1;
+    }
+    out.put(std::string_view(text).substr(0, pos));
+    const std::string_view body = std::string_view(text).substr(pos);
+    while (out.bytes() < target)
+        out.put(body);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    if (argc != 5) {
+        std::fprintf(stderr, "usage: make_capture BUS vcd|csv SIZE_MB OUT\n");
+        return 2;
+    }
+    try {
+        const std::string bus_id = argv[1], format = argv[2], out_path = argv[4];
+        const std::uint64_t target = std::uint64_t(std::atof(argv[3]) * 1e6);
+        // About 20 ms of traffic per chunk: a few MB, repeated as often as needed.
+        const int units = bus_id == "spi" ? 800 : bus_id == "bissc" ? 3000 : 2000;
+        const bench::BenchBus bus = bench::makeBus(bus_id, units);
+        const std::string chunk_file = out_path + ".chunk";
+        Output out(out_path);
+        if (format == "vcd") {
+            writeVcd(bus.chunk, chunk_file);
+            repeatVcd(chunk_file, bus.chunk, target, out);
+        } else if (format == "csv") {
+            writeCsv(bus.chunk, chunk_file, CsvDialect::SigrokDense);
+            repeatCsv(chunk_file, target, out);
+        } else {
+            throw std::invalid_argument("format must be vcd or csv");
+        }
+        std::filesystem::remove(chunk_file);
+        std::printf("%s\t%s\t%" PRIu64 "\t%s\t%s\n", bus_id.c_str(), format.c_str(), out.bytes(),
+                    bus.decode_args.c_str(), bus.sigrok_args.c_str());
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "make_capture: %s\n", e.what());
+        return 1;
+    }
+    return 0;
+}

@@ -1,0 +1,74 @@
+// The tokenisers: VCD and dense CSV files (written with the project's writers into a
+// temporary directory) read through openCapture, edges counted and dropped. Measures
+// bytes per second of the reader alone, with all lines mapped and with only one.
+#include <benchmark/benchmark.h>
+
+#include <filesystem>
+#include <map>
+
+#include "bench_captures.h"
+#include "capture/capture_reader.h"
+#include "capture/capture_writer.h"
+
+namespace busdecode::bench {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct TempDir {
+    fs::path path;
+    TempDir() {
+        std::string tmpl = (fs::temp_directory_path() / "busdecode-bench-XXXXXX").string();
+        if (!mkdtemp(tmpl.data())) throw std::runtime_error("mkdtemp failed");
+        path = tmpl;
+    }
+    ~TempDir() {
+        std::error_code ec;
+        fs::remove_all(path, ec);
+    }
+};
+
+// One file per format, written once per process (about 20 MB of SPI traffic each).
+const std::string& benchFile(const std::string& format) {
+    static TempDir dir;
+    static std::map<std::string, std::string> files;
+    auto it = files.find(format);
+    if (it != files.end()) return it->second;
+    static const BenchBus bus = makeBus("spi", 20000);
+    std::string path = (dir.path / ("spi." + format)).string();
+    if (format == "vcd")
+        writeVcd(bus.chunk, path);
+    else
+        writeCsv(bus.chunk, path, CsvDialect::SigrokDense);
+    return files.emplace(format, path).first->second;
+}
+
+void readFile(benchmark::State& state, const std::string& format, bool all_lines) {
+    const std::string& path = benchFile(format);
+    std::uint64_t bytes = 0, edges = 0;
+    for (auto _ : state) {
+        auto reader = openCapture(path, {});
+        std::vector<LineRef> lines;
+        if (all_lines)
+            for (int i = 0; i < int(reader->signals().size()); ++i)
+                lines.push_back({i, -1});
+        else
+            lines.push_back({1, -1});  // sclk only: the other columns must be skipped cheaply
+        reader->select(lines);
+        benchmark::DoNotOptimize(reader->initialLevels());
+        EdgeBlock block;
+        while (reader->next(block))
+            edges += block.edges.size();
+        bytes += fs::file_size(path);
+    }
+    state.SetBytesProcessed(std::int64_t(bytes));
+    state.counters["edges/s"] = benchmark::Counter(double(edges), benchmark::Counter::kIsRate);
+}
+
+BENCHMARK_CAPTURE(readFile, vcd_all_lines, std::string("vcd"), true)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(readFile, vcd_one_line, std::string("vcd"), false)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(readFile, csv_all_lines, std::string("csv"), true)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(readFile, csv_one_line, std::string("csv"), false)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+}  // namespace busdecode::bench

@@ -1,0 +1,144 @@
+#!/usr/bin/env bash
+# The benchmark table of bench/README.md, in one command:
+#
+#   bench/run.sh [-b BUILD_DIR] [-s SIZE_MB] [-q]
+#
+# Generates the captures with the project's generators (make_capture: SPI at 10 MHz back
+# to back and BiSS-C at 10 MHz, 100 MHz sampling, as VCD and sigrok dense CSV) into a
+# temporary directory (removed at the end), then times `decode` against `sigrok-cli`
+# and `wc -l` on the same cached files (hyperfine, median), records peak memory
+# (/usr/bin/time -v) on 1 GB and 5 GB captures, times the doubling curve, measures the
+# --follow latency, and prints a table of ratios. -q: a quick run (small files, no 5 GB).
+# Needs: a Release/RelWithDebInfo build (default ./build), hyperfine, sigrok-cli, python3.
+set -euo pipefail
+src="$(cd "$(dirname "$0")/.." && pwd)"
+build="$src/build"
+size=500
+quick=0
+while getopts "b:s:q" o; do
+    case $o in
+        b) build="$(cd "$OPTARG" && pwd)" ;;
+        s) size="$OPTARG" ;;
+        q) quick=1 ;;
+        *) exit 2 ;;
+    esac
+done
+if [ $quick = 1 ]; then size=50; fi
+big=$((size * 2))
+huge=$((size * 10))
+decode="$build/bin/decode"
+make="$build/bin/make_capture"
+for x in "$decode" "$make"; do
+    [ -x "$x" ] || { echo "missing $x (build with: cmake --build $build)" >&2; exit 2; }
+done
+tmp="$(mktemp -d "${TMPDIR:-/tmp}/busdecode-bench.XXXXXX")"
+trap 'rm -rf "$tmp"' EXIT
+runs=5
+
+# make_capture BUS FORMAT MB NAME -> prints the decode arguments, sigrok arguments
+gen() {
+    local out
+    out="$("$make" "$1" "$2" "$3" "$tmp/$4")"
+    cat "$tmp/$4" >/dev/null  # into the page cache: every tool reads a cached file
+    echo "$out"
+}
+field() { echo "$1" | cut -f"$2"; }
+mb() { echo "scale=1; $(stat -c %s "$1") / 1000000" | bc; }
+# median TIME_SECONDS of a command (hyperfine, no shell)
+median() {
+    local n="$1"
+    shift
+    hyperfine -N --style none --warmup 1 --runs "$n" --export-json "$tmp/h.json" "$*" >/dev/null 2>&1
+    jq -r '.results[0].median' "$tmp/h.json"
+}
+peak_mb() {  # peak resident set of a command, MB
+    /usr/bin/time -v "$@" >/dev/null 2>"$tmp/time.txt" || true
+    awk '/Maximum resident set size/ {printf "%.1f", $6 / 1024}' "$tmp/time.txt"
+}
+ratio() { echo "scale=2; $1 / $2" | bc -l; }
+fmt_s() { printf '%.3f' "$1"; }
+verdict() { if [ "$(echo "$1" | bc -l)" = 1 ]; then echo "yes"; else echo "**no**"; fi; }
+
+rows=()
+row() { rows+=("| $(IFS='|'; echo "$*" | sed 's/|/ | /g') |"); }
+
+echo "generating captures in $tmp ..." >&2
+spi_info="$(gen spi vcd "$size" spi.vcd)"
+spi_args="$(field "$spi_info" 4)"
+spi_sigrok="$(field "$spi_info" 5)"
+biss_info="$(gen bissc vcd "$size" bissc.vcd)"
+biss_args="$(field "$biss_info" 4)"
+biss_sigrok="$(field "$biss_info" 5)"
+gen spi csv "$size" spi.csv >/dev/null
+
+# 1. VCD: decode vs sigrok-cli vs wc -l
+for bus in spi bissc; do
+    f="$tmp/$bus.vcd"
+    if [ $bus = spi ]; then args="$spi_args"; sargs="$spi_sigrok"; else args="$biss_args"; sargs="$biss_sigrok"; fi
+    echo "timing $bus.vcd ..." >&2
+    # shellcheck disable=SC2086
+    t_dec="$(median $runs "$decode" "$f" $args)"
+    t_wc="$(median $runs wc -l "$f")"
+    # shellcheck disable=SC2086
+    t_sig="$(median 1 sigrok-cli -I vcd -i "$f" $sargs)"
+    size_mb="$(mb "$f")"
+    r_sig="$(ratio "$t_sig" "$t_dec")"
+    r_wc="$(ratio "$t_wc" "$t_dec")"
+    row "$bus.vcd decode" "$size_mb MB" "$(fmt_s "$t_dec") s ($(ratio "$size_mb" "$t_dec") MB/s)" \
+        "sigrok-cli $(fmt_s "$t_sig") s: **${r_sig}x** faster" ">= 100x" "$(verdict "$r_sig >= 100")"
+    row "$bus.vcd vs wc -l" "$size_mb MB" "wc -l $(fmt_s "$t_wc") s" \
+        "decode at **$r_wc** of wc -l's speed" ">= 0.25" "$(verdict "$r_wc >= 0.25")"
+done
+
+# 2. Dense CSV throughput
+f="$tmp/spi.csv"
+echo "timing spi.csv ..." >&2
+# shellcheck disable=SC2086
+t_csv="$(median $runs "$decode" "$f" $spi_args)"
+size_mb="$(mb "$f")"
+csv_rate="$(ratio "$size_mb" "$t_csv")"
+row "spi.csv (sigrok dense, 100 MS/s) decode" "$size_mb MB" "$(fmt_s "$t_csv") s" "**$csv_rate MB/s**" \
+    ">= 200 MB/s" "$(verdict "$csv_rate >= 200")"
+
+# 3. Linear time: the doubling curve (SPI VCD)
+curve=""
+prev=""
+for s in $((size / 4)) $((size / 2)) "$size" "$big"; do
+    name="curve_$s.vcd"
+    gen spi vcd "$s" "$name" >/dev/null
+    echo "timing $name ..." >&2
+    # shellcheck disable=SC2086
+    t="$(median 3 "$decode" "$tmp/$name" $spi_args)"
+    if [ -n "$prev" ]; then curve+=" -> ${s} MB $(fmt_s "$t") s (x$(ratio "$t" "$prev"))"; else curve="${s} MB $(fmt_s "$t") s"; fi
+    prev="$t"
+    [ "$s" = "$big" ] && mem_big="$(peak_mb "$decode" "$tmp/$name" $spi_args)" && big_file="$tmp/$name"
+    [ "$s" != "$big" ] && rm -f "$tmp/$name"
+done
+row "doubling curve (SPI VCD)" "" "$curve" "each doubling ~x2" "linear" "see curve"
+
+# 4. Peak memory: 1 GB and 5 GB
+row "peak memory, $(mb "$big_file") MB VCD" "" "**$mem_big MB**" "" "< 64 MB" "$(verdict "$mem_big < 64")"
+rm -f "$big_file"
+if [ $quick = 0 ]; then
+    echo "generating the ${huge} MB capture ..." >&2
+    gen spi vcd "$huge" huge.vcd >/dev/null
+    mem_huge="$(peak_mb "$decode" "$tmp/huge.vcd" $spi_args)"
+    row "peak memory, $(mb "$tmp/huge.vcd") MB VCD" "" "**$mem_huge MB**" "" "< 64 MB" "$(verdict "$mem_huge < 64")"
+    rm -f "$tmp/huge.vcd"
+fi
+mem_csv="$(peak_mb "$decode" "$tmp/spi.csv" $spi_args)"
+row "peak memory, $(mb "$tmp/spi.csv") MB dense CSV" "" "**$mem_csv MB**" "" "< 64 MB" "$(verdict "$mem_csv < 64")"
+
+# 5. --follow latency
+echo "measuring --follow latency ..." >&2
+read -r lat_med lat_p90 lat_max got sent < <(python3 "$src/bench/follow_latency.py" "$decode" 60 0.05)
+row "--follow latency (last edge written -> event on stdout)" "$got/$sent frames" \
+    "median $lat_med ms, p90 $lat_p90 ms, max $lat_max ms" "" "< 50 ms" "$(verdict "$lat_max < 50")"
+
+echo
+echo "Machine: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'), $(nproc) cores, $(free -g | awk '/Mem:/ {print $2}') GB RAM; load average at the end: $(cut -d' ' -f1-3 /proc/loadavg)"
+echo "decode: $decode ($(grep -m1 CMAKE_BUILD_TYPE "$build/CMakeCache.txt" | cut -d= -f2)); $(sigrok-cli --version | head -1); $(wc --version | head -1)"
+echo
+echo "| measurement | file | busdecode | compared with | target | met |"
+echo "|---|---|---|---|---|---|"
+printf '%s\n' "${rows[@]}"
