@@ -84,6 +84,8 @@ void BisscDecoder::checkQuiet(Tick now) {
     if (state_ == State::TimeoutEnded) {
         // The clock did not go on within a clock phase of its last edge: frame over.
         if (!isClockPhase(double(now - last_ma_edge_), !ma_) && now >= f_.timeout_end) {
+            // After clocks past an early slave timeout, CDM is where the master left MA.
+            if (f_.retriggered) f_.ma_at_timeout_end = ma_;
             closeFrame(f_.timeout_end, f_.timeout_end, nullptr, true);
             state_ = sl_ ? State::Idle : State::WaitSlaveIdle;
         }
@@ -188,10 +190,9 @@ void BisscDecoder::onMa(Tick t, bool level) {
             break;
         case State::TimeoutEnded:
             // Still clocking (checkQuiet above closed the frame otherwise): the slave's
-            // timeout ended early; these clocks still belong to the master's frame.
+            // timeout ended early; these clocks still belong to the master's frame, and
+            // the slave may take them for a new request (ACK: SL low again).
             f_.retriggered = true;
-            f_.timeout_end = kNoTick;
-            state_ = State::Timeout;
             if (level) f_.rises.push_back(t);
             break;
     }
@@ -253,7 +254,11 @@ void BisscDecoder::onSl(Tick t, bool level) {
             }
             break;
         case State::TimeoutEnded:
-            if (!level) {  // SL fell again with MA quiet: not ours
+            if (level) break;
+            if (f_.retriggered) {  // the slave's ACK to the clocks past the stop bit
+                f_.timeout_end = kNoTick;
+                state_ = State::Timeout;
+            } else {  // SL fell again with MA quiet: not ours
                 closeFrame(f_.timeout_end, f_.timeout_end, nullptr, true);
                 state_ = State::WaitSlaveIdle;
             }

@@ -97,14 +97,32 @@ const BisscFrameTruth& BisscGenerator::addFrame(const BisscFrameSpec& f) {
     }
     // SL: each slot appears `line_delay` after its rising edge.
     const double d = cfg_.line_delay_ns;
-    for (int k = 1; k < rises; ++k)
+    const int stop = int(slots.size()) - 1 - f.extra_clocks;
+    int ready_from = rises;  // first clock the slave, ready again, takes as a new LAT
+    if (cfg_.ready_after_stop_ns >= 0 && !truth.truncated) {
+        for (int k = stop + 1; k < rises; ++k) {
+            if (rise_t[k] > rise_t[stop] + cfg_.ready_after_stop_ns) {
+                ready_from = k;
+                break;
+            }
+        }
+    }
+    for (int k = 1; k < std::min(rises, ready_from); ++k)
         setSl(rise_t[k] + d, slots[k] != 0);
+    if (ready_from < rises) {
+        truth.retriggered = true;
+        setSl(rise_t[stop] + d + cfg_.ready_after_stop_ns, true);
+        if (ready_from + 1 < rises) setSl(rise_t[ready_from + 1] + d, false);  // its ACK
+    }
     const double last_rise = rises > 0 ? rise_t[rises - 1] : t0;
     // The slave's timeout: SL low (after the stop bit) until timeout after the last clock.
     const double t_end = last_rise + d + cfg_.timeout_ns;
     if (f.cdm && !truth.truncated) setMa(last_rise + half, false);
     setSl(t_end, true);
     truth.end = wb_.ticksFromNs(t_end);
+    // Ready early, and no ACK to the clocks after: SL never fell again.
+    if (truth.retriggered && ready_from + 1 >= rises)
+        truth.end = wb_.ticksFromNs(rise_t[stop] + d + cfg_.ready_after_stop_ns);
     if (!ma_ && !cfg_.hold_cdm) setMa(t_end + std::min(cfg_.idle_ns / 4, 2000.0), true);
     now_ns_ = t_end + cfg_.idle_ns;
     frames_.push_back(truth);

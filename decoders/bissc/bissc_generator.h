@@ -29,6 +29,10 @@ struct BisscGenConfig {
     double lead_ns = 5000;      // idle before the first frame
     double jitter_ns = 0;       // each MA edge moves by up to +-jitter (uniform)
     bool hold_cdm = false;      // CDM = 1: keep MA low until the next frame (no idle)
+    // Slave ready this long after the stop bit even while the master clocks on (>= 0):
+    // it raises SL and answers the remaining clocks as a new request (LAT, ACK, busy),
+    // as the Renishaw RESOLUTE does behind an iC-Haus MB5U. -1: SL low until the timeout.
+    double ready_after_stop_ns = -1;
     std::uint32_t seed = 1;
     std::vector<std::string> names{"MA", "SLO"};
 };
@@ -51,7 +55,8 @@ struct BisscFrameTruth {
     std::uint32_t crc_sent = 0;
     bool crc_ok = true;
     bool truncated = false;
-    int rises = 0;  // MA rising edges clocked
+    int rises = 0;             // MA rising edges clocked
+    bool retriggered = false;  // the slave took clocks past the stop bit for a new request
     double clock_hz = 0;
 };
 

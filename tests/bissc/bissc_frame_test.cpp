@@ -375,3 +375,41 @@ TEST(BisscFrames, BadOptionsAreInputErrors) {
     EXPECT_THROW(decodeBissc(w, {{"crc_poly", "0x43"}, {"crc_bits", "16"}}), InputError);
     EXPECT_THROW(decodeBissc(w, {{"bits", "65"}}), InputError);
 }
+
+TEST(BisscFrames, SlaveReadyWhileMasterClocksPastTheStopBit) {
+    // The MB5U + RESOLUTE pattern: the slave raises SL 1.5 us after the stop bit while
+    // the master still clocks, and answers the remaining clocks as a new request. The
+    // frame keeps all its clocks; its CDM is the MA level when SL finally rises.
+    for (double delay : {0.0, 300.0}) {
+        BisscGenConfig cfg;
+        cfg.bits = 32;
+        cfg.clock_hz = 1e6;
+        cfg.line_delay_ns = delay;
+        cfg.ready_after_stop_ns = 1500;
+        BisscGenerator gen(cfg);
+        for (int extra : {5, 2, 8, 1}) {
+            BisscFrameSpec f;
+            f.data = 0xB19DB5F1u + unsigned(extra);
+            f.proc_cycles = 15;
+            f.extra_clocks = extra;
+            f.cdm = extra == 8;
+            gen.addFrame(f);
+        }
+        auto frames = ofType(decodeBissc(gen.build(), {{"bits", "32"}}), "frame");
+        ASSERT_EQ(frames.size(), 4u);
+        for (int i = 0; i < 4; ++i) {
+            SCOPED_TRACE(i);
+            const auto& t = gen.frames()[i];
+            EXPECT_EQ(std::get<std::uint64_t>(*frames[i].get("position")), t.spec.data);
+            EXPECT_EQ(intField(frames[i], "clocks"), t.rises);
+            EXPECT_EQ(intField(frames[i], "extra_clocks"), t.spec.extra_clocks);
+            EXPECT_EQ(std::get<bool>(*frames[i].get("retriggered")), t.retriggered);
+            EXPECT_EQ(intField(frames[i], "cdm"), t.spec.cdm);
+            EXPECT_EQ(frames[i].end, t.end);
+            EXPECT_TRUE(frames[i].errors.empty());
+        }
+        EXPECT_TRUE(gen.frames()[0].retriggered);
+        EXPECT_TRUE(gen.frames()[1].retriggered);   // one clock after ready: LAT, no ACK
+        EXPECT_FALSE(gen.frames()[3].retriggered);  // clocking ends before the slave is ready
+    }
+}
