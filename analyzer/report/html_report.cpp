@@ -299,9 +299,14 @@ std::string renderHtmlReport(const CaptureStats& stats) {
             std::string errs, flags;
             for (const auto& [k, n] : g->errors)
                 errs += fmt::format("{}{} {}", errs.empty() ? "" : ", ", k, n);
-            for (const auto& [k, c] : g->flags)
-                flags += fmt::format("{}{} {} {}", flags.empty() ? "" : ", ", k,
-                                     (k == "nE" || k == "nW") ? "active" : "false", c.false_count);
+            for (const auto& [k, c] : g->flags) {
+                if (k == "nE" || k == "nW")
+                    flags +=
+                        fmt::format("{}{} active {}", flags.empty() ? "" : ", ", k, c.false_count);
+                else
+                    flags += fmt::format("{}{} true {} / false {}", flags.empty() ? "" : ", ", k,
+                                         c.true_count, c.false_count);
+            }
             h += fmt::format(
                 "<tr><td>{}</td><td class=\"n\">{}</td><td "
                 "class=\"n{}\">{}</td><td>{}</td><td>{}</td></tr>\n",

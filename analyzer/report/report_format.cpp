@@ -18,7 +18,8 @@ bool endsWith(const std::string& s, std::string_view suffix) {
 }  // namespace
 
 std::string formatFrequency(double hz) {
-    const double a = std::fabs(hz);
+    // Pick the unit after rounding, so 999999.9999 Hz reads 1.000 MHz, not 1000.000 kHz.
+    const double a = std::fabs(hz) * (1 + 1e-7);
     if (a >= 1e9) return fmt::format("{:.3f} GHz", hz / 1e9);
     if (a >= 1e6) return fmt::format("{:.3f} MHz", hz / 1e6);
     if (a >= 1e3) return fmt::format("{:.3f} kHz", hz / 1e3);

@@ -58,9 +58,12 @@ void busSection(std::string& out, const CaptureStats& stats, const std::string& 
         line(out, fmt::format("  {:<12} {:>8} events, {} with faults{}", g->type, g->count,
                               g->faulty, errs.empty() ? "" : " (" + errs + ")"));
         for (const auto& [k, c] : g->flags) {
-            const bool active_low = k == "nE" || k == "nW";
-            line(out, fmt::format("    {:<18} {} {} of {}", k, active_low ? "active" : "false",
-                                  c.false_count, c.false_count + c.true_count));
+            if (k == "nE" || k == "nW")
+                line(out, fmt::format("    {:<18} active {} of {}", k, c.false_count,
+                                      c.false_count + c.true_count));
+            else
+                line(out,
+                     fmt::format("    {:<18} true {}, false {}", k, c.true_count, c.false_count));
         }
     }
     if (const auto* regs = stats.registers(inst); regs && !regs->empty()) {
@@ -108,10 +111,10 @@ void faultSection(std::string& out, const CaptureStats& stats) {
         line(out, "Faults: none");
         return;
     }
-    line(out, fmt::format("Faults: {} events with errors{}", stats.totalFaults(),
-                          stats.totalFaults() > faults.size()
-                              ? fmt::format(" (the first {} below)", faults.size())
-                              : ""));
+    const std::uint64_t n = stats.totalFaults();
+    line(out,
+         fmt::format("Faults: {} event{} with errors{}", n, n == 1 ? "" : "s",
+                     n > faults.size() ? fmt::format(" (the first {} below)", faults.size()) : ""));
     for (const auto& f : faults)
         line(out, "  " + f.text);
 }

@@ -39,11 +39,14 @@ std::string plural(std::uint64_t n, const std::string& one, const std::string& m
 class CountCheck : public RuleCheck {
 public:
     using Pred = std::function<bool(const Event&)>;
-    CountCheck(std::string proto, std::string rule, std::int64_t limit, std::string what, Pred pred)
+    // `one` / `many`: what is counted, for 1 and for other counts.
+    CountCheck(std::string proto, std::string rule, std::int64_t limit, std::string one,
+               std::string many, Pred pred)
         : proto_(std::move(proto)),
           rule_(std::move(rule)),
           limit_(limit),
-          what_(std::move(what)),
+          one_(std::move(one)),
+          many_(std::move(many)),
           pred_(std::move(pred)) {}
     void observe(const Event& e, const Timebase& tb) override {
         if (!pred_(e)) return;
@@ -56,7 +59,7 @@ public:
         RuleOutcome o = makeOutcome(proto_, rule_);
         o.offending = count_;
         o.passed = count_ <= std::uint64_t(limit_);
-        o.message = fmt::format("{} {} (limit {})", count_, what_, limit_);
+        o.message = fmt::format("{} (limit {})", plural(count_, one_, many_), limit_);
         if (count_) {
             o.message += fmt::format(", first at {}", at(first_));
             if (!o.passed) o.first_ns = limit_ == 0 ? first_ : over_;
@@ -69,7 +72,7 @@ public:
 private:
     std::string proto_, rule_;
     std::int64_t limit_;
-    std::string what_;
+    std::string one_, many_;
     Pred pred_;
     std::uint64_t count_ = 0;
     double first_ = 0, over_ = 0;
@@ -112,7 +115,7 @@ public:
             o.message = fmt::format("not checked: no event carries {}", field_);
             return o;
         }
-        o.message = fmt::format("{} of {} outside {} (seen {} .. {})", bad_,
+        o.message = fmt::format("{} of {} {} (seen {} .. {})", bad_,
                                 plural(seen_, "value", "values"), limits(), fmtv(lo_), fmtv(hi_));
         if (bad_) {
             o.first_ns = first_;
@@ -124,8 +127,8 @@ public:
 private:
     std::string fmtv(double v) const { return formatFieldValue(unit_key_, v); }
     std::string limits() const {
-        if (min_ == -std::numeric_limits<double>::infinity()) return "limit " + fmtv(max_);
-        return fmt::format("[{}, {}]", fmtv(min_), fmtv(max_));
+        if (min_ == -std::numeric_limits<double>::infinity()) return "above " + fmtv(max_);
+        return fmt::format("outside [{}, {}]", fmtv(min_), fmtv(max_));
     }
     std::string proto_, rule_, field_;
     double scale_, min_, max_;
@@ -219,7 +222,7 @@ public:
         }
     }
     RuleOutcome finish(const CaptureFacts&) const override {
-        RuleOutcome o{proto_, fmt::format("registers.0x{:02X}", address_)};
+        RuleOutcome o = makeOutcome(proto_, fmt::format("registers.0x{:02X}", address_));
         o.offending = bad_;
         if (seen_ == 0) {
             o.passed = false;
@@ -261,24 +264,26 @@ void addChecks(const ProtoRules& r, std::vector<std::unique_ptr<RuleCheck>>& out
     for (const auto& key : r.keys) {
         if (key == "max_crc_errors")
             out.push_back(std::make_unique<CountCheck>(p, key, *r.max_crc_errors,
+                                                       "event with a CRC error",
                                                        "events with CRC errors", crcFailed));
         else if (key == "max_errors")
-            out.push_back(
-                std::make_unique<CountCheck>(p, key, *r.max_errors, "frames with nE active",
-                                             [](const Event& e) { return fieldIsZero(e, "nE"); }));
+            out.push_back(std::make_unique<CountCheck>(
+                p, key, *r.max_errors, "frame with nE active", "frames with nE active",
+                [](const Event& e) { return fieldIsZero(e, "nE"); }));
         else if (key == "max_warnings")
-            out.push_back(
-                std::make_unique<CountCheck>(p, key, *r.max_warnings, "frames with nW active",
-                                             [](const Event& e) { return fieldIsZero(e, "nW"); }));
+            out.push_back(std::make_unique<CountCheck>(
+                p, key, *r.max_warnings, "frame with nW active", "frames with nW active",
+                [](const Event& e) { return fieldIsZero(e, "nW"); }));
         else if (key == "max_repeat_mismatches")
             out.push_back(std::make_unique<CountCheck>(
-                p, key, *r.max_repeat_mismatches, "repeat mismatches", [](const Event& e) {
+                p, key, *r.max_repeat_mismatches, "repeat mismatch", "repeat mismatches",
+                [](const Event& e) {
                     return e.hasError("repeat_mismatch") || fieldIsZero(e, "repeat_match");
                 }));
         else if (key == "max_faults")
-            out.push_back(
-                std::make_unique<CountCheck>(p, key, *r.max_faults, "events with errors",
-                                             [](const Event& e) { return !e.errors.empty(); }));
+            out.push_back(std::make_unique<CountCheck>(
+                p, key, *r.max_faults, "event with errors", "events with errors",
+                [](const Event& e) { return !e.errors.empty(); }));
         else if (key == "min_frames")
             out.push_back(std::make_unique<MinCountCheck>(p, primaryEventType(p), *r.min_frames));
         else if (key == "clock_hz")

@@ -20,7 +20,6 @@ max_proc_cycles = 4
 min_frames = 30
 timeout_us = [12.5, 40]
 max_position_jump = 1000
-max_faults = 0
 )";
 
 const char* const kSsiRules = R"(# rules for the generated SSI captures
@@ -36,9 +35,10 @@ namespace {
 constexpr int kFrames = 40;
 
 // 40 BiSS-C frames at 1 MHz, 26-bit positions counting up by 7; `tweak` changes the
-// configuration, `spec` one frame. Returns the start of frame `mark` in ns.
+// configuration, `spec` one frame. Returns the start of frame `mark` (and `mark2`) in ns.
 double writeBissc(const std::string& path, const std::function<void(BisscGenConfig&)>& tweak,
-                  const std::function<void(int, BisscFrameSpec&)>& spec, int mark) {
+                  const std::function<void(int, BisscFrameSpec&)>& spec, int mark, int mark2 = -1,
+                  double* second_ns = nullptr) {
     BisscGenConfig cfg;
     cfg.line_delay_ns = 120;
     tweak(cfg);
@@ -50,6 +50,8 @@ double writeBissc(const std::string& path, const std::function<void(BisscGenConf
         gen.addFrame(f);
     }
     writeVcd(gen.build(), path);
+    if (second_ns && mark2 >= 0)
+        *second_ns = cfg.timebase.toNsF(double(gen.frames()[std::size_t(mark2)].start));
     return mark >= 0 ? cfg.timebase.toNsF(double(gen.frames()[std::size_t(mark)].start)) : 0;
 }
 
@@ -77,21 +79,29 @@ std::vector<FaultCapture> make(const std::string& dir) {
     std::vector<FaultCapture> out;
     auto none = [](auto&) {};
     auto biss = [&](const std::string& name, const std::string& rule, auto tweak, auto spec,
-                    int mark) {
-        const std::string path = dir + "/" + name + ".vcd";
-        out.push_back({path, "bissc", rule, writeBissc(path, tweak, spec, mark)});
+                    int mark, int mark2 = -1) {
+        FaultCapture c;
+        c.path = dir + "/" + name + ".vcd";
+        c.proto = "bissc";
+        c.failing_rule = rule;
+        c.first_ns = writeBissc(c.path, tweak, spec, mark, mark2, &c.second_ns);
+        out.push_back(c);
     };
     auto ssi = [&](const std::string& name, const std::string& rule, auto tweak, auto spec,
                    int mark) {
-        const std::string path = dir + "/" + name + ".vcd";
-        out.push_back({path, "ssi", rule, writeSsi(path, tweak, spec, mark)});
+        FaultCapture c;
+        c.path = dir + "/" + name + ".vcd";
+        c.proto = "ssi";
+        c.failing_rule = rule;
+        c.first_ns = writeSsi(c.path, tweak, spec, mark);
+        out.push_back(c);
     };
     auto noFrame = [](int, auto&) {};
 
     biss("biss_clean", "", none, noFrame, -1);
     biss(
         "biss_crc", "bissc.max_crc_errors", none,
-        [](int i, BisscFrameSpec& f) { f.corrupt_crc = i == 17 || i == 30; }, 17);
+        [](int i, BisscFrameSpec& f) { f.corrupt_crc = i == 17 || i == 30; }, 17, 30);
     biss(
         "biss_error", "bissc.max_errors", none,
         [](int i, BisscFrameSpec& f) { f.ne = i == 21 ? 0 : 1; }, 21);

@@ -12,6 +12,7 @@ struct FaultCapture {
     std::string proto;         // "bissc" / "ssi"
     std::string failing_rule;  // "" for a clean capture, else "bissc.max_crc_errors"...
     double first_ns = 0;       // start of the first offending frame
+    double second_ns = 0;      // and of the second one, where there is one
 };
 
 // Writes the captures into `dir` (once per process) and returns them, BiSS-C first.

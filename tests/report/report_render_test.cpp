@@ -51,7 +51,7 @@ TEST(TextReport, HasFactsCountsTimingPositionAndFaults) {
     EXPECT_NE(r.find("line_delay_ns"), std::string::npos);
     EXPECT_NE(r.find("pause between"), std::string::npos);
     EXPECT_NE(r.find("|#"), std::string::npos);  // a text histogram
-    EXPECT_NE(r.find("Faults: 1 events with errors"), std::string::npos) << r;
+    EXPECT_NE(r.find("Faults: 1 event with errors"), std::string::npos) << r;
     EXPECT_NE(r.find("0.012300000 s"), std::string::npos) << r;  // the faulty frame's time
 }
 

@@ -6,6 +6,7 @@
 #include <QString>
 #include <QXmlStreamReader>
 #include <cmath>
+#include <filesystem>
 #include <regex>
 #include <sstream>
 
@@ -29,6 +30,7 @@ std::vector<FaultCapture> capturesOf(const std::string& proto) {
 }
 
 std::string rulesFile(const std::string& name, const char* text) {
+    std::filesystem::create_directories(dir());
     const std::string path = dir() + "/" + name;
     test::writeFile(path, text);
     return path;
@@ -88,15 +90,17 @@ void expectRightRulesFail(const std::vector<FaultCapture>& caps, const std::stri
             continue;
         }
         EXPECT_EQ(l.rfind("FAIL", 0), 0u);
-        // The right rule, and no other (except max_faults, which any error trips).
+        // The right rule, and no other.
         std::smatch m;
         std::string rest = l;
         const std::regex failed("(" + c.proto + "\\.[a-z_]+): ");
+        int rules_failed = 0;
         while (std::regex_search(rest, m, failed)) {
-            const std::string rule = m[1];
-            EXPECT_TRUE(rule == c.failing_rule || rule == c.proto + ".max_faults") << rule;
+            EXPECT_EQ(m[1], c.failing_rule);
+            ++rules_failed;
             rest = m.suffix();
         }
+        EXPECT_EQ(rules_failed, 1);
         const double t = failTime(l, c.failing_rule);
         ASSERT_FALSE(std::isnan(t)) << "no time for " << c.failing_rule;
         // Within a few bit times of the faulty frame's first edge (frames are > 40 us apart).
@@ -117,7 +121,7 @@ TEST(VerifyCli, AllCleanExitsZero) {
     const auto r = test::runDecode(
         {"verify", caps[0].path, "--rules", rulesFile("bissc.toml", test::kBisscRules)});
     EXPECT_EQ(r.status, 0) << r.out << r.err;
-    EXPECT_NE(r.out.find("1 capture: 1 passed, 0 failed, 0 unreadable; 10 rule checks, 0 failed"),
+    EXPECT_NE(r.out.find("1 capture: 1 passed, 0 failed, 0 unreadable; 9 rule checks, 0 failed"),
               std::string::npos)
         << r.out;
 }
@@ -168,19 +172,30 @@ TEST(VerifyCli, JunitIsWellFormedWithTheRightCountsAndJobsDoNotChangeResults) {
     const auto j2 = readJunit(test::readFile(dir() + "/j2.xml"));
     ASSERT_EQ(j1.error, "");
     EXPECT_EQ(j1.suites, 1);
-    EXPECT_EQ(j1.cases, int(caps.size()) * 10);  // 10 rules per capture
+    EXPECT_EQ(j1.cases, int(caps.size()) * 9);  // 9 rules per capture
     EXPECT_EQ(j1.tests_attr, j1.cases);
-    // Every faulty capture fails its rule; those with error strings also max_faults.
+    // Every faulty capture fails its one rule.
     int expected_failures = 0;
-    for (const auto& c : caps) {
-        if (c.failing_rule.empty()) continue;
-        const bool has_error_string = c.failing_rule == "bissc.max_crc_errors";
-        expected_failures += has_error_string ? 2 : 1;
-    }
+    for (const auto& c : caps)
+        expected_failures += c.failing_rule.empty() ? 0 : 1;
     EXPECT_EQ(j1.failures, expected_failures) << r1.out;
     EXPECT_EQ(j1.failures_attr, j1.failures);
     EXPECT_EQ(j1.errors, 0);
     EXPECT_EQ(j1.stripped, j2.stripped);
+}
+
+TEST(VerifyCli, LimitAboveZeroFailsAtTheEventThatPassedIt) {
+    for (const auto& c : capturesOf("bissc")) {
+        if (c.failing_rule != "bissc.max_crc_errors") continue;
+        const auto r = test::runDecode(
+            {"verify", c.path, "--rules", rulesFile("faults.toml", "[bissc]\nmax_faults = 1\n")});
+        EXPECT_EQ(r.status, 1);
+        EXPECT_NE(r.out.find("bissc.max_faults: 2 events with errors (limit 1)"), std::string::npos)
+            << r.out;
+        EXPECT_NEAR(failTime(r.out, "bissc.max_faults"), c.second_ns, 5000) << r.out;
+        return;
+    }
+    FAIL() << "no CRC capture";
 }
 
 TEST(VerifyCli, UnreadableCaptureIsAnErrorExitTwo) {
