@@ -217,7 +217,9 @@ void SsiDecoder::close(bool capture_end) {
     }
 
     const SsiWord w = assembleWord(samples, cfg_);
+    const SsiFields f = w.short_frame ? SsiFields{} : splitFields(w.raw, cfg_);
     Event e;
+    e.fields.reserve(20 + cfg_.status.size());
     e.proto = "ssi";
     e.type = "frame";
     e.start = b_.start;
@@ -227,7 +229,6 @@ void SsiDecoder::close(bool capture_end) {
     std::vector<std::int64_t> diff = w.diff_bits;
     bool match = w.repeat_match;
     if (!w.short_frame) {
-        const SsiFields f = splitFields(w.raw, cfg_);
         e.set("position", f.position);
         e.set("st", f.st);
         e.set("mt", f.mt);
@@ -259,7 +260,6 @@ void SsiDecoder::close(bool capture_end) {
     e.set("partial_bits", std::int64_t(w.partial_bits));
     e.set("repeat_diff_bits", diff);
     if (!w.short_frame) {
-        const SsiFields f = splitFields(w.raw, cfg_);
         e.set("status", f.status);
         for (const auto& s : cfg_.status)
             e.set(s.name, bool(w.raw >> s.bit & 1));
@@ -286,7 +286,6 @@ void SsiDecoder::close(bool capture_end) {
     if (w.short_frame) {
         text = fmt::format("short frame: {} of {} bits raw=0x{:X}", w.bits, cfg_.bits, w.raw);
     } else {
-        const SsiFields f = splitFields(w.raw, cfg_);
         text = fmt::format("raw=0x{:X} pos=0x{:X}", w.raw, f.position);
         if (cfg_.mt_bits > 0) text += fmt::format(" mt=0x{:X}", f.mt);
         if (cfg_.st_bits > 0) text += fmt::format(" st=0x{:X} angle={:.2f}", f.st, *f.angle);
