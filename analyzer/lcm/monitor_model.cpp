@@ -111,7 +111,8 @@ void MonitorModel::onAnnotation(const lcm::ReceiveBuffer*, const std::string&,
 void MonitorModel::onStatus(const lcm::ReceiveBuffer*, const std::string&,
                             const busdecode_lcm::decode_status_t* m) {
     if (m->state == "start") return;
-    if (m->state == "begin") buses_.clear(), recent_registers_.clear();
+    // Buses are kept across runs: several decoders may publish at once, and a capture
+    // decoded again simply continues its bus's counts.
     state_ = m->state == "begin" ? "decoding" : "ended";
     file_ = m->file;
     capture_ns_ = m->capture_ns;
@@ -133,6 +134,14 @@ std::string rateText(double hz) {
     return fmt::format("{:.1f} Hz", hz);
 }
 
+// One dashboard row: the header and every bus line share the column widths.
+std::string row(const std::string& bus, const std::string& pos, const std::string& frames,
+                const std::string& rate, const std::string& crc, const std::string& delay,
+                const std::string& regs, const std::string& errors) {
+    return fmt::format("{:<12} {:<24} {:>9} {:>11} {:>16} {:>23} {:>9}  {}", bus, pos, frames, rate,
+                       crc, delay, regs, errors);
+}
+
 }  // namespace
 
 std::vector<std::string> MonitorModel::render(const std::string& url, std::int64_t now_utime,
@@ -146,13 +155,14 @@ std::vector<std::string> MonitorModel::render(const std::string& url, std::int64
                         messages_, dropped_ ? fmt::format("   DROPPED {}", dropped_) : ""),
             width));
     out.emplace_back();
-    out.push_back(fit(fmt::format("{:<12} {:<20} {:>9} {:>11} {:>16} {:>22} {:>9}  {}", "BUS",
-                                  "POSITION (MT:ST)", "FRAMES", "FRAME RATE", "CRC ERRORS",
-                                  "LINE DELAY last/min/max", "REG R/W", "ERRORS"),
+    out.push_back(fit(row("BUS", "POSITION (MT:ST)", "FRAMES", "FRAME RATE", "CRC ERRORS",
+                          "LINE DELAY last/min/max", "REG R/W", "ERRORS"),
                       width));
     if (buses_.empty()) out.push_back("  (no events yet)");
     for (const auto& [name, b] : buses_) {
-        std::string pos = b.has_position ? fmt::format("{} ({}:{})", b.position, b.mt, b.st) : "-";
+        std::string pos = !b.has_position ? "-"
+                          : b.mt          ? fmt::format("{} ({}:{})", b.position, b.mt, b.st)
+                                          : std::to_string(b.position);
         std::string crc =
             b.checked
                 ? fmt::format("{:.2f}% ({})", 100.0 * double(b.check_errors) / double(b.checked),
@@ -170,9 +180,8 @@ std::vector<std::string> MonitorModel::render(const std::string& url, std::int64
         std::string age;
         if (now_utime && b.last_utime && now_utime - b.last_utime > 2'000'000)
             age = fmt::format("  (quiet {:.0f} s)", double(now_utime - b.last_utime) / 1e6);
-        out.push_back(fit(fmt::format("{:<12} {:<20} {:>9} {:>11} {:>16} {:>22} {:>9}  {}{}", name,
-                                      pos, frames, rateText(b.frameRateHz()), crc, delay, regs,
-                                      errs.empty() ? "-" : errs, age),
+        out.push_back(fit(row(name, pos, frames, rateText(b.frameRateHz()), crc, delay, regs,
+                              (errs.empty() ? "-" : errs) + age),
                           width));
     }
     if (!recent_registers_.empty()) {

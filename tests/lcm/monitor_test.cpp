@@ -90,7 +90,7 @@ TEST(MonitorModel, ShowsPositionRateCrcRateLineDelayAndRegistersPerBus) {
     EXPECT_NE(text.find("[ended]"), std::string::npos) << text;
     EXPECT_NE(text.find("capture scenario.vcd"), std::string::npos) << text;
     // bissc: last position 1099, 100 frames at 10 kHz, 5 CRC errors, 199..299 ns delay.
-    EXPECT_NE(text.find("1099 (0:1099)"), std::string::npos) << text;
+    EXPECT_NE(text.find(" 1099 "), std::string::npos) << text;
     EXPECT_NE(text.find("10.00 kHz"), std::string::npos) << text;
     EXPECT_NE(text.find("5.00% (5)"), std::string::npos) << text;
     EXPECT_NE(text.find("299/200/299 ns"), std::string::npos) << text;
@@ -100,7 +100,7 @@ TEST(MonitorModel, ShowsPositionRateCrcRateLineDelayAndRegistersPerBus) {
     // ssi#2 is its own bus: 10 frames at 1 kHz, last position 167.
     EXPECT_NE(text.find("ssi#2"), std::string::npos) << text;
     EXPECT_NE(text.find("1.00 kHz"), std::string::npos) << text;
-    EXPECT_NE(text.find("167 (0:167)"), std::string::npos) << text;
+    EXPECT_NE(text.find(" 167 "), std::string::npos) << text;
 }
 
 TEST(MonitorModel, CountsFromTheModelItself) {
