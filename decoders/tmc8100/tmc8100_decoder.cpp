@@ -38,6 +38,7 @@ void Tmc8100Decoder::start(const DecoderContext& ctx) {
     const int lv = kTmcAvail < int(ctx.initial_levels.size()) ? ctx.initial_levels[kTmcAvail] : -1;
     avail_bound_ = lv >= 0;
     avail_level_ = lv == 1;
+    miso_bound_ = kTmcMiso < int(ctx.initial_levels.size()) && ctx.initial_levels[kTmcMiso] >= 0;
     firmware_ = mode_option_ == "app"          ? Firmware::App
                 : mode_option_ == "bootloader" ? Firmware::Bootloader
                                                : Firmware::Unknown;
@@ -57,7 +58,7 @@ void Tmc8100Decoder::edge(Tick t, int role, bool level) {
             someone_waits = true;
             if (w.avail_rise == kNoTick) w.avail_rise = t;
         }
-        if (!someone_waits && firmware_ == Firmware::App) {
+        if (!someone_waits && firmware_ == Firmware::App && miso_bound_) {
             // The firmware raises SPI_DATA_AVAILABLE when it queues replies; nothing asked.
             Event e;
             e.proto = "tmc8100";
@@ -96,8 +97,29 @@ void Tmc8100Decoder::updateBusy() {
 void Tmc8100Decoder::onTransfer(Event&& spi) {
     const auto mosi = wordOf(spi, "mosi");
     const auto miso = wordOf(spi, "miso");
-    const auto bits = asInt(*spi.get("bits"));
-    if (spi.hasError("short_frame") || bits != 32) {
+    const int bits = int(asInt(*spi.get("bits")));
+    const bool short_frame = spi.hasError("short_frame");
+    if (!short_frame && bits < 32 && 32 % bits == 0) {
+        // Hosts that clock 8- or 16-bit frames under one cs (the Landungsbruecke sends
+        // four bytes): the datagram is their concatenation, first word most significant.
+        if (acc_bits_ == 0) acc_start_ = spi.start;
+        acc_mosi_ = (acc_mosi_ << bits) | mosi.value_or(0);
+        acc_miso_ = (acc_miso_ << bits) | miso.value_or(0);
+        acc_bits_ += bits;
+        if (acc_bits_ < 32) return;
+        Event dg = std::move(spi);
+        dg.start = acc_start_;
+        if (mosi) dg.set("mosi", acc_mosi_);
+        if (miso) dg.set("miso", acc_miso_);
+        dg.set("bits", std::int64_t(32));
+        acc_bits_ = 0;
+        acc_mosi_ = acc_miso_ = 0;
+        onTransfer(std::move(dg));
+        return;
+    }
+    if (short_frame || bits != 32) {
+        acc_bits_ = 0;
+        acc_mosi_ = acc_miso_ = 0;
         // Not a datagram: report what was on MOSI without giving it a meaning.
         Event e;
         e.proto = "tmc8100";
@@ -109,7 +131,6 @@ void Tmc8100Decoder::onTransfer(Event&& spi) {
         e.set("name", std::string("unknown"));
         e.set("word", mosi ? Value(*mosi) : Value(Null{}));
         e.errors = spi.errors;
-        if (bits != 32 && !e.hasError("short_frame")) e.error("short_frame");
         e.summary = fmt::format("{}-bit word, not a 32-bit datagram", bits);
         emit(std::move(e));
         return;
@@ -269,7 +290,8 @@ void Tmc8100Decoder::onMosi(std::uint32_t word, const Event& spi) {
         boot_query_.reset();
         if (!c.replies.empty()) boot_query_ = c;
         if (c.switches_to_app) firmware_ = Firmware::App;
-    } else if (firmware_ == Firmware::App && !c.replies.empty()) {
+    } else if (firmware_ == Firmware::App && !c.replies.empty() && miso_bound_) {
+        // (Without MISO no reply can be seen: nothing is waited for.)
         if (!waiting_.empty() && waiting_.front().only_optional_left) finishFront(false);
         // The note expects "a new command is not sent before all data from the previous
         // command has been read out".
@@ -285,6 +307,9 @@ void Tmc8100Decoder::onMosi(std::uint32_t word, const Event& spi) {
         // (it falls when that transfer ends), so only a new rise counts.
         if (avail_level_ && !waiting_.empty()) w.avail_rise = spi.end;
         waiting_.push_back(std::move(w));
+        // A host that never reads its replies must not hold the output back forever.
+        while (waiting_.size() > kMaxWaiting)
+            finishFront(true);
     }
     e.summary = std::move(text);
     emit(std::move(e));

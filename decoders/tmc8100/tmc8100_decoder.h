@@ -72,6 +72,8 @@ private:
     tmc8100::EncoderProtocol protocol_ = tmc8100::EncoderProtocol::Unknown;
     bool protocol_fixed_ = false;
 
+    static constexpr std::size_t kMaxWaiting = 16;
+    bool miso_bound_ = false;
     bool avail_bound_ = false;
     bool avail_level_ = false;
 
@@ -79,6 +81,10 @@ private:
     // Bootloader: the reply to a query is the MISO word of the next transfer.
     std::optional<tmc8100::Command> boot_query_;
     std::optional<int> last_write_address_;
+    // Narrow SPI words being assembled into one 32-bit datagram.
+    int acc_bits_ = 0;
+    std::uint64_t acc_mosi_ = 0, acc_miso_ = 0;
+    Tick acc_start_ = 0;
     // encoder_read start -> first reply start: where correlate() looks for the frame.
     std::map<Tick, Tick> corr_window_;
 };

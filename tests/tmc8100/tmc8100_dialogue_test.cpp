@@ -103,3 +103,26 @@ TEST(Tmc8100Dialogue, SsiDecodedInTheSamePassMatches) {
                   Tmc8100Scenario::ssiWord(d.flags[k], std::uint8_t(k * 9), d.positions[k]));
 }
 #endif
+
+TEST(Tmc8100Dialogue, EightBitFramesUnderOneCsAreOneDatagram) {
+    // The Landungsbruecke clocks 8-bit frames with cs held for all four: decoded with
+    // bits=8 the SPI layer gives bytes, the TMC8100 layer the same datagrams and events.
+    registerDecoders();
+    Dialogue d;
+    auto events = decodeWaveform(d.sc.build(), {DecoderRequest{"tmc8100", {}, {{"bits", "8"}}}});
+    expectEvents(events, "tmc8100", d.expected(false));
+}
+
+TEST(Tmc8100Dialogue, WithoutMisoOnlyCommandsAndNoFalseErrors) {
+    registerDecoders();
+    Dialogue d;
+    Waveform w = d.sc.build();
+    w.names[Tmc8100Scenario::kSdo] = "not_bound";
+    auto events = only(decodeWaveform(w, {DecoderRequest{"tmc8100", {}, {}}}), "tmc8100");
+    ASSERT_EQ(events.size(), d.sc.transfers().size());
+    for (std::size_t i = 0; i < events.size(); ++i) {
+        EXPECT_EQ(events[i].type, "command");
+        EXPECT_EQ(asInt(*events[i].get("word")), d.sc.transfers()[i].mosi);
+        EXPECT_TRUE(events[i].errors.empty()) << events[i].summary;
+    }
+}
