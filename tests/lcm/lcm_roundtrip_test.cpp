@@ -8,9 +8,15 @@
 // the test needs no network and cannot see or disturb other LCM traffic on the machine.
 // Without the privilege for that, the child uses the host's network if a multicast route
 // exists, and the test is skipped (saying why) if neither works.
+#include <arpa/inet.h>
 #include <gtest/gtest.h>
+#include <net/if.h>
+#include <net/route.h>
+#include <netinet/in.h>
 #include <sched.h>
 #include <signal.h>
+#include <sys/ioctl.h>
+#include <sys/socket.h>
 #include <sys/wait.h>
 #include <unistd.h>
 #include <QJsonArray>
@@ -20,6 +26,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <iostream>
 #include <lcm/lcm-cpp.hpp>
@@ -94,6 +101,31 @@ bool publishUntilLogged(lcm::LCM& lc, const std::string& channel, const std::str
     return false;
 }
 
+// In a fresh network namespace: loopback up with multicast, and the multicast range
+// routed to it (what `ip link set lo up multicast on; ip route add 224.0.0.0/4 dev lo`
+// does, without needing iproute2).
+bool enableLoopbackMulticast() {
+    int s = ::socket(AF_INET, SOCK_DGRAM, 0);
+    if (s < 0) return false;
+    ifreq ifr{};
+    std::strcpy(ifr.ifr_name, "lo");
+    bool ok = ::ioctl(s, SIOCGIFFLAGS, &ifr) == 0;
+    ifr.ifr_flags |= IFF_UP | IFF_RUNNING | IFF_MULTICAST;
+    ok = ok && ::ioctl(s, SIOCSIFFLAGS, &ifr) == 0;
+    rtentry rt{};
+    auto* dst = reinterpret_cast<sockaddr_in*>(&rt.rt_dst);
+    auto* mask = reinterpret_cast<sockaddr_in*>(&rt.rt_genmask);
+    dst->sin_family = mask->sin_family = AF_INET;
+    dst->sin_addr.s_addr = htonl(0xE0000000);   // 224.0.0.0
+    mask->sin_addr.s_addr = htonl(0xF0000000);  // /4
+    rt.rt_flags = RTF_UP;
+    char dev[] = "lo";
+    rt.rt_dev = dev;
+    ok = ok && ::ioctl(s, SIOCADDRT, &rt) == 0;
+    ::close(s);
+    return ok;
+}
+
 void writeText(const std::string& path, const std::string& text) {
     std::ofstream(path) << text;
 }
@@ -104,8 +136,7 @@ int runChild(const std::string& dir) {
     std::string network = "host";
     if (::unshare(CLONE_NEWNET) == 0) {
         network = "namespace";
-        if (std::system("ip link set lo up && ip link set lo multicast on && "
-                        "ip route add 224.0.0.0/4 dev lo") != 0) {
+        if (!enableLoopbackMulticast()) {
             writeText(dir + "/setup.txt", "could not enable multicast on the namespace's loopback");
             return 20;
         }
