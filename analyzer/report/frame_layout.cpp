@@ -22,7 +22,15 @@ std::vector<int> msbFirst(std::uint64_t value, int width) {
 }  // namespace
 
 bool fieldShowsFault(const Event& e, const Field& f) {
-    if (auto b = std::get_if<bool>(&f.value)) return !*b;
+    // Only bools that say something is right (crc_ok, repeat_match, consistent...) are
+    // faults when false; others (hold_cdm, retriggered) are just states.
+    if (auto b = std::get_if<bool>(&f.value)) {
+        const std::string& k = f.key;
+        const bool says_ok = k == "consistent" ||
+                             (k.size() > 3 && k.compare(k.size() - 3, 3, "_ok") == 0) ||
+                             (k.size() > 6 && k.compare(k.size() - 6, 6, "_match") == 0);
+        return says_ok && !*b;
+    }
     if ((f.key == "nE" || f.key == "nW") && !isNull(f.value)) return asInt(f.value) == 0;
     if (f.key == "crc_rx") return e.hasError("crc");
     return false;

@@ -24,8 +24,8 @@ struct BitSegment {
 // Empty when the event has no known bit layout.
 std::vector<BitSegment> frameLayout(const Event& e);
 
-// Whether a field shows a fault: false bools (crc_ok, repeat_match, ...), active nE/nW,
-// or a field an error string names.
+// Whether a field shows a fault: false "it is right" bools (`*_ok`, `*_match`,
+// `consistent`), active nE/nW, or the CRC of a frame with a `crc` error.
 bool fieldShowsFault(const Event& e, const Field& f);
 
 }  // namespace busdecode

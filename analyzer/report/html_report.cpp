@@ -88,7 +88,9 @@ std::string histogramSvg(const std::string& title, const std::string& key,
     const auto counts = sk.histogram(bins);
     const std::uint64_t peak = *std::max_element(counts.begin(), counts.end());
     const double W = 440, H = 200, L = 50, R = 10, T = 22, B = 30;
-    const double bw = (W - L - R) / bins;
+    // A constant value gets one narrow bar in the middle rather than a full-width block.
+    const double bw = bins == 1 ? 40.0 : (W - L - R) / bins;
+    const double x0 = bins == 1 ? L + (W - L - R - bw) / 2 : L;
     std::string s = fmt::format(
         R"(<svg class="histogram" xmlns="http://www.w3.org/2000/svg" width="{0}" height="{1}" viewBox="0 0 {0} {1}">)",
         W, H);
@@ -110,7 +112,9 @@ std::string histogramSvg(const std::string& title, const std::string& key,
 }
 
 std::string fieldText(const Field& f) {
-    std::string v = valueToJson(f.value);
+    std::string v = std::holds_alternative<double>(f.value)
+                        ? fmt::format("{:.7g}", std::get<double>(f.value))
+                        : valueToJson(f.value);
     if (v.size() > 18) v = v.substr(0, 17) + "…";
     return f.key + "=" + v;
 }

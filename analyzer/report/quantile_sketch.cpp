@@ -15,17 +15,12 @@ int QuantileSketch::indexOf(double m) const {
     return int(std::ceil(std::log(m) / std::log(kGamma)));
 }
 
-double QuantileSketch::valueOf(int i) const {
-    // Midpoint (in relative terms) of [g^(i-1), g^i): the estimate with the smallest
-    // worst-case relative error.
-    return 2.0 * std::pow(kGamma, i) / (kGamma + 1.0);
-}
-
-void QuantileSketch::cap(std::map<int, std::uint64_t>& b) {
+void QuantileSketch::cap(std::map<int, Bucket>& b) {
     while (b.size() > kMaxBuckets) {
         auto first = b.begin();
         auto second = std::next(first);
-        second->second += first->second;
+        second->second.n += first->second.n;
+        second->second.sum += first->second.sum;
         b.erase(first);
     }
 }
@@ -43,10 +38,14 @@ void QuantileSketch::add(double v) {
     if (std::fabs(v) < kZero) {
         ++zeros_;
     } else if (v > 0) {
-        ++positive_[indexOf(v)];
+        auto& b = positive_[indexOf(v)];
+        ++b.n;
+        b.sum += v;
         cap(positive_);
     } else {
-        ++negative_[indexOf(-v)];
+        auto& b = negative_[indexOf(-v)];
+        ++b.n;
+        b.sum += -v;
         cap(negative_);
     }
 }
@@ -54,10 +53,10 @@ void QuantileSketch::add(double v) {
 template <class F>
 void QuantileSketch::forEachBucket(F&& f) const {
     for (auto it = negative_.rbegin(); it != negative_.rend(); ++it)
-        f(-valueOf(it->first), it->second);
+        f(-it->second.sum / double(it->second.n), it->second.n);
     if (zeros_) f(0.0, zeros_);
-    for (const auto& [i, n] : positive_)
-        f(valueOf(i), n);
+    for (const auto& [i, b] : positive_)
+        f(b.sum / double(b.n), b.n);
 }
 
 double QuantileSketch::quantile(double q) const {

@@ -3,7 +3,8 @@
 // (the DDSketch idea). Every value lands in the bucket [g^(i-1), g^i) of its magnitude,
 // so a quantile is known to a relative error of (g-1)/2 whatever the distribution, and
 // the number of buckets grows with the logarithm of the value range, not with the count.
-// Minimum and maximum are kept exactly.
+// Minimum and maximum are kept exactly, and each bucket answers with the mean of the
+// values it holds (exact when they are all equal, as integer fields mostly are).
 #include <cstdint>
 #include <map>
 #include <vector>
@@ -31,13 +32,16 @@ public:
     std::vector<std::uint64_t> histogram(int bins) const;
 
 private:
+    struct Bucket {
+        std::uint64_t n = 0;
+        double sum = 0;  // of the magnitudes
+    };
     int indexOf(double magnitude) const;
-    double valueOf(int index) const;  // representative magnitude of a bucket
-    static void cap(std::map<int, std::uint64_t>& buckets);
+    static void cap(std::map<int, Bucket>& buckets);
     template <class F>
     void forEachBucket(F&& f) const;  // ascending value order: f(value, count)
 
-    std::map<int, std::uint64_t> positive_, negative_;  // bucket index -> count
+    std::map<int, Bucket> positive_, negative_;  // bucket index -> values
     std::uint64_t zeros_ = 0;
     std::uint64_t count_ = 0;
     double sum_ = 0, min_ = 0, max_ = 0;

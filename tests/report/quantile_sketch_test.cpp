@@ -84,6 +84,17 @@ TEST(QuantileSketch, HistogramCountsEveryValueOnce) {
         EXPECT_NEAR(double(n), 10.0, 3.0);
 }
 
+TEST(QuantileSketch, SmallIntegersAreExact) {
+    // Each bucket answers with the mean of its values: exact for repeated integers.
+    QuantileSketch s;
+    for (int v : {0, 1, 2, 2, 2, 3, 3, 150, 151})
+        s.add(v);
+    EXPECT_DOUBLE_EQ(s.median(), 2.0);
+    EXPECT_DOUBLE_EQ(s.quantile(0.25), 2.0);
+    EXPECT_DOUBLE_EQ(s.quantile(0.75), 3.0);
+    EXPECT_DOUBLE_EQ(s.quantile(0.88), 150.0);
+}
+
 TEST(QuantileSketch, ConstantValueIsExact) {
     QuantileSketch s;
     for (int i = 0; i < 1000; ++i)
