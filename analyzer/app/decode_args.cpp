@@ -14,6 +14,7 @@
 #include <fmt/ranges.h>
 
 #include "busdecode/plugin.h"
+#include "capture/prefetch_reader.h"
 #include "core/registry.h"
 
 namespace busdecode {
@@ -176,7 +177,8 @@ CaptureFacts decodeCapture(const std::string& path, const std::vector<DecoderReq
 CaptureFacts decodeCapture(const std::string& path, const std::vector<DecoderRequest>& requests,
                            const OpenOptions& open, const std::vector<OutputSink*>& sinks, bool realtime,
                            const std::atomic<bool>* stop) {
-    std::unique_ptr<CaptureReader> reader = openCapture(path, open);
+    // Read ahead on a second thread while this one decodes (two cores, pipelined).
+    std::unique_ptr<CaptureReader> reader = prefetchReader(openCapture(path, open));
     if (realtime) reader = std::make_unique<PacedReader>(std::move(reader));
     Session session(requests, *reader, path);
     if (stop) session.setStopFlag(stop);
