@@ -448,3 +448,42 @@ TEST(SsiGenerated, RandomEdgesNeverBreakTheDecoder) {
         }
     }
 }
+
+TEST(SsiGenerated, SummaryTextOfV32) {
+    // PROTOCOLS.md V32: 25-bit Gray, MT 0xABC, ST 0x1234 (13 bits) -> raw 0x1FC5B2E.
+    SsiGenConfig cfg;
+    const auto g = generateSsi(cfg, {SsiGenFrame{binaryToGray(0x1579234), 0, 1, 30000, {}}});
+    const auto ev = decodeFrames(g.wave, opts(25, 13, 12, true));
+    ASSERT_EQ(ev.size(), 1u);
+    EXPECT_EQ(ev[0].summary,
+              "raw=0x1FC5B2E pos=0x1579234 mt=0xABC st=0x1234 angle=204.79 repeats=1 "
+              "clk=1.00MHz tm=20.0us");
+}
+
+TEST(SsiGenerated, DataStuckLowOrHighAfterTheWord) {
+    SsiGenConfig cfg;
+    cfg.tail_ns = 1'000'000;
+    auto g = generateSsi(cfg, randomFrames(2, 25, 71));
+    // Drop the last data edge (the monoflop's return high): data stays low to the end.
+    Waveform low = g.wave;
+    for (auto it = low.edges.rbegin(); it != low.edges.rend(); ++it)
+        if (it->line == 1) {
+            low.edges.erase(std::next(it).base());
+            break;
+        }
+    auto ev = decodeFrames(low, opts(25, 16, 0, false));
+    ASSERT_EQ(ev.size(), 2u);
+    EXPECT_FALSE(ev[0].hasError("timeout_long"));
+    EXPECT_TRUE(isNull(*ev[1].get("tm_ns")));
+    EXPECT_TRUE(ev[1].hasError("timeout_long")) << describe(ev[1]);
+
+    // A broken data line stays high: all ones and no low level after the word.
+    Waveform high = g.wave;
+    std::erase_if(high.edges, [](const Edge& e) { return e.line == 1; });
+    ev = decodeFrames(high, opts(25, 16, 0, false));
+    ASSERT_EQ(ev.size(), 2u);
+    for (const auto& e : ev) {
+        EXPECT_EQ(u64(e, "raw"), 0x1FFFFFFu);
+        EXPECT_TRUE(e.hasError("tm_missing")) << describe(e);
+    }
+}
