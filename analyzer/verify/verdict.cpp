@@ -81,6 +81,25 @@ std::string xmlEscape(const std::string& s) {
     return out;
 }
 
+namespace {
+// Character data keeps its line breaks; attributes (xmlEscape) encode them.
+std::string xmlText(const std::string& s) {
+    std::string out;
+    out.reserve(s.size());
+    for (unsigned char c : s) {
+        if (c == '&')
+            out += "&amp;";
+        else if (c == '<')
+            out += "&lt;";
+        else if (c == '>')
+            out += "&gt;";
+        else if (c >= 0x20 || c == '\n' || c == '\t')
+            out += char(c);
+    }
+    return out;
+}
+}  // namespace
+
 std::string junitXml(const std::vector<CaptureVerdict>& all, const std::string& rules_file) {
     std::size_t tests = 0, failures = 0, errors = 0;
     double total = 0;
@@ -103,14 +122,13 @@ std::string junitXml(const std::vector<CaptureVerdict>& all, const std::string& 
     gethostname(host, sizeof host - 1);
 
     std::string x = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
+    // The root carries no attributes: the Ant schema allows none there (the counts are
+    // on the one testsuite).
+    x += "<testsuites>\n";
     x += fmt::format(
-        "<testsuites name=\"decode verify\" tests=\"{}\" failures=\"{}\" errors=\"{}\" "
-        "time=\"{:.3f}\">\n",
-        tests, failures, errors, total);
-    x += fmt::format(
-        "  <testsuite name=\"decode verify\" tests=\"{}\" failures=\"{}\" errors=\"{}\" "
-        "skipped=\"0\" "
-        "time=\"{:.3f}\" timestamp=\"{}\" hostname=\"{}\">\n",
+        "  <testsuite name=\"decode verify\" package=\"decode.verify\" id=\"0\" tests=\"{}\" "
+        "failures=\"{}\" errors=\"{}\" skipped=\"0\" time=\"{:.3f}\" timestamp=\"{}\" "
+        "hostname=\"{}\">\n",
         tests, failures, errors, total, stamp, xmlEscape(host));
     x += fmt::format("    <properties><property name=\"rules\" value=\"{}\"/></properties>\n",
                      xmlEscape(rules_file));
@@ -130,7 +148,7 @@ std::string junitXml(const std::vector<CaptureVerdict>& all, const std::string& 
             x += fmt::format("    <testcase name=\"{}\" classname=\"{}\" time=\"{:.3f}\"",
                              xmlEscape(o.name()), cls, each);
             if (o.passed) {
-                x += fmt::format("><system-out>{}</system-out></testcase>\n", xmlEscape(o.message));
+                x += "/>\n";
             } else {
                 x += ">\n";
                 x += fmt::format("      <failure message=\"{}\" type=\"{}\">{}</failure>\n",
@@ -140,6 +158,15 @@ std::string junitXml(const std::vector<CaptureVerdict>& all, const std::string& 
             }
         }
     }
+    // What every rule saw, passed ones included, as the verify lines say it.
+    std::string out;
+    for (const auto& v : all) {
+        out += verdictLine(v) + "\n";
+        for (const auto& o : v.outcomes)
+            out += fmt::format("  {} {}: {}\n", o.passed ? "pass" : "FAIL", o.name(), o.message);
+    }
+    x += fmt::format("    <system-out>{}</system-out>\n    <system-err></system-err>\n",
+                     xmlText(out));
     x += "  </testsuite>\n</testsuites>\n";
     return x;
 }

@@ -24,7 +24,8 @@ struct CaptureVerdict {
 std::string verdictLine(const CaptureVerdict& v);
 // "3 captures: 2 passed, 1 failed, 0 unreadable; 21 rule checks, 1 failed".
 std::string summaryLine(const std::vector<CaptureVerdict>& all);
-// JUnit XML (the common Jenkins/Ant schema).
+// JUnit XML in the common schema (testsuites > testsuite with properties, testcases,
+// system-out, system-err; a testcase holds at most one failure or error).
 std::string junitXml(const std::vector<CaptureVerdict>& all, const std::string& rules_file);
 // Escapes text for XML attributes and character data; drops characters XML 1.0 forbids.
 std::string xmlEscape(const std::string& s);

@@ -5,6 +5,9 @@
 #include <QString>
 #include <QXmlStreamReader>
 
+#include <filesystem>
+
+#include "support/paths.h"
 #include "verify/verdict.h"
 
 namespace busdecode {
@@ -95,6 +98,27 @@ TEST(Junit, WellFormedWithTheRightCounts) {
     EXPECT_EQ(p.failure_messages[0], "2 events with CRC errors (limit 0), first at 1.000 ms");
     EXPECT_EQ(p.failure_messages[1],
               "1 of 100 values outside [1 MHz, 2 MHz]");  // control char dropped
+}
+
+// Validates against the Ant JUnit schema (tests/report/junit_ant.xsd) with xmllint.
+TEST(Junit, ValidatesAgainstTheAntJunitSchema) {
+    if (!std::filesystem::exists("/usr/bin/xmllint"))
+        GTEST_SKIP() << "xmllint is not installed (Debian package libxml2-utils)";
+    const std::string xsd = test::sourceDir() + "/tests/report/junit_ant.xsd";
+    auto validate = [&](const std::string& name, const std::string& xml) {
+        const std::string path = test::tempDir() + "/" + name;
+        test::writeFile(path, xml);
+        return test::runCommand("xmllint --noout --schema " + test::shellQuote(xsd) + " " +
+                                test::shellQuote(path));
+    };
+    const auto good = validate("junit.xml", junitXml(sampleVerdicts(), "rules.toml"));
+    EXPECT_EQ(good.status, 0) << good.err;
+    EXPECT_EQ(validate("empty.xml", junitXml({}, "rules.toml")).status, 0);
+    // The schema does bite: a testcase with two failures is rejected.
+    std::string bad = junitXml(sampleVerdicts(), "rules.toml");
+    const auto at = bad.find("<failure");
+    bad.insert(at, "<failure type=\"x\"/>");
+    EXPECT_NE(validate("bad.xml", bad).status, 0);
 }
 
 TEST(Junit, EmptyBatchIsStillWellFormed) {
