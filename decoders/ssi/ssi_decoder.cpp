@@ -67,7 +67,6 @@ void SsiDecoder::startBurst(Tick t) {
     b_.tp = last_clock_ == kNoTick ? kNoTick : t - last_clock_;
     b_.filtered_glitches = 0;
     b_.overlong = false;
-    if (first_start_ == kNoTick) first_start_ = t;
     state_ = State::Clocking;
     busyFrom(t);
 }
@@ -299,7 +298,9 @@ void SsiDecoder::close(bool capture_end) {
     if (T > 0) text += " clk=" + formatHz(clock_hz);
     e.summary = std::move(text);
     pending_ = std::move(e);
-    pending_checks_tm_ = !w.short_frame && w.partial_bits == 0 && !b_.overlong;
+    // The last clock edge of a complete word shifts out a separator 0 (without separators
+    // it starts the next repeat): only then must data be low and tm measurable.
+    pending_checks_tm_ = !w.short_frame && w.partial_bits == 0 && !b_.overlong && cfg_.ring_gap > 0;
 
     if (!w.short_frame) {
         prev_valid_ = true;

@@ -71,7 +71,6 @@ private:
     std::vector<std::int64_t> tm_values_;
     double clock_min_ = 0, clock_max_ = 0;
     std::int64_t frames_ = 0, mismatches_ = 0, shorts_ = 0, error_frames_ = 0;
-    Tick first_start_ = kNoTick;
 };
 
 }  // namespace busdecode
