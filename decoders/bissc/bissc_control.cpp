@@ -179,6 +179,7 @@ void BisscControlReassembler::emitRegister(bool complete, const char* error) {
     e.set("id", header_parsed_ ? Value(std::int64_t(id_)) : Value(Null{}));
     e.set("address",
           header_parsed_ ? Value(std::int64_t((address_ + byte_index_) & 0x7F)) : Value(Null{}));
+    e.set("data", Null{});  // keeps its place before the optional fields
     if (header_parsed_ && !header_crc_ok_) e.error("control_crc");
 
     Value data = Null{};

@@ -425,7 +425,7 @@ void BisscDecoder::closeFrame(Tick end, Tick timeout_end, const char* error, boo
     Value clock_hz = Null{};
     const double period = meanPeriod();
     if (f_.rises.size() >= 2 && period > 0) {
-        clock_hz = 1.0 / (period * tb().secondsPerTick());
+        clock_hz = std::round(1.0 / (period * tb().secondsPerTick()));  // whole Hz
         last_period_ = period;
     }
     if (f_.ack != kNoTick) last_delay_ = f_.delay;

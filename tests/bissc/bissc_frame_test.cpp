@@ -413,3 +413,58 @@ TEST(BisscFrames, SlaveReadyWhileMasterClocksPastTheStopBit) {
         EXPECT_FALSE(gen.frames()[3].retriggered);  // clocking ends before the slave is ready
     }
 }
+
+TEST(BisscFrames, RandomConfigurationsDecodeExactly) {
+    // 40 seeded random set-ups across the BiSS range: 80 kHz..10 MHz, 8..48 bits,
+    // 0..1.5 us line delay, 0..8 busy clocks, jitter, 1 ns ticks or >= 10 samples per bit.
+    std::mt19937_64 rng(20261122);
+    auto uni = [&](double a, double b) {
+        return std::uniform_real_distribution<double>(a, b)(rng);
+    };
+    for (int run = 0; run < 40; ++run) {
+        BisscGenConfig cfg;
+        cfg.clock_hz = std::exp(uni(std::log(80e3), std::log(10e6)));
+        cfg.bits = 8 + int(rng() % 41);
+        cfg.line_delay_ns = uni(0, 1500);
+        cfg.jitter_ns = uni(0, 0.04) * 1e9 / cfg.clock_hz;
+        cfg.timeout_ns = uni(12500, 40000) + 1e9 / cfg.clock_hz;
+        cfg.idle_ns = uni(1000, 20000);
+        cfg.hold_cdm = rng() & 1;
+        cfg.seed = std::uint32_t(rng());
+        if (rng() % 3 == 0) {
+            cfg.timebase = Timebase::fromSampleRate(std::int64_t(cfg.clock_hz * uni(10, 40)));
+            cfg.jitter_ns = 0;
+        }
+        SCOPED_TRACE(::testing::Message() << "run " << run << ": " << cfg.clock_hz << " Hz, "
+                                          << cfg.bits << " bits, delay " << cfg.line_delay_ns);
+        BisscGenerator gen(cfg);
+        for (int i = 0; i < 6; ++i) {
+            BisscFrameSpec f;
+            f.data = rng() & ((1ull << cfg.bits) - 1);
+            f.ne = int(rng() % 4 != 0);
+            f.nw = int(rng() % 4 != 0);
+            f.cds = int(rng() & 1);
+            f.cdm = int(rng() & 1);
+            f.proc_cycles = int(rng() % 9);
+            f.extra_clocks = int(rng() % 4);
+            f.corrupt_crc = rng() % 5 == 0;
+            gen.addFrame(f);
+        }
+        const auto frames =
+            ofType(decodeBissc(gen.build(), {{"bits", std::to_string(cfg.bits)}}), "frame");
+        ASSERT_EQ(frames.size(), gen.frames().size());
+        for (std::size_t i = 0; i < frames.size(); ++i) {
+            const auto& t = gen.frames()[i];
+            EXPECT_EQ(frames[i].start, t.start) << i;
+            EXPECT_EQ(std::get<std::uint64_t>(*frames[i].get("position")), t.spec.data) << i;
+            EXPECT_EQ(std::get<bool>(*frames[i].get("crc_ok")), t.crc_ok) << i;
+            EXPECT_EQ(intField(frames[i], "cds"), t.spec.cds) << i;
+            EXPECT_EQ(intField(frames[i], "cdm"), t.spec.cdm) << i;
+            EXPECT_EQ(intField(frames[i], "proc_cycles"), t.spec.proc_cycles) << i;
+            EXPECT_EQ(intField(frames[i], "extra_clocks"), t.spec.extra_clocks) << i;
+            EXPECT_NEAR(double(intField(frames[i], "line_delay_ns")), cfg.line_delay_ns,
+                        cfg.timebase.nsPerTick() + cfg.jitter_ns + 1)
+                << i;
+        }
+    }
+}
