@@ -99,7 +99,7 @@ std::string histogramSvg(const std::string& title, const std::string& key,
         const double h = peak ? double(counts[i]) / double(peak) * (H - T - B) : 0;
         s += fmt::format(
             R"(<rect x="{}" y="{}" width="{}" height="{}" fill="#2e7d32"><title>{}</title></rect>)",
-            num(L + i * bw + 1), num(H - B - h), num(std::max(bw - 2, 1.0)), num(h), counts[i]);
+            num(x0 + i * bw + 1), num(H - B - h), num(std::max(bw - 2, 1.0)), num(h), counts[i]);
     }
     s += fmt::format(R"(<line x1="{0}" y1="{1}" x2="{2}" y2="{1}" stroke="#888"/>)", L, H - B,
                      W - R);
@@ -122,7 +122,11 @@ std::string fieldText(const Field& f) {
 // The first faulty event drawn like a logic analyser screen: reconstructed lines with
 // bit values, field segments above them, decoded fields as bus cells, faults in red.
 std::string timingDiagramSvg(const Event& e, const Timebase& tb) {
-    const auto layout = frameLayout(e);
+    auto layout = frameLayout(e);
+    std::size_t total_bits = 0;
+    for (const auto& seg : layout)
+        total_bits += seg.bits.size();
+    if (total_bits > 400) layout.clear();  // too many cells to read: fields only
     const double W = 960, L = 110, R = 16;
     const double plot = W - L - R;
     const double start_ns = tb.toNsF(double(e.start)), end_ns = tb.toNsF(double(e.end));
@@ -367,7 +371,8 @@ std::string renderHtmlReport(const CaptureStats& stats) {
     if (stats.firstFaults().empty()) {
         h += "<p>None.</p>\n";
     } else {
-        h += fmt::format("<p>{} events with errors{}.</p><pre>", stats.totalFaults(),
+        h += fmt::format("<p>{} event{} with errors{}.</p><pre>", stats.totalFaults(),
+                         stats.totalFaults() == 1 ? "" : "s",
                          stats.totalFaults() > stats.firstFaults().size()
                              ? fmt::format("; the first {}", stats.firstFaults().size())
                              : "");
