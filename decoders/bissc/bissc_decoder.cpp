@@ -451,6 +451,8 @@ void BisscDecoder::closeFrame(Tick end, Tick timeout_end, const char* error, boo
                               ? Value(std::int64_t(f_.rises.size()) - 1 - f_.stop_index)
                               : Value(Null{}));
     e.set("clocks", std::int64_t(f_.rises.size()));
+    e.set("bits", std::int64_t(s_.bits));
+    e.set("crc_bits", std::int64_t(s_.crc_bits));
     e.set("hold_cdm", f_.from_hold);
     e.set("retriggered", f_.retriggered);
 

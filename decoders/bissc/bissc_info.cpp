@@ -60,8 +60,10 @@ DecoderInfo bisscInfo() {
     info.events = {
         {"frame",
          "one BiSS-C frame (single-cycle data) with its timeout",
-         {"position", "st", "mt", "nE", "nW", "crc_rx", "crc_ok", "cds", "cdm", "line_delay_ns",
-          "proc_cycles", "clock_hz", "timeout_ns", "extra_clocks", "clocks", "hold_cdm"}},
+         {"position",    "st",           "mt",       "nE",         "nW",
+          "crc_rx",      "crc_ok",       "cds",      "cdm",        "line_delay_ns",
+          "proc_cycles", "ack_delay_ns", "clock_hz", "timeout_ns", "extra_clocks",
+          "clocks",      "bits",         "crc_bits", "hold_cdm",   "retriggered"}},
         {"register",
          "a register read or write carried by CDM/CDS over many frames",
          {"op", "id", "address", "data", "crc_ok", "echo", "refused", "busy_frames", "sequence",
