@@ -441,7 +441,9 @@ TEST(SsiGenerated, RandomEdgesNeverBreakTheDecoder) {
         EXPECT_FALSE(ev.empty());
         for (std::size_t i = 0; i < ev.size(); ++i) {
             EXPECT_LE(ev[i].start, ev[i].end);
-            if (i) EXPECT_LT(ev[i - 1].end, ev[i].start);
+            if (i) {
+                EXPECT_LT(ev[i - 1].end, ev[i].start);
+            }
             for (const char* key : {"raw", "bits", "position", "st", "mt", "angle", "repeats",
                                     "repeat_match", "clock_hz", "tm_ns"})
                 EXPECT_TRUE(ev[i].has(key)) << key;
