@@ -141,6 +141,33 @@ std::vector<FaultCapture> make(const std::string& dir) {
 
 }  // namespace
 
+const RegisterCapture& registerCapture(const std::string& dir) {
+    static const RegisterCapture capture = [&] {
+        std::filesystem::create_directories(dir);
+        ControlItemSpec rd;
+        rd.address = 0x7E;
+        rd.data = {0x69, 0x43};
+        const ControlSequence seq = buildControlSequence({rd});
+        BisscGenConfig cfg;
+        BisscGenerator gen(cfg);
+        for (std::size_t i = 0; i < seq.cdm.size(); ++i) {
+            BisscFrameSpec f;
+            f.data = 5000 + i;
+            f.cdm = seq.cdm[i];
+            f.cds = seq.cds[i];
+            gen.addFrame(f);
+        }
+        RegisterCapture c;
+        c.path = dir + "/biss_registers.vcd";
+        writeVcd(gen.build(), c.path);
+        for (const auto& ev : seq.events)
+            c.first_ns.push_back(
+                cfg.timebase.toNsF(double(gen.frames()[std::size_t(ev.first_frame)].start)));
+        return c;
+    }();
+    return capture;
+}
+
 const std::vector<FaultCapture>& faultCaptures(const std::string& dir) {
     static const std::vector<FaultCapture> captures = make(dir);
     return captures;

@@ -18,6 +18,14 @@ struct FaultCapture {
 // Writes the captures into `dir` (once per process) and returns them, BiSS-C first.
 const std::vector<FaultCapture>& faultCaptures(const std::string& dir);
 
+// A clean BiSS-C capture whose CDM/CDS carry a sequential register read of 0x7E = 0x69
+// and 0x7F = 0x43; `first_ns[i]` is the start of the first frame carrying access i.
+struct RegisterCapture {
+    std::string path;
+    std::vector<double> first_ns;
+};
+const RegisterCapture& registerCapture(const std::string& dir);
+
 // Rules under which the clean captures pass and each faulty one fails its rule only.
 extern const char* const kBisscRules;
 extern const char* const kSsiRules;

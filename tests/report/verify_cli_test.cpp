@@ -198,6 +198,28 @@ TEST(VerifyCli, LimitAboveZeroFailsAtTheEventThatPassedIt) {
     FAIL() << "no CRC capture";
 }
 
+TEST(VerifyCli, ExpectedRegisterValues) {
+    const auto& reg = test::registerCapture(dir());
+    ASSERT_EQ(reg.first_ns.size(), 2u);
+    const auto good =
+        test::runDecode({"verify", reg.path, "--rules",
+                         rulesFile("reg_good.toml",
+                                   "[bissc]\nregisters = { \"0x7E\" = 0x69, \"0x7F\" = 0x43 }\n")});
+    EXPECT_EQ(good.status, 0) << good.out << good.err;
+    const auto bad = test::runDecode(
+        {"verify", reg.path, "--rules",
+         rulesFile("reg_bad.toml",
+                   "[bissc]\nregisters = { \"0x7E\" = 0x69, \"0x7F\" = 0x44, \"0x10\" = 1 }\n")});
+    EXPECT_EQ(bad.status, 1);
+    EXPECT_EQ(bad.out.find("bissc.registers.0x7E"), std::string::npos) << bad.out;  // passed
+    EXPECT_NE(bad.out.find("bissc.registers.0x7F: 1 of 1 access with data other than 0x44"),
+              std::string::npos)
+        << bad.out;
+    EXPECT_NEAR(failTime(bad.out, "bissc.registers.0x7F"), reg.first_ns[1], 5000) << bad.out;
+    EXPECT_NE(bad.out.find("bissc.registers.0x10: register 0x10 never accessed"),
+              std::string::npos);
+}
+
 TEST(VerifyCli, UnreadableCaptureIsAnErrorExitTwo) {
     const auto caps = capturesOf("bissc");
     const std::string rules = rulesFile("bissc.toml", test::kBisscRules);
