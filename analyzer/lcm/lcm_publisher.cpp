@@ -55,8 +55,12 @@ std::shared_ptr<lcm::LCM> openLcm(const std::string& url) {
     return lc;
 }
 
-LcmSinkOptions LcmSinkOptions::fromEnvironment() {
+LcmSinkOptions LcmSinkOptions::fromEnvironment(const std::string& url) {
     LcmSinkOptions o;
+    // UDP multicast has no flow control, and LCM 1.3.1 subscribers (lcm-logger, lcm-spy)
+    // lose datagrams from back-to-back bursts, which a decoder produces whenever a block of
+    // input completes many events at once. A gentle default pace keeps them whole.
+    if (url.empty() || url.rfind("udpm://", 0) == 0) o.max_events_per_s = kDefaultUdpmEventsPerS;
     if (const char* q = std::getenv("BUSDECODE_LCM_QUEUE")) {
         char* end = nullptr;
         long long n = std::strtoll(q, &end, 10);
@@ -238,7 +242,7 @@ LcmSinkCounts LcmSink::counts() const {
 }
 
 std::unique_ptr<OutputSink> makeLcmSink(const std::string& url) {
-    LcmSinkOptions opt = LcmSinkOptions::fromEnvironment();
+    LcmSinkOptions opt = LcmSinkOptions::fromEnvironment(url);
     return std::make_unique<LcmSink>(openLcm(url), url, std::move(opt));
 }
 

@@ -24,15 +24,18 @@ struct LcmSinkOptions {
     bool drop_when_full = false;
     // Events published per second at most (0 = as fast as they come). UDP subscribers
     // (lcm-logger, lcm-spy) lose datagrams when a file is decoded far faster than they
-    // read; pacing the publisher thread keeps them whole. BUSDECODE_LCM_RATE sets it.
+    // read; pacing the publisher thread keeps them whole. BUSDECODE_LCM_RATE sets it;
+    // udpm:// URLs default to kDefaultUdpmEventsPerS.
+    static constexpr double kDefaultUdpmEventsPerS = 20000;
     double max_events_per_s = 0;
     // Where the end-of-capture drop/failure counts go.
     std::FILE* report = stderr;
     // Test hook: called by the publisher thread before each event it publishes.
     std::function<void()> before_publish;
 
-    // Defaults with BUSDECODE_LCM_QUEUE / BUSDECODE_LCM_DROP / BUSDECODE_LCM_RATE applied.
-    static LcmSinkOptions fromEnvironment();
+    // Defaults for `url` with BUSDECODE_LCM_QUEUE / BUSDECODE_LCM_DROP / BUSDECODE_LCM_RATE
+    // applied (throws InputError on a bad value).
+    static LcmSinkOptions fromEnvironment(const std::string& url);
 };
 
 // Counts of one sink, for the end report and tests.

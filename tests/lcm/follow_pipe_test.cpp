@@ -14,87 +14,14 @@
 #include <thread>
 #include <vector>
 
+#include "decode_process.h"
 #include "support/paths.h"
+#include "uart_vcd.h"
 
 namespace busdecode {
 namespace {
 
 using namespace std::chrono_literals;
-
-// A UART line (8N1, 10000 baud, 1 us timescale) sending `text`, one byte every 1.5 ms;
-// the VCD text is split after byte `split_after`, with a timestamp that moves time past
-// that byte's stop bit so the decoder can finish it before more input arrives.
-struct UartVcd {
-    std::string head, tail;
-};
-
-UartVcd uartVcd(const std::string& text, std::size_t split_after) {
-    const int bit_us = 100;
-    std::string out =
-        "$timescale 1us $end\n$scope module top $end\n$var wire 1 ! tx $end\n"
-        "$upscope $end\n$enddefinitions $end\n#0\n1!\n";
-    UartVcd v;
-    long t = 1000;
-    for (std::size_t i = 0; i < text.size(); ++i) {
-        unsigned char c = static_cast<unsigned char>(text[i]);
-        int level = 1;
-        for (int k = 0; k < 10; ++k) {
-            int bit = k == 0 ? 0 : k == 9 ? 1 : (c >> (k - 1)) & 1;
-            if (bit != level)
-                out += "#" + std::to_string(t + k * bit_us) + " " + std::to_string(bit) + "!\n";
-            level = bit;
-        }
-        t += 10 * bit_us + 500;
-        if (i + 1 == split_after) {
-            out += "#" + std::to_string(t - 400) + "\n";
-            v.head = out;
-            out.clear();
-        }
-    }
-    out += "#" + std::to_string(t) + "\n";
-    v.tail = out;
-    return v;
-}
-
-struct Child {
-    pid_t pid = -1;
-    int in = -1, out = -1;
-};
-
-Child spawnDecode(const std::vector<std::string>& args) {
-    int to_child[2], from_child[2];
-    EXPECT_EQ(::pipe(to_child), 0);
-    EXPECT_EQ(::pipe(from_child), 0);
-    std::string bin = test::binDir() + "/decode";
-    Child c;
-    c.pid = ::fork();
-    if (c.pid == 0) {
-        ::dup2(to_child[0], 0);
-        ::dup2(from_child[1], 1);
-        ::close(to_child[1]);
-        ::close(from_child[0]);
-        std::vector<char*> argv{const_cast<char*>(bin.c_str())};
-        for (const auto& a : args)
-            argv.push_back(const_cast<char*>(a.c_str()));
-        argv.push_back(nullptr);
-        ::execv(bin.c_str(), argv.data());
-        ::_exit(127);
-    }
-    ::close(to_child[0]);
-    ::close(from_child[1]);
-    c.in = to_child[1];
-    c.out = from_child[0];
-    return c;
-}
-
-void writeAll(int fd, const std::string& s) {
-    std::size_t done = 0;
-    while (done < s.size()) {
-        ssize_t n = ::write(fd, s.data() + done, s.size() - done);
-        ASSERT_GT(n, 0);
-        done += std::size_t(n);
-    }
-}
 
 // Reads what the child printed so far, waiting up to `timeout` for at least `min_lines`
 // complete lines (or end of output).
@@ -119,17 +46,18 @@ std::size_t readLines(int fd, std::string& buf, std::size_t min_lines,
 TEST(FollowPipe, EventsComeOutBeforeTheWriterFinishes) {
     const std::string text = "Hello, follow mode! The quick brown fox jumps.";
     const std::size_t split = 20;
-    UartVcd vcd = uartVcd(text, split);
+    test::UartVcd vcd = test::uartVcd(text, split);
     const std::vector<std::string> decode_args{"--proto",    "uart",     "--opt",
                                                "baud=10000", "--format", "jsonl"};
 
     std::vector<std::string> args{"-", "--follow"};
     args.insert(args.end(), decode_args.begin(), decode_args.end());
     ::signal(SIGPIPE, SIG_IGN);
-    Child c = spawnDecode(args);
+    test::DecodeProcess c = test::spawnDecode(args);
+    ASSERT_GT(c.pid, 0);
     // The first part in pieces of 97 bytes (cutting lines anywhere), with pauses.
     for (std::size_t at = 0; at < vcd.head.size(); at += 97) {
-        writeAll(c.in, vcd.head.substr(at, 97));
+        ASSERT_TRUE(test::writeAll(c.in, vcd.head.substr(at, 97)));
         std::this_thread::sleep_for(5ms);
     }
     // The writer now waits: the bytes of the first part must come out meanwhile.
@@ -138,7 +66,7 @@ TEST(FollowPipe, EventsComeOutBeforeTheWriterFinishes) {
     EXPECT_EQ(early, split) << "events decoded while the writer had not finished:\n" << out;
 
     for (std::size_t at = 0; at < vcd.tail.size(); at += 97) {
-        writeAll(c.in, vcd.tail.substr(at, 97));
+        ASSERT_TRUE(test::writeAll(c.in, vcd.tail.substr(at, 97)));
         std::this_thread::sleep_for(2ms);
     }
     ::close(c.in);

@@ -6,6 +6,7 @@
 #include <unistd.h>
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <cmath>
 #include <condition_variable>
 #include <cstdio>
@@ -406,6 +407,18 @@ TEST(LcmQueue, BlockModeWaitsAndLosesNothing) {
         EXPECT_EQ(frames[i].raw, i) << "in order";
 }
 
+TEST(LcmQueue, ARateLimitPacesThePublisher) {
+    LcmSinkOptions opt;
+    opt.max_events_per_s = 200;  // one event every 5 ms
+    MemqRun run;
+    auto started = std::chrono::steady_clock::now();
+    run.publish(manyFrames(21), opt);
+    double elapsed =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    EXPECT_GE(elapsed, 0.095) << "21 events at 200/s take at least 20 periods";
+    EXPECT_EQ(run.got.byChannel["DECODE_SSI_FRAME"].size(), 21u);
+}
+
 TEST(LcmSinkStart, BadUrlIsAClearInputError) {
     try {
         makeLcmSink("bogus://nowhere");
@@ -416,17 +429,28 @@ TEST(LcmSinkStart, BadUrlIsAClearInputError) {
     EXPECT_THROW(makeLcmSink("udpm://999.1.2.3:7667"), InputError);
 }
 
-TEST(LcmSinkStart, QueueEnvironmentIsValidated) {
+TEST(LcmSinkStart, EnvironmentIsValidated) {
     setenv("BUSDECODE_LCM_QUEUE", "many", 1);
-    EXPECT_THROW(LcmSinkOptions::fromEnvironment(), InputError);
+    EXPECT_THROW(LcmSinkOptions::fromEnvironment("memq://"), InputError);
     setenv("BUSDECODE_LCM_QUEUE", "16", 1);
     setenv("BUSDECODE_LCM_DROP", "1", 1);
-    LcmSinkOptions o = LcmSinkOptions::fromEnvironment();
+    setenv("BUSDECODE_LCM_RATE", "0", 1);
+    LcmSinkOptions o = LcmSinkOptions::fromEnvironment("");
+    EXPECT_EQ(o.max_events_per_s, 0.0) << "BUSDECODE_LCM_RATE=0 lifts the udpm pace";
     EXPECT_EQ(o.queue_capacity, 16u);
     EXPECT_TRUE(o.drop_when_full);
     unsetenv("BUSDECODE_LCM_QUEUE");
     unsetenv("BUSDECODE_LCM_DROP");
-    EXPECT_FALSE(LcmSinkOptions::fromEnvironment().drop_when_full);
+    unsetenv("BUSDECODE_LCM_RATE");
+    EXPECT_FALSE(LcmSinkOptions::fromEnvironment("memq://").drop_when_full);
+    EXPECT_EQ(LcmSinkOptions::fromEnvironment("memq://").max_events_per_s, 0.0);
+    EXPECT_EQ(LcmSinkOptions::fromEnvironment("").max_events_per_s,
+              LcmSinkOptions::kDefaultUdpmEventsPerS);
+    EXPECT_EQ(LcmSinkOptions::fromEnvironment("udpm://239.255.76.68:7668?ttl=0").max_events_per_s,
+              LcmSinkOptions::kDefaultUdpmEventsPerS);
+    setenv("BUSDECODE_LCM_RATE", "-3", 1);
+    EXPECT_THROW(LcmSinkOptions::fromEnvironment(""), InputError);
+    unsetenv("BUSDECODE_LCM_RATE");
 }
 
 TEST(LcmSinkStart, FileUrlWritesALogThatEventLogReads) {
