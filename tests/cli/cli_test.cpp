@@ -100,6 +100,9 @@ struct BadInput {
     std::string expect;  // a piece of the one-line message
 };
 
+// Readable test names in ctest output instead of the raw bytes of the parameter.
+void PrintTo(const BadInput& b, std::ostream* os) { *os << '"' << b.expect << '"'; }
+
 class CliErrors : public ::testing::TestWithParam<BadInput> {};
 
 TEST_P(CliErrors, OneLineOnStderrAndExitStatus2) {
@@ -117,7 +120,7 @@ INSTANTIATE_TEST_SUITE_P(
     ::testing::Values(
         BadInput{{"/nonexistent/cap.vcd", "--proto", "spi"}, "/nonexistent/cap.vcd"},
         BadInput{{"@", "--proto", "nosuch"}, "unknown decoder 'nosuch' (available: "},
-        BadInput{{"@", "--proto", "ssi"}, "role 'clk' is not bound"},
+        BadInput{{"@", "--proto", "ssi"}, "role 'data' is not bound"},
         BadInput{{"@", "--proto", "ssi"}, "signals: top.cs, top.sclk, top.mosi, top.miso, top.tx"},
         BadInput{{"@", "--proto", "spi", "--opt", "cpol=2"}, "option cpol=2: expected an integer from 0 to 1"},
         BadInput{{"@", "--proto", "spi", "--opt", "speed=3"}, "unknown option 'speed'"},
