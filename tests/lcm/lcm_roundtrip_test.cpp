@@ -49,7 +49,10 @@ namespace {
 
 using namespace std::chrono_literals;
 
-constexpr const char* kUrl = "udpm://239.255.76.67:7667?ttl=0";
+constexpr const char* kDefaultUrl = "udpm://239.255.76.67:7667?ttl=0";
+// The URL the child uses: LCM's default in a private namespace; on the host's network a
+// port of this process's own, so two tests running at once do not see each other.
+std::string g_url = kDefaultUrl;
 // UDP has no flow control. The logger's LCM (1.3.1) moves datagrams from its socket into
 // a 200 KB ring and dispatches from there; when the logger is starved of CPU (a busy
 // 2-core machine) the ring overflows. So: a big socket buffer, and the decoder paced to
@@ -173,8 +176,10 @@ int startLogging(const std::string& dir, Logging& g) {
             return 20;
         }
     }
-    writeText(dir + "/network.txt", network);
-    g.probe = std::make_unique<lcm::LCM>(kUrl);
+    if (network == "host")
+        g_url = "udpm://239.255.76.67:" + std::to_string(7700 + ::getpid() % 200) + "?ttl=0";
+    writeText(dir + "/network.txt", network + " " + g_url);
+    g.probe = std::make_unique<lcm::LCM>(g_url);
     if (!g.probe->good()) {
         writeText(dir + "/setup.txt", "no multicast route (and no network namespace: not root?)");
         return 21;
@@ -182,7 +187,7 @@ int startLogging(const std::string& dir, Logging& g) {
     g.log = dir + "/decode.lcmlog";
     g.logger = ::fork();
     if (g.logger == 0) {
-        std::string url_arg = std::string("--lcm-url=") + kUrl + kLoggerUrlOptions;
+        std::string url_arg = "--lcm-url=" + g_url + kLoggerUrlOptions;
         ::execlp("lcm-logger", "lcm-logger", "-f", "-q", "--flush-interval=20", url_arg.c_str(),
                  g.log.c_str(), (char*)nullptr);
         ::_exit(127);
@@ -229,8 +234,8 @@ int runChild(const std::string& dir) {
     if (monitor == 0) {
         std::freopen((dir + "/monitor.txt").c_str(), "w", stdout);
         std::freopen((dir + "/monitor_err.txt").c_str(), "w", stderr);
-        ::execl(bin.c_str(), bin.c_str(), "monitor", "--once", "--duration", "60", "--lcm", kUrl,
-                (char*)nullptr);
+        ::execl(bin.c_str(), bin.c_str(), "monitor", "--once", "--duration", "60", "--lcm",
+                g_url.c_str(), (char*)nullptr);
         ::_exit(127);
     }
     for (int i = 0; i < 400 && !fileContains(dir + "/monitor_err.txt", "listening"); ++i)
@@ -244,7 +249,7 @@ int runChild(const std::string& dir) {
         std::string cmd = test::shellQuote(bin);
         for (const auto& a : all[i].args)
             cmd += " " + test::shellQuote(a);
-        cmd += " --format jsonl --lcm " + test::shellQuote(kUrl);
+        cmd += " --format jsonl --lcm " + test::shellQuote(g_url);
         std::string base = dir + "/case" + std::to_string(i);
         int st = std::system((cmd + " > " + base + ".jsonl 2> " + base + ".err").c_str());
         writeText(base + ".status", std::to_string(WIFEXITED(st) ? WEXITSTATUS(st) : -1));
@@ -273,7 +278,7 @@ int runLiveChild(const std::string& dir) {
     ::setenv("BUSDECODE_LCM_RATE", kRate, 1);
     test::UartVcd vcd = test::uartVcd(kLiveText, kLiveSplit);
     test::DecodeProcess d = test::spawnDecode({"-", "--follow", "--proto", "uart", "--opt",
-                                               "baud=10000", "--format", "jsonl", "--lcm", kUrl});
+                                               "baud=10000", "--format", "jsonl", "--lcm", g_url});
     if (d.pid <= 0 || !test::writeAll(d.in, vcd.head)) return 30;
     int early = 0;
     for (int i = 0; i < 1000 && early < int(kLiveSplit); ++i) {
