@@ -72,7 +72,8 @@ void BisscControlReassembler::push(const ControlBits& frame) {
 
     if (frame.cdm < 0 || frame.cds < 0) {
         // A frame without both control bits breaks the access: the slave's and the
-        // master's view of it can no longer be followed.
+        // master's view of it can no longer be followed. The event spans that frame too.
+        frames_.push_back(frame);
         if (phase_ == Phase::Command)
             emitCommand(false, "abandoned");
         else

@@ -430,3 +430,34 @@ TEST(BisscControlVectors, V20toV23ThroughGeneratedFrames) {
         EXPECT_TRUE(regs[0].errors.empty());
     }
 }
+
+TEST(BisscControl, BrokenFrameAbandonsTheAccessAndTheNextOneDecodes) {
+    ControlItemSpec rd;
+    rd.address = 0x7E;
+    rd.data = {0x12};
+    ControlItemSpec rd2 = rd;
+    rd2.address = 0x42;
+    rd2.data = {0xA5};
+    const ControlSequence seq = buildControlSequence({rd, rd2});
+    BisscGenConfig cfg;
+    cfg.clock_hz = 1e6;
+    BisscGenerator gen(cfg);
+    const std::size_t broken = 14 + 24;  // inside the first access's data
+    for (std::size_t i = 0; i < seq.cdm.size(); ++i) {
+        BisscFrameSpec f;
+        f.cdm = seq.cdm[i];
+        f.cds = seq.cds[i];
+        if (i == broken) f.truncate_after = 10;
+        gen.addFrame(f);
+    }
+    const auto regs = ofType(decodeBissc(gen.build(), {}), "register");
+    ASSERT_EQ(regs.size(), 2u);
+    EXPECT_TRUE(regs[0].hasError("abandoned"));
+    EXPECT_EQ(intField(regs[0], "address"), 0x7E);
+    EXPECT_TRUE(nullField(regs[0], "data"));
+    EXPECT_FALSE(std::get<bool>(*regs[0].get("crc_ok")));
+    EXPECT_EQ(regs[0].end, gen.frames()[broken].end);
+    EXPECT_EQ(intField(regs[1], "address"), 0x42);
+    EXPECT_EQ(intField(regs[1], "data"), 0xA5);
+    EXPECT_TRUE(regs[1].errors.empty());
+}
