@@ -111,8 +111,10 @@ std::vector<CaptureVerdict> verifyCaptures(
             cv.notify_one();
         }
     };
-    const std::size_t threads =
-        std::min<std::size_t>(std::size_t(std::max(batch.jobs, 1)), std::max<std::size_t>(n, 1));
+    // jobs <= 0: one per core.
+    const std::size_t wanted = batch.jobs > 0 ? std::size_t(batch.jobs)
+                                              : std::max(1u, std::thread::hardware_concurrency());
+    const std::size_t threads = std::min(wanted, std::max<std::size_t>(n, 1));
     std::vector<std::thread> pool;
     for (std::size_t t = 0; t < threads; ++t)
         pool.emplace_back(worker);

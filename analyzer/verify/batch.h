@@ -12,7 +12,7 @@
 namespace busdecode {
 
 struct BatchOptions {
-    int jobs = 1;
+    int jobs = 1;           // captures at a time; 0 = one per core
     bool progress = false;  // draw a progress bar on stderr
 };
 
