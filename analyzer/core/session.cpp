@@ -133,7 +133,9 @@ struct Session::Impl : EventSink {
             window.setPending(nullptr);
         }
         for (auto* s : *sinks) s->onEvent(p.e, *facts);
-        window.remember(p.e, 4096);
+        // The window serves correlation across decoders: with one decoder there is no
+        // other decoder's event to find, so skip the copy of every event.
+        if (slots.size() > 1) window.remember(p.e, 4096);
     }
 
     void release(bool all) {
