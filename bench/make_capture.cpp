@@ -124,8 +124,16 @@ void repeatCsv(const std::string& chunk_file, std::uint64_t target, Output& out)
     }
     out.put(std::string_view(text).substr(0, pos));
     const std::string_view body = std::string_view(text).substr(pos);
-    while (out.bytes() < target)
-        out.put(body);
+    // The writer includes the sample at the chunk's end, which is the next chunk's first:
+    // every repetition but the last leaves it out.
+    std::string_view joined = body;
+    if (joined.size() > 1) {
+        const auto nl = joined.rfind('\n', joined.size() - 2);
+        if (nl != std::string_view::npos) joined = joined.substr(0, nl + 1);
+    }
+    while (out.bytes() + body.size() < target)
+        out.put(joined);
+    out.put(body);
 }
 
 }  // namespace
