@@ -72,7 +72,7 @@ private:
     tmc8100::EncoderProtocol protocol_ = tmc8100::EncoderProtocol::Unknown;
     bool protocol_fixed_ = false;
 
-    static constexpr std::size_t kMaxWaiting = 16;
+    static constexpr std::size_t kMaxWaiting = 4;
     bool miso_bound_ = false;
     bool avail_bound_ = false;
     bool avail_level_ = false;

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "core/gray.h"
+#include "core/registry.h"
 #include "core/session.h"
 #include "scenario_expect.h"
 
@@ -294,4 +295,50 @@ TEST(Tmc8100Faults, ShortDatagramIsReportedNotInterpreted) {
     ASSERT_EQ(cut.size(), 2u);
     EXPECT_EQ(show(*cut[1].get("name")), "\"unknown\"");
     EXPECT_EQ(cut[1].errors, std::vector<std::string>{"short_frame"});
+}
+
+TEST(Tmc8100Faults, HostThatNeverReadsDoesNotHoldTheOutputBack) {
+    // Ten read commands and no reads: each is reported incomplete, the later ones as sent
+    // with replies pending, and the waiting queue stays short (at most four commands), so
+    // the session can release events while the capture goes on.
+    Tmc8100Scenario sc;
+    for (int i = 0; i < 10; ++i)
+        sc.transfer(0x80000000u, 0);
+    auto events = only(decode(sc), "tmc8100");
+    ASSERT_EQ(events.size(), 20u);
+    int reads = 0, pending = 0;
+    for (std::size_t i = 0; i < events.size(); ++i) {
+        if (events[i].type == "encoder_read") {
+            ++reads;
+            EXPECT_EQ(events[i].errors, std::vector<std::string>{"incomplete"});
+            // Each read is reported right after its own command (time order by start).
+            EXPECT_EQ(events[i - 1].type, "command");
+            EXPECT_EQ(events[i - 1].start, events[i].start);
+        } else if (events[i].hasError("replies_pending")) {
+            ++pending;
+        }
+    }
+    EXPECT_EQ(reads, 10);
+    EXPECT_EQ(pending, 9);
+
+    // Fed directly, the decoder's watermark (what the session may release up to) trails
+    // the last command by at most four commands, not back to the first.
+    registerDecoders();
+    auto dec = Registry::instance().create("tmc8100", {});
+    struct Sink : EventSink {
+        void onEvent(Event&&) override {}
+    } sink;
+    Waveform w = sc.build();
+    DecoderContext ctx;
+    ctx.timebase = w.timebase;
+    ctx.sink = &sink;
+    ctx.initial_levels = {w.initial[0], w.initial[1], w.initial[2], w.initial[3], w.initial[4]};
+    dec->start(ctx);
+    dec->setSink(&sink);
+    for (const Edge& e : w.edges)
+        if (e.line < 5) dec->edge(e.t, int(e.line), e.level != 0);
+    const Tick now = w.end;
+    dec->advance(now);
+    ScenarioExpect x{sc};
+    EXPECT_GE(dec->watermark(now), x.start(6));
 }
