@@ -76,7 +76,7 @@ Parsed parse(const QStringList& argv, bool verify) {
     QCommandLineOption list("list", "list decoders, roles, options and defaults");
     QCommandLineOption rules("rules", "verify: rules file (TOML)", "FILE");
     QCommandLineOption junit("junit", "verify: write JUnit XML", "FILE");
-    QCommandLineOption jobs("jobs", "verify: captures checked in parallel", "N", "1");
+    QCommandLineOption jobs("jobs", "verify: captures checked in parallel (0 = one per core)", "N", "0");
     QCommandLineOption help({"h", "help"}, "show this help");
     QCommandLineOption version("version", "show the version");
     for (auto* o : {&proto, &map, &opt, &format, &report, &lcm, &rate, &follow, &realtime, &list, &rules,
@@ -117,7 +117,7 @@ Parsed parse(const QStringList& argv, bool verify) {
     a.rules = p.value(rules).toStdString();
     a.junit = p.value(junit).toStdString();
     auto j = parseInteger(p.value(jobs).toStdString());
-    if (!j || *j < 1 || *j > 256) throw InputError("--jobs: expected a whole number from 1 to 256");
+    if (!j || *j < 0 || *j > 256) throw InputError("--jobs: expected a whole number from 0 (all cores) to 256");
     a.jobs = int(*j);
     if (!verify && (!a.rules.empty() || !a.junit.empty()))
         throw InputError("--rules and --junit belong to 'decode verify'");

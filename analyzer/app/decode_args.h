@@ -25,7 +25,7 @@ struct DecodeArgs {
     // verify only
     std::string rules;                // --rules FILE
     std::string junit;                // --junit FILE
-    int jobs = 1;                     // --jobs N
+    int jobs = 0;                     // --jobs N (0 = one per core)
 };
 
 // Turns --proto/--map/--opt into one request per decoder. An unscoped key applies to

@@ -14,50 +14,12 @@
 #include <fmt/ranges.h>
 #include <unistd.h>
 
+#include "core/atomic_file.h"
 #include "core/options.h"
 
 namespace busdecode {
 
 namespace {
-
-// A buffered FILE on `path.tmp-XXXXXX`; commit() renames it over `path`.
-class AtomicFile {
-public:
-    explicit AtomicFile(const std::string& path) : path_(path), tmp_(path + ".tmp-XXXXXX") {
-        int fd = mkstemp(tmp_.data());
-        if (fd < 0)
-            throw InputError(fmt::format("{}: cannot write: {}", path, std::strerror(errno)));
-        f_ = fdopen(fd, "w");
-        if (!f_) {
-            close(fd);
-            unlink(tmp_.c_str());
-            throw InputError(fmt::format("{}: cannot write: {}", path, std::strerror(errno)));
-        }
-        std::setvbuf(f_, nullptr, _IOFBF, 1 << 20);
-    }
-    ~AtomicFile() {
-        if (f_) {
-            std::fclose(f_);
-            unlink(tmp_.c_str());
-        }
-    }
-    std::FILE* f() { return f_; }
-    void put(std::string_view s) { std::fwrite(s.data(), 1, s.size(), f_); }
-    void commit() {
-        const bool ok = std::ferror(f_) == 0;
-        const bool closed = std::fclose(f_) == 0;
-        f_ = nullptr;
-        if (!ok || !closed || std::rename(tmp_.c_str(), path_.c_str()) != 0) {
-            const std::string why = std::strerror(errno);
-            unlink(tmp_.c_str());
-            throw InputError(fmt::format("{}: cannot write: {}", path_, why));
-        }
-    }
-
-private:
-    std::string path_, tmp_;
-    std::FILE* f_ = nullptr;
-};
 
 // VCD identifier codes: `!`..`~`, then two characters, and so on.
 std::string vcdId(std::size_t i) {

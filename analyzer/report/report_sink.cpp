@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cctype>
 
-#include "atomic_file.h"
+#include "core/atomic_file.h"
 #include "capture_stats.h"
 #include "html_report.h"
 #include "text_report.h"

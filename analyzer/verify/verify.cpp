@@ -9,7 +9,7 @@
 #include "batch.h"
 #include "core/options.h"
 #include "core/registry.h"
-#include "report/atomic_file.h"
+#include "core/atomic_file.h"
 #include "rules.h"
 
 namespace busdecode {

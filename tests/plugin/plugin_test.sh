@@ -19,5 +19,6 @@ if [ "$out" != "$expected" ]; then
   echo "unexpected output; expected:"; echo "$expected"; exit 1
 fi
 # --list shows the plugin's declaration
-BUSDECODE_PLUGIN_PATH="$tmp/pulse" "$tmp/prefix/bin/decode" --list | grep -q "^pulse  Pulse widths"
+list=$(BUSDECODE_PLUGIN_PATH="$tmp/pulse" "$tmp/prefix/bin/decode" --list)
+grep -q "^pulse  Pulse widths" <<<"$list" || { echo "--list does not show the plugin"; exit 1; }
 echo "plugin test passed"

@@ -5,7 +5,7 @@
 #include <filesystem>
 #include <regex>
 
-#include "report/atomic_file.h"
+#include "core/atomic_file.h"
 #include "report/capture_stats.h"
 #include "report/frame_layout.h"
 #include "report/html_report.h"
