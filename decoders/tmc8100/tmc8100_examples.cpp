@@ -72,6 +72,33 @@ Tmc8100Example faults() {
         sc.build()};
 }
 
+Tmc8100Example biss() {
+    // The BiSS demo firmware with a 13-bit BiSS-C encoder: protocol "BISS", then reads
+    // with an encoder error bit, a CRC corrupted on the cable and an answer that differs
+    // from the cable.
+    Tmc8100Scenario sc;
+    sc.getProtocol("BISS");
+    sc.getVersion(1, 0);
+    std::vector<Tmc8100Scenario::BissRead> reads(5);
+    reads[0].position = 0x0A5A;
+    reads[1].position = 0x0A5B;
+    reads[2].position = 0x1FFF;
+    reads[2].ne = 0;
+    reads[3].position = 0x0100;
+    reads[3].corrupt_crc = true;
+    reads[4].position = 0x0101;
+    reads[4].reported_raw = 0x0100;
+    for (const auto& r : reads) {
+        sc.readEncoderBiss(r);
+        sc.pause(25000);
+    }
+    return {"tmc8100_biss_dialogue.vcd",
+            "TMC8100 BiSS demo: 0xFE -> \"BISS\", 13-bit BiSS-C reads with nE, a corrupted CRC "
+            "and an answer that differs from the cable (MA/SLO on clock, data)",
+            {{"tmc8100", {}, {}}, {"bissc", {}, {{"bits", "13"}}}},
+            sc.build()};
+}
+
 Tmc8100Example bootloader() {
     // The demo script's download: version, chip id, revision (each asked twice), program
     // writes, verify reads, start, then the application answers.
@@ -110,7 +137,7 @@ std::string decodeCommand(const std::string& file, const std::vector<DecoderRequ
 }
 
 std::vector<Tmc8100Example> tmc8100Examples() {
-    return {dialogue(), faults(), bootloader()};
+    return {dialogue(), faults(), biss(), bootloader()};
 }
 
 }  // namespace busdecode

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "core/crc.h"
 #include "core/gray.h"
 
 namespace busdecode {
@@ -52,6 +53,56 @@ void Tmc8100Scenario::ssiFrame(std::uint32_t word, int bits) {
     const double last_rise = t0 + bits * timing_.ssi_period_ns + h;
     wb_.setNs(kEncData, last_rise + timing_.monoflop_ns, true);
     now_ = last_rise;
+}
+
+int Tmc8100Scenario::bissFrame(std::uint32_t data, int bits, int ne, int nw,
+                               std::uint32_t crc_xor) {
+    // Slot k is the SL level after MA rising edge k (1-based): LAT 1, ACK 0, start 1,
+    // CDS 0, data MSB first, nE, nW, CRC6 as sent, stop 0.
+    const std::uint64_t payload =
+        (std::uint64_t(data) << 2) | (std::uint64_t(ne & 1) << 1) | (nw & 1);
+    const std::uint32_t crc = bissCrc6(payload, bits + 2) ^ crc_xor;
+    std::vector<bool> slots = {true, false, true, false};
+    for (int i = bits + 1; i >= 0; --i)
+        slots.push_back(((payload >> i) & 1u) != 0);
+    for (int i = 5; i >= 0; --i)
+        slots.push_back(((crc >> i) & 1u) != 0);
+    slots.push_back(false);
+    const double h = timing_.ssi_period_ns / 2;
+    const double t0 = now_;
+    for (std::size_t k = 0; k < slots.size(); ++k) {
+        const double fall = t0 + double(k) * timing_.ssi_period_ns;
+        wb_.setNs(kEncClock, fall, false);
+        wb_.setNs(kEncClock, fall + h, true);
+        wb_.setNs(kEncData, fall + h + timing_.ssi_data_delay_ns, slots[k]);
+    }
+    const double last_rise = t0 + double(slots.size() - 1) * timing_.ssi_period_ns + h;
+    wb_.setNs(kEncData, last_rise + timing_.monoflop_ns, true);  // the slave's timeout
+    now_ = last_rise;
+    return int(slots.size()) * 2;
+}
+
+void Tmc8100Scenario::readEncoderBiss(const BissRead& r) {
+    transfer(0x80000000u, 0);
+    now_ += timing_.command_to_ssi_ns - timing_.transfer_gap_ns;
+    const int bits = 13;
+    const std::uint16_t cable = r.position & 0x1FFF;
+    const std::uint64_t payload =
+        (std::uint64_t(cable) << 2) | (std::uint64_t(r.ne & 1) << 1) | (r.nw & 1);
+    const std::uint32_t crc_ok = bissCrc6(payload, bits + 2);
+    // A corrupted CRC on the cable: the firmware receives it and calculates the right one.
+    const std::uint32_t crc_sent = r.corrupt_crc ? crc_ok ^ 1u : crc_ok;
+    const int edges = bissFrame(cable, bits, r.ne, r.nw, crc_sent ^ crc_ok);
+    const std::uint16_t raw = r.reported_raw.value_or(cable);
+    const std::uint16_t binary = r.reported_binary.value_or(std::uint16_t(grayToBinary(raw)));
+    now_ += timing_.ssi_to_avail_ns;
+    setAvail(true);
+    now_ += timing_.avail_to_read_ns;
+    const std::uint32_t flags = (std::uint32_t(r.ne & 1) << 1) | std::uint32_t(r.nw & 1);
+    reply({0x10000000u | raw, 0x20000000u | binary,
+           0x70000000u | (flags << 16) | (crc_sent << 8) | crc_ok,
+           0x71000000u | std::uint32_t(edges)},
+          true, std::nullopt);
 }
 
 void Tmc8100Scenario::reply(const std::vector<std::uint32_t>& words, bool last_drops_avail,

@@ -49,6 +49,12 @@ public:
     // One SSI read of `bits` bits (bits + 1 clocks), data low for the monoflop time after.
     void ssiFrame(std::uint32_t word, int bits = 25);
 
+    // One BiSS-C frame of the BiSS demo (PROTOCOLS.md §4.2): MA clocks LAT, ACK, start,
+    // CDS, `bits` data bits, nE, nW, CRC6 (inverted) and stop; SL answers after each rising
+    // edge, stays low for the timeout, then idles high. crc_xor corrupts the CRC sent.
+    // Returns the MA edges clocked.
+    int bissFrame(std::uint32_t data, int bits, int ne, int nw, std::uint32_t crc_xor = 0);
+
     // The SSI demo's encoder word: 3 flag bits, 6 multi-turn bits, 16 single-turn bits
     // Gray coded.
     static std::uint32_t ssiWord(std::uint8_t flags3, std::uint8_t mt6, std::uint16_t st_binary);
@@ -64,6 +70,16 @@ public:
     };
     // 0x80 command, SSI frame, GPIO6, dummy reads of 0x10 / 0x20 / 0x70.
     void readEncoder(const EncoderRead& r);
+    // The BiSS demo's read: 0x80, BiSS-C frame, GPIO6, dummy reads of 0x10 (raw), 0x20
+    // (the firmware's Gray decode), 0x70 (nE:nW, CRC received, CRC calculated) and 0x71 (edges).
+    struct BissRead {
+        std::uint16_t position = 0;                    // 13-bit single-turn (Gray) on the cable
+        int ne = 1, nw = 1;                            // as sent (1 = no error / warning)
+        std::optional<std::uint16_t> reported_raw;     // default: as received
+        std::optional<std::uint16_t> reported_binary;  // default: Gray decode of the raw value
+        bool corrupt_crc = false;                      // the cable carries a wrong CRC
+    };
+    void readEncoderBiss(const BissRead& r);
     // 0xFF -> FF 00 major minor; 0xFE -> four ASCII bytes ("SSI ").
     void getVersion(std::uint8_t major = 1, std::uint8_t minor = 0);
     void getProtocol(const std::string& text = "SSI ");

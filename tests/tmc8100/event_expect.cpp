@@ -11,6 +11,11 @@ namespace busdecode {
 std::shared_ptr<const DecoderFactory> makeSsiFactory();
 }
 #endif
+#ifdef BUSDECODE_HAVE_BISSC
+namespace busdecode {
+std::shared_ptr<const DecoderFactory> makeBisscFactory();
+}
+#endif
 
 namespace busdecode::test {
 
@@ -75,6 +80,9 @@ void registerDecoders() {
     Registry::instance().add(makeTmc8100Factory());
 #ifdef BUSDECODE_HAVE_SSI
     Registry::instance().add(makeSsiFactory());
+#endif
+#ifdef BUSDECODE_HAVE_BISSC
+    Registry::instance().add(makeBisscFactory());
 #endif
 }
 

@@ -93,3 +93,58 @@ TEST(Tmc8100Biss, EncoderReadsAgreeOrNotWithTheBisscFrame) {
     EXPECT_EQ(show(*replies[1].get("meaning")), "\"raw_position\"");
     EXPECT_EQ(show(*replies[3].get("meaning")), "\"status_crc\"");
 }
+
+TEST(Tmc8100Biss, GeneratorBissDemoEveryEncoderReadExact) {
+    // The scenario generator's own BiSS-C side (PROTOCOLS.md §4.2 slot layout), decoded by
+    // bissc in the same pass.
+    registerDecoders();
+    Registry::instance().add(makeBisscFactory());
+    Tmc8100Scenario sc;
+    sc.getProtocol("BISS");
+    std::vector<Tmc8100Scenario::BissRead> reads(4);
+    reads[0].position = 0x0A5A;
+    reads[0].nw = 0;
+    reads[1].position = 0x1FFF;
+    reads[2].position = 0x0100;
+    reads[2].corrupt_crc = true;
+    reads[3].position = 0x0101;
+    reads[3].reported_raw = 0x0100;
+    for (const auto& r : reads) {
+        sc.readEncoderBiss(r);
+        sc.pause(25000);
+    }
+    auto events = decodeWaveform(sc.build(), {DecoderRequest{"tmc8100", {}, {}},
+                                              DecoderRequest{"bissc", {}, {{"bits", "13"}}}});
+    auto frames = only(events, "bissc", "frame");
+    ASSERT_EQ(frames.size(), 4u);
+    EXPECT_EQ(show(*frames[0].get("crc_ok")), "true");
+    EXPECT_EQ(show(*frames[2].get("crc_ok")), "false");
+    ScenarioExpect x{sc};
+    const std::uint32_t crc0 = bissCrc6((0x0A5Aull << 2) | 0b10, 15);  // V6: 0x2B
+    ASSERT_EQ(crc0, 0x2Bu);
+    const std::uint32_t crc1 = bissCrc6((0x1FFFull << 2) | 0b11, 15);
+    const std::uint32_t crc2 = bissCrc6((0x0100ull << 2) | 0b11, 15);
+    const std::uint32_t crc3 = bissCrc6((0x0101ull << 2) | 0b11, 15);
+    auto biss = [&](std::size_t c, std::int64_t raw, int ne, int nw, std::uint32_t rx,
+                    std::uint32_t calc, bool match, std::int64_t cable,
+                    std::vector<std::string> errors) {
+        return x.read(c, c + 4, raw, std::int64_t(grayToBinary(raw)), (ne << 1) | nw, true,
+                      {{"nE", I(ne)},
+                       {"nW", I(nw)},
+                       {"crc_rx", I(rx)},
+                       {"crc_calc", I(calc)},
+                       {"crc_ok", Value(rx == calc)},
+                       {"clock_edges", I(2 * (4 + 13 + 2 + 6 + 1))},
+                       {"ssi_match", Value(match)},
+                       {"encoder_st", I(cable)}},
+                      std::move(errors));
+    };
+    const std::vector<Expected> want = {
+        biss(2, 0x0A5A, 1, 0, crc0, crc0, true, 0x0A5A, {}),
+        biss(7, 0x1FFF, 1, 1, crc1, crc1, true, 0x1FFF, {}),
+        biss(12, 0x0100, 1, 1, crc2 ^ 1, crc2, true, 0x0100, {"crc"}),
+        biss(17, 0x0100, 1, 1, crc3, crc3, false, 0x0101, {"ssi_mismatch"}),
+    };
+    std::vector<Event> got = only(events, "tmc8100", "encoder_read");
+    expectEvents(got, "tmc8100", want);
+}

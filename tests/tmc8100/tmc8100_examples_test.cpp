@@ -5,6 +5,7 @@
 #include <filesystem>
 
 #include "capture/capture_reader.h"
+#include "core/registry.h"
 #include "core/session.h"
 #include "event_expect.h"
 #include "support/paths.h"
@@ -33,9 +34,13 @@ std::string describe(const Event& e) {
 TEST(Tmc8100Examples, CommittedCapturesDecodeLikeTheTruth) {
     registerDecoders();
     const auto examples = tmc8100Examples();
-    ASSERT_EQ(examples.size(), 3u);
+    ASSERT_EQ(examples.size(), 4u);
     for (const auto& ex : examples) {
         SCOPED_TRACE(ex.file);
+        bool decodable = true;
+        for (const auto& r : ex.requests)
+            decodable &= Registry::instance().find(r.proto) != nullptr;
+        if (!decodable) continue;  // an encoder decoder this build does not have
         const std::string path = sourceDir() + "/captures/" + ex.file;
         ASSERT_TRUE(std::filesystem::exists(path)) << "run make_tmc8100_examples captures";
         auto truth = decodeWaveform(ex.wave, ex.requests);
