@@ -367,6 +367,9 @@ void Tmc8100Decoder::complete(Waiting& w, bool incomplete) {
 
     e.wants_correlation = true;
     corr_window_[w.start] = w.first_reply_start == kNoTick ? e.end : w.first_reply_start;
+    // correlate() consumes these in order; bounded in case a host never calls it.
+    while (corr_window_.size() > 256)
+        corr_window_.erase(corr_window_.begin());
     emit(std::move(e));
 }
 
