@@ -25,6 +25,17 @@ struct OptionSpec {
     bool allow_auto = false;  // Int/Float: also accepts the word "auto"
 };
 
+// Builders, so declarations read as one line per option.
+OptionSpec intOption(std::string key, std::string def, double min, double max, std::string help,
+                     bool allow_auto = false);
+OptionSpec numberOption(std::string key, std::string def, double min, double max, std::string help,
+                        bool allow_auto = false);
+OptionSpec boolOption(std::string key, std::string def, std::string help);
+// The default is the first choice unless `def` names another.
+OptionSpec choiceOption(std::string key, std::vector<std::string> choices, std::string help,
+                        std::string def = "");
+OptionSpec textOption(std::string key, std::string def, std::string help);
+
 struct EventTypeSpec {
     std::string type;
     std::string help;

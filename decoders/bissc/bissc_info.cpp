@@ -8,19 +8,6 @@ namespace busdecode {
 
 namespace {
 
-OptionSpec intOption(std::string key, std::string def, double min, double max, std::string help,
-                     bool allow_auto = false) {
-    OptionSpec o;
-    o.key = std::move(key);
-    o.kind = OptionSpec::Kind::Int;
-    o.default_value = std::move(def);
-    o.min = min;
-    o.max = max;
-    o.help = std::move(help);
-    o.allow_auto = allow_auto;
-    return o;
-}
-
 DecoderInfo bisscInfo() {
     DecoderInfo info;
     info.id = "bissc";
@@ -32,18 +19,6 @@ DecoderInfo bisscInfo() {
         {"ma", true, {"clk", "clock", "mo"}, "master clock MA (as seen at the master)"},
         {"sl", true, {"slo", "data"}, "slave data SL (as seen at the master)"},
     };
-    OptionSpec timeout;
-    timeout.key = "timeout_min_us";
-    timeout.kind = OptionSpec::Kind::Float;
-    timeout.default_value = "0";
-    timeout.min = 0;
-    timeout.help =
-        "flag timeout_short when SL rises sooner than this after the last MA rise (0: off)";
-    OptionSpec invert;
-    invert.key = "crc_invert";
-    invert.kind = OptionSpec::Kind::Bool;
-    invert.default_value = "1";
-    invert.help = "the CRC is sent inverted (BiSS); 0 for encoders that send the plain remainder";
     info.options = {
         intOption("bits", "26", 0, 64, "data bits between CDS and nE (position, MT+ST)"),
         intOption("st_bits", "auto", 0, 64,
@@ -54,8 +29,11 @@ DecoderInfo bisscInfo() {
         intOption("crc_bits", "auto", 0, 32, "CRC width (auto: from crc_poly; 0: frame has no CRC)",
                   true),
         intOption("crc_init", "0", 0, 0xFFFFFFFF, "CRC start value"),
-        invert,
-        timeout,
+        boolOption("crc_invert", "1",
+                   "the CRC is sent inverted (BiSS); 0 for encoders that send the plain remainder"),
+        numberOption(
+            "timeout_min_us", "0", 0, 1e300,
+            "flag timeout_short when SL rises sooner than this after the last MA rise (0: off)"),
     };
     info.events = {
         {"frame",

@@ -11,50 +11,6 @@ namespace busdecode {
 
 namespace {
 
-OptionSpec intOpt(std::string key, std::string def, double min, double max, std::string help,
-                  bool allow_auto = false) {
-    OptionSpec o;
-    o.allow_auto = allow_auto;
-    o.key = std::move(key);
-    o.kind = OptionSpec::Kind::Int;
-    o.default_value = std::move(def);
-    o.min = min;
-    o.max = max;
-    o.help = std::move(help);
-    return o;
-}
-
-OptionSpec floatOpt(std::string key, std::string def, double min, std::string help,
-                    bool allow_auto = false) {
-    OptionSpec o;
-    o.key = std::move(key);
-    o.kind = OptionSpec::Kind::Float;
-    o.default_value = std::move(def);
-    o.min = min;
-    o.help = std::move(help);
-    o.allow_auto = allow_auto;
-    return o;
-}
-
-OptionSpec boolOpt(std::string key, std::string def, std::string help) {
-    OptionSpec o;
-    o.key = std::move(key);
-    o.kind = OptionSpec::Kind::Bool;
-    o.default_value = std::move(def);
-    o.help = std::move(help);
-    return o;
-}
-
-OptionSpec choiceOpt(std::string key, std::vector<std::string> choices, std::string help) {
-    OptionSpec o;
-    o.key = std::move(key);
-    o.kind = OptionSpec::Kind::Choice;
-    o.default_value = choices.front();
-    o.choices = std::move(choices);
-    o.help = std::move(help);
-    return o;
-}
-
 DecoderInfo makeInfo() {
     DecoderInfo d;
     d.id = "ssi";
@@ -74,31 +30,34 @@ DecoderInfo makeInfo() {
         "names for bits above the position field, comma separated, lowest first (empty name "
         "skips a bit); NAME@N names raw bit N, e.g. out_of_range@23,low_quality@22";
     d.options = {
-        intOpt("bits", "25", 1, 64, "bits per word (the lead bit included)"),
-        intOpt("st_bits", "16", 0, 64, "single-turn field width (LSB aligned)"),
-        intOpt("mt_bits", "0", 0, 64, "multi-turn field width (above single-turn)"),
-        boolOpt("gray", "0", "the position field is Gray coded"),
-        floatOpt("tm_us", "20", 0,
-                 "nominal monoflop time: a burst starting while data is still low is a re-read "
-                 "of the same word"),
-        boolOpt("lead", "0", "count the level sampled at the first sampling edge as a bit"),
-        boolOpt("lsb_first", "0", "the first bit on the wire is raw bit 0"),
-        choiceOpt("sample_edge", {"falling", "rising"}, "clock edge on which the master samples"),
-        choiceOpt("parity", {"none", "even", "odd"},
-                  "parity over the whole word (even: the number of ones is even)"),
-        choiceOpt("parity_pos", {"lsb", "msb"}, "where the parity bit sits in the word"),
-        intOpt("pos_shift", "auto", 0, 63,
-               "bits below the position field (auto: 1 with parity at the LSB, else 0)", true),
+        intOption("bits", "25", 1, 64, "bits per word (the lead bit included)"),
+        intOption("st_bits", "16", 0, 64, "single-turn field width (LSB aligned)"),
+        intOption("mt_bits", "0", 0, 64, "multi-turn field width (above single-turn)"),
+        boolOption("gray", "0", "the position field is Gray coded"),
+        numberOption("tm_us", "20", 0, 1e300,
+                     "nominal monoflop time: a burst starting while data is still low is a re-read "
+                     "of the same word"),
+        boolOption("lead", "0", "count the level sampled at the first sampling edge as a bit"),
+        boolOption("lsb_first", "0", "the first bit on the wire is raw bit 0"),
+        choiceOption("sample_edge", {"falling", "rising"},
+                     "clock edge on which the master samples"),
+        choiceOption("parity", {"none", "even", "odd"},
+                     "parity over the whole word (even: the number of ones is even)"),
+        choiceOption("parity_pos", {"lsb", "msb"}, "where the parity bit sits in the word"),
+        intOption("pos_shift", "auto", 0, 63,
+                  "bits below the position field (auto: 1 with parity at the LSB, else 0)", true),
         status,
-        floatOpt("delay_ns", "0", 0,
-                 "sample this long after each sampling edge; auto: the measured data delay", true),
-        intOpt("ring_gap", "1", 0, 8, "zero bits between repeats of multiple transmission"),
-        floatOpt("clock_min_hz", "50e3", 0, "lowest allowed clock (else clock_range)"),
-        floatOpt("clock_max_hz", "2e6", 0, "highest allowed clock (else clock_range)"),
-        floatOpt("tm_min_us", "auto", 0, "shortest allowed tm (auto: tm_us/2)", true),
-        floatOpt("tm_max_us", "auto", 0, "longest allowed tm (auto: 2*tm_us)", true),
-        floatOpt("gap_bits", "3", 1.0, "the clock idle for this many clock periods ends a frame"),
-        boolOpt("summary", "1", "emit a summary event (tm min/median/max...) at the end"),
+        numberOption("delay_ns", "0", 0, 1e300,
+                     "sample this long after each sampling edge; auto: the measured data delay",
+                     true),
+        intOption("ring_gap", "1", 0, 8, "zero bits between repeats of multiple transmission"),
+        numberOption("clock_min_hz", "50e3", 0, 1e300, "lowest allowed clock (else clock_range)"),
+        numberOption("clock_max_hz", "2e6", 0, 1e300, "highest allowed clock (else clock_range)"),
+        numberOption("tm_min_us", "auto", 0, 1e300, "shortest allowed tm (auto: tm_us/2)", true),
+        numberOption("tm_max_us", "auto", 0, 1e300, "longest allowed tm (auto: 2*tm_us)", true),
+        numberOption("gap_bits", "3", 1.0, 1e300,
+                     "the clock idle for this many clock periods ends a frame"),
+        boolOption("summary", "1", "emit a summary event (tm min/median/max...) at the end"),
     };
     d.events = {
         {"frame",

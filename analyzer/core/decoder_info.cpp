@@ -1,0 +1,52 @@
+#include "decoder_info.h"
+
+namespace busdecode {
+
+namespace {
+
+OptionSpec make(std::string key, OptionSpec::Kind kind, std::string def, std::string help) {
+    OptionSpec o;
+    o.key = std::move(key);
+    o.kind = kind;
+    o.default_value = std::move(def);
+    o.help = std::move(help);
+    return o;
+}
+
+}  // namespace
+
+OptionSpec intOption(std::string key, std::string def, double min, double max, std::string help,
+                     bool allow_auto) {
+    OptionSpec o = make(std::move(key), OptionSpec::Kind::Int, std::move(def), std::move(help));
+    o.min = min;
+    o.max = max;
+    o.allow_auto = allow_auto;
+    return o;
+}
+
+OptionSpec numberOption(std::string key, std::string def, double min, double max, std::string help,
+                        bool allow_auto) {
+    OptionSpec o = make(std::move(key), OptionSpec::Kind::Float, std::move(def), std::move(help));
+    o.min = min;
+    o.max = max;
+    o.allow_auto = allow_auto;
+    return o;
+}
+
+OptionSpec boolOption(std::string key, std::string def, std::string help) {
+    return make(std::move(key), OptionSpec::Kind::Bool, std::move(def), std::move(help));
+}
+
+OptionSpec choiceOption(std::string key, std::vector<std::string> choices, std::string help,
+                        std::string def) {
+    if (def.empty() && !choices.empty()) def = choices.front();
+    OptionSpec o = make(std::move(key), OptionSpec::Kind::Choice, std::move(def), std::move(help));
+    o.choices = std::move(choices);
+    return o;
+}
+
+OptionSpec textOption(std::string key, std::string def, std::string help) {
+    return make(std::move(key), OptionSpec::Kind::String, std::move(def), std::move(help));
+}
+
+}  // namespace busdecode
