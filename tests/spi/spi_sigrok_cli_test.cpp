@@ -121,7 +121,11 @@ TEST(SpiVsSigrokCli, AllModesCaptures) {
         std::smatch m;
         if (!std::regex_match(fname, m, name)) continue;
         SCOPED_TRACE(fname);
-        BusSetup s{"CS#", "CLK", "MOSI", "MISO"};
+        BusSetup s;
+        s.cs = "CS#";
+        s.sclk = "CLK";
+        s.mosi = "MOSI";
+        s.miso = "MISO";
         s.bits = int(m[1].length()) * 4;
         s.cpol = std::stoi(m[2]);
         s.cpha = std::stoi(m[3]);

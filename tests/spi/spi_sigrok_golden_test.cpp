@@ -102,10 +102,12 @@ void compareWords(const std::vector<Event>& events, const std::vector<Word>& wan
         SCOPED_TRACE(i);
         EXPECT_EQ(words[i].start, want[i].ss);
         EXPECT_EQ(words[i].end, want[i].es);
-        if (!want[i].mosi.empty())
+        if (!want[i].mosi.empty()) {
             EXPECT_EQ(std::get<std::uint64_t>(*words[i].get("mosi")), value(want[i].mosi));
-        if (!want[i].miso.empty())
+        }
+        if (!want[i].miso.empty()) {
             EXPECT_EQ(std::get<std::uint64_t>(*words[i].get("miso")), value(want[i].miso));
+        }
     }
 }
 

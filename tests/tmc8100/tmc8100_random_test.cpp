@@ -38,7 +38,9 @@ TEST(Tmc8100Random, NoiseOnEveryLine) {
         ASSERT_FALSE(events.empty());
         for (std::size_t i = 0; i < events.size(); ++i) {
             EXPECT_LE(events[i].start, events[i].end) << events[i].summary;
-            if (i) EXPECT_LE(events[i - 1].start, events[i].start);
+            if (i > 0) {
+                EXPECT_LE(events[i - 1].start, events[i].start);
+            }
         }
         if (round != 7) {
             EXPECT_EQ(only(events, "tmc8100", "command").size(), only(events, "spi").size());
