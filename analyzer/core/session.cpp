@@ -87,17 +87,16 @@ struct Session::Impl : EventSink {
         int slot;
         int role;
     };
-    struct Pending {
-        Event e;
-        int slot;
-    };
 
     CaptureReader* reader = nullptr;
     std::vector<Slot> slots;
     std::vector<LineRef> lines;
     std::vector<std::vector<Target>> targets;  // per selected line
     std::vector<std::uint8_t> levels;
-    std::deque<Pending> pending;
+    // Events not yet output, in start order, and which slot emitted each (two deques
+    // kept in step, so the correlation window can see the events without a copy).
+    std::deque<Event> pending;
+    std::deque<int> pending_slot;
     EventWindow window;
     int emitting = -1;
     Tick now = 0;
@@ -110,9 +109,10 @@ struct Session::Impl : EventSink {
     void onEvent(Event&& e) override {
         e.instance = slots[emitting].instance;
         // Insert keeping start order (events mostly arrive in order: search from the back).
-        auto it = pending.end();
-        while (it != pending.begin() && std::prev(it)->e.start > e.start) --it;
-        pending.insert(it, Pending{std::move(e), emitting});
+        std::size_t at = pending.size();
+        while (at > 0 && pending[at - 1].start > e.start) --at;
+        pending.insert(pending.begin() + at, std::move(e));
+        pending_slot.insert(pending_slot.begin() + at, emitting);
     }
 
     Tick watermark() const {
@@ -124,33 +124,31 @@ struct Session::Impl : EventSink {
         return w;
     }
 
-    void output(Pending& p) {
-        if (p.e.wants_correlation) {
-            std::deque<Event> view;
-            for (const auto& q : pending) view.push_back(q.e);
-            window.setPending(&view);
-            slots[p.slot].decoder->correlate(p.e, window);
+    void output(Event& e, int slot) {
+        if (e.wants_correlation) {
+            window.setPending(&pending);
+            slots[slot].decoder->correlate(e, window);
             window.setPending(nullptr);
         }
-        for (auto* s : *sinks) s->onEvent(p.e, *facts);
-        // The window serves correlation across decoders: with one decoder there is no
-        // other decoder's event to find, so skip the copy of every event.
-        if (slots.size() > 1) window.remember(p.e, 4096);
+        for (auto* s : *sinks) s->onEvent(e, *facts);
+        window.remember(e, 4096);
     }
 
     void release(bool all) {
         const Tick w = all ? std::numeric_limits<Tick>::max() : watermark();
         constexpr std::size_t kMaxHeld = 200000;  // bounded memory even if a decoder stalls
         while (!pending.empty()) {
-            Pending& p = pending.front();
+            const Event& next = pending.front();
             const bool forced = pending.size() > kMaxHeld;
             if (!all && !forced) {
-                if (p.e.start >= w) break;
-                if (p.e.wants_correlation && p.e.end >= w) break;
+                if (next.start >= w) break;
+                if (next.wants_correlation && next.end >= w) break;
             }
-            Pending out = std::move(p);
+            Event out = std::move(pending.front());
+            const int slot = pending_slot.front();
             pending.pop_front();
-            output(out);
+            pending_slot.pop_front();
+            output(out, slot);
         }
     }
 
