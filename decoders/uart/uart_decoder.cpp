@@ -61,6 +61,9 @@ void UartDecoder::edge(Tick t, int role, bool level) {
 void UartDecoder::decideBaud() {
     const auto measured = estimator_.measuredBaud(tb());
     fmt_.baud = measured ? BaudEstimator::snapToStandard(*measured) : fmt_.baud;
+    // A measurement from absurdly long pulses stays within the option's range, so frame
+    // times stay far inside the tick range (found by fuzzing: 1e-3 baud overflowed).
+    fmt_.baud = std::clamp(fmt_.baud, 1.0, 1e9);
     bit_ticks_ = tb().fromSeconds(1.0 / fmt_.baud);
     if (measured && !held_.empty()) {
         Event e;
