@@ -9,6 +9,7 @@
 #include <fmt/ranges.h>
 #include <toml++/toml.h>
 
+#include "capture/readers.h"
 #include "core/options.h"
 
 namespace busdecode {
@@ -258,7 +259,8 @@ Rules parseRules(const std::string& text, const std::string& file_name,
         root = toml::parse(text, file_name);
     } catch (const toml::parse_error& err) {
         throw InputError(fmt::format("{}:{}:{}: {}", file_name, err.source().begin.line,
-                                     err.source().begin.column, err.description()));
+                                     err.source().begin.column,
+                                     printable(err.description(), 200)));  // one line
     }
     RulesReader reader(file_name);
     Rules rules;
