@@ -359,7 +359,10 @@ private:
                         fail(fmt::format(
                             "expected a time after '#', found '{}'",
                             printable(std::string_view(p_, std::size_t(tokenEnd(p_) - p_)))));
-                    if (overflow) fail("time does not fit in 63 bits");
+                    // Decoders add durations to edge times: 2^62 ticks leave them room
+                    // (77 minutes at 1 fs, 53 days at 1 ps).
+                    if (overflow || t > (std::uint64_t(1) << 62))
+                        fail("time beyond 2^62 ticks (4611686018427387904)");
                     p_ = q;
                     const Tick tt = Tick(t);
                     if (!seen_time_) {
