@@ -35,6 +35,7 @@ void QuantileSketch::add(double v) {
     }
     ++count_;
     sum_ += v;
+    if (v != std::floor(v)) all_integers_ = false;
     if (std::fabs(v) < kZero) {
         ++zeros_;
     } else if (v > 0) {
@@ -76,6 +77,7 @@ double QuantileSketch::quantile(double q) const {
             found = true;
         }
     });
+    if (all_integers_) result = std::round(result);
     return std::clamp(result, min_, max_);
 }
 

@@ -45,6 +45,9 @@ private:
     std::uint64_t zeros_ = 0;
     std::uint64_t count_ = 0;
     double sum_ = 0, min_ = 0, max_ = 0;
+    // Integer fields (cycles, counts) answer with integers: a bucket holding 151 and
+    // 152 must not report 151.75 cycles.
+    bool all_integers_ = true;
 };
 
 }  // namespace busdecode

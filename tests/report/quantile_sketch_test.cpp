@@ -17,7 +17,7 @@ double exactLower(std::vector<double> v, double q) {
 }
 
 TEST(QuantileSketch, EmptyHasNoQuantiles) {
-    QuantileSketch s;
+    busdecode::QuantileSketch s;
     EXPECT_TRUE(s.empty());
     EXPECT_TRUE(std::isnan(s.median()));
     EXPECT_TRUE(s.histogram(4).empty());
@@ -27,7 +27,7 @@ TEST(QuantileSketch, QuantilesWithinHalfAPercentOfExact) {
     std::mt19937 rng(42);
     std::lognormal_distribution<double> dist(5.0, 1.2);  // line delays, pauses: skewed
     std::vector<double> values;
-    QuantileSketch s;
+    busdecode::QuantileSketch s;
     for (int i = 0; i < 20000; ++i) {
         const double v = dist(rng);
         values.push_back(v);
@@ -44,7 +44,7 @@ TEST(QuantileSketch, QuantilesWithinHalfAPercentOfExact) {
 }
 
 TEST(QuantileSketch, NegativeZeroAndPositiveValuesKeepTheirOrder) {
-    QuantileSketch s;
+    busdecode::QuantileSketch s;
     std::vector<double> values;
     for (int i = -50; i <= 50; ++i) {
         s.add(i * 10.0);
@@ -58,7 +58,7 @@ TEST(QuantileSketch, NegativeZeroAndPositiveValuesKeepTheirOrder) {
 }
 
 TEST(QuantileSketch, MemoryStaysBoundedOverAHugeRange) {
-    QuantileSketch s;
+    busdecode::QuantileSketch s;
     // 1e-12 .. 1e+12 with 1 % buckets would need ~5500 buckets: the smallest get merged.
     for (int e = -120; e <= 120; ++e)
         for (int k = 1; k < 10; ++k)
@@ -74,7 +74,7 @@ TEST(QuantileSketch, MemoryStaysBoundedOverAHugeRange) {
 }
 
 TEST(QuantileSketch, HistogramCountsEveryValueOnce) {
-    QuantileSketch s;
+    busdecode::QuantileSketch s;
     for (int i = 0; i < 100; ++i)
         s.add(100 + i);  // uniform 100..199
     const auto h = s.histogram(10);
@@ -86,7 +86,7 @@ TEST(QuantileSketch, HistogramCountsEveryValueOnce) {
 
 TEST(QuantileSketch, SmallIntegersAreExact) {
     // Each bucket answers with the mean of its values: exact for repeated integers.
-    QuantileSketch s;
+    busdecode::QuantileSketch s;
     for (int v : {0, 1, 2, 2, 2, 3, 3, 150, 151})
         s.add(v);
     EXPECT_DOUBLE_EQ(s.median(), 2.0);
@@ -96,7 +96,7 @@ TEST(QuantileSketch, SmallIntegersAreExact) {
 }
 
 TEST(QuantileSketch, ConstantValueIsExact) {
-    QuantileSketch s;
+    busdecode::QuantileSketch s;
     for (int i = 0; i < 1000; ++i)
         s.add(250.0);
     EXPECT_DOUBLE_EQ(s.median(), 250.0);
@@ -105,3 +105,12 @@ TEST(QuantileSketch, ConstantValueIsExact) {
 
 }  // namespace
 }  // namespace busdecode
+
+TEST(QuantileSketch, IntegerFieldsGiveIntegerQuantilesEvenWhenABucketHoldsNeighbours) {
+    busdecode::QuantileSketch s;
+    for (double v : {151.0, 152.0, 152.0, 152.0}) s.add(v);  // one 1 % bucket holds both
+    EXPECT_EQ(s.median(), 152.0);
+    busdecode::QuantileSketch f;
+    for (double v : {151.5, 152.0, 152.0, 152.0}) f.add(v);  // not integers: the bucket mean stays
+    EXPECT_NE(f.median(), std::round(f.median()));
+}
