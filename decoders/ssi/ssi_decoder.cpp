@@ -325,7 +325,10 @@ void SsiDecoder::close(bool capture_end) {
         return;
     }
     state_ = State::WaitTm;
-    wait_deadline_ = last + Tick(std::llround(tb().fromNs(cfg_.tm_max_us * 1e3 * kWaitTmFactor)));
+    // At most 1e18 ticks ahead: tm_max_us may be anything up to 1e300, and edge times go
+    // up to 2^62, so the sum stays in range (fuzz finding: overflow with a huge tm_max_us).
+    const double wait = std::min(tb().fromNs(cfg_.tm_max_us * 1e3 * kWaitTmFactor), 1e18);
+    wait_deadline_ = last + Tick(std::llround(wait));
 }
 
 void SsiDecoder::emitFrame(std::optional<Tick> tm_end, bool deadline_passed) {
