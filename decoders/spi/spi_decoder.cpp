@@ -1,5 +1,7 @@
 #include "spi_decoder.h"
 
+#include <limits>
+
 #include <fmt/format.h>
 
 #include "spi_info.h"
@@ -72,7 +74,11 @@ void SpiDecoder::sampleBit(Tick t) {
     ++count_;
     if (count_ == bits_) {
         // sigrok's end estimate: one bit period (the last sample interval) after the last bit.
-        emitWord(t + (t - prev_sample_), false);
+        // Saturated: an absurd gap before the last bit must not overflow (fuzz finding).
+        const Tick period = t - prev_sample_;
+        emitWord(period > std::numeric_limits<Tick>::max() - t ? std::numeric_limits<Tick>::max()
+                                                                : t + period,
+                 false);
         resetWord();
     }
 }
