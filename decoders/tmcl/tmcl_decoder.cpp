@@ -237,8 +237,10 @@ void TmclDecoder::pairWithCommand(Event& e, Tick start, Tick end) {
     if (!pending_.awaiting || pending_.end > start) return;
     e.set("request", pending_.text);
     e.set("request_start_ns", tb().toNs(pending_.start));
-    e.set("rtt_ns", tb().toNs(end) - tb().toNs(pending_.start));
-    e.set("latency_ns", tb().toNs(start) - tb().toNs(pending_.end));
+    // Differences in ticks first: converting two far-apart times to ns and subtracting
+    // could overflow (fuzz finding).
+    e.set("rtt_ns", tb().toNs(end - pending_.start));
+    e.set("latency_ns", tb().toNs(start - pending_.end));
     pending_.awaiting = false;
 }
 
