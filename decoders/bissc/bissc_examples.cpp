@@ -118,26 +118,4 @@ std::vector<BisscExample> bisscExamples() {
     return {registerAccess(), longCable(), faults()};
 }
 
-std::string bisscDecodeToJsonl(const std::string& path,
-                               const std::map<std::string, std::string>& options) {
-    auto reader = openCapture(path, OpenOptions{});
-    DecoderRequest r;
-    r.proto = "bissc";
-    r.options = options;
-    Session session({r}, *reader, path);
-    struct Jsonl : OutputSink {
-        std::string text;
-        void onEvent(const Event& e, const CaptureFacts& f) override {
-            text += eventToJson(e, f.timebase) + "\n";
-        }
-    } sink;
-    session.addSink(&sink);
-    session.run();
-    return sink.text;
-}
-
-std::string bisscGoldenName(const std::string& file) {
-    return file.substr(0, file.rfind('.')) + ".golden.jsonl";
-}
-
 }  // namespace busdecode

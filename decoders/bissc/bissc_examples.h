@@ -24,11 +24,4 @@ struct BisscExample {
 
 std::vector<BisscExample> bisscExamples();
 
-// `decode FILE --proto bissc --opt ... --format jsonl`, as text (one object per line).
-std::string bisscDecodeToJsonl(const std::string& path,
-                               const std::map<std::string, std::string>& options);
-
-// "bissc_x.vcd" -> "bissc_x.golden.jsonl"
-std::string bisscGoldenName(const std::string& file);
-
 }  // namespace busdecode

@@ -8,6 +8,7 @@
 #include "bissc_decoder.h"
 #include "bissc_examples.h"
 #include "core/registry.h"
+#include "sinks/jsonl_file.h"
 
 using namespace busdecode;
 
@@ -24,7 +25,8 @@ int main(int argc, char** argv) {
             writeCsv(ex.wave, path, CsvDialect::SigrokDense);
         else
             writeVcd(ex.wave, path);
-        std::ofstream(dir + "/" + bisscGoldenName(ex.file)) << bisscDecodeToJsonl(path, ex.options);
+        std::ofstream(dir + "/" + goldenPathFor(ex.file))
+            << decodeFileToJsonl(path, "bissc", ex.options);
         std::printf("%s: %s\n", ex.file.c_str(), ex.description.c_str());
     }
     return 0;

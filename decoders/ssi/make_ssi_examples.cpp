@@ -7,6 +7,7 @@
 
 #include "capture/capture_writer.h"
 #include "core/registry.h"
+#include "sinks/jsonl_file.h"
 #include "ssi_examples.h"
 #include "ssi_factory.h"
 
@@ -26,8 +27,8 @@ int main(int argc, char** argv) {
         else
             busdecode::writeCsv(ex.gen.wave, path, busdecode::CsvDialect::SaleaeLogic2);
         // The golden output: what `decode FILE --proto ssi --format jsonl` prints.
-        std::ofstream(dir + "/" + busdecode::goldenName(ex.file), std::ios::binary)
-            << busdecode::decodeToJsonl(path, ex.options);
+        std::ofstream(dir + "/" + busdecode::goldenPathFor(ex.file), std::ios::binary)
+            << busdecode::decodeFileToJsonl(path, "ssi", ex.options);
         std::string opts;
         for (const auto& [k, v] : ex.options)
             opts += " --opt " + k + "=" + v;

@@ -107,26 +107,4 @@ std::vector<SsiExample> ssiExamples() {
     return {tmc8100(), posital(), ringShift(), saleae()};
 }
 
-std::string decodeToJsonl(const std::string& path,
-                          const std::map<std::string, std::string>& options) {
-    auto reader = openCapture(path, OpenOptions{});
-    DecoderRequest r;
-    r.proto = "ssi";
-    r.options = options;
-    Session session({r}, *reader, path);
-    struct Jsonl : OutputSink {
-        std::string text;
-        void onEvent(const Event& e, const CaptureFacts& f) override {
-            text += eventToJson(e, f.timebase) + "\n";
-        }
-    } sink;
-    session.addSink(&sink);
-    session.run();
-    return sink.text;
-}
-
-std::string goldenName(const std::string& file) {
-    return file.substr(0, file.rfind('.')) + ".golden.jsonl";
-}
-
 }  // namespace busdecode

@@ -20,12 +20,4 @@ struct SsiExample {
 
 std::vector<SsiExample> ssiExamples();
 
-// The golden output of an example: `decode FILE --proto ssi --opt ... --format jsonl`,
-// one JSON object per line (the CLI's own formatter over the same session).
-std::string decodeToJsonl(const std::string& path,
-                          const std::map<std::string, std::string>& options);
-
-// "ssi_x.vcd" -> "ssi_x.golden.jsonl"
-std::string goldenName(const std::string& file);
-
 }  // namespace busdecode

@@ -6,6 +6,7 @@
 #include "bissc_examples.h"
 #include "bissc_test_util.h"
 #include "capture/capture_reader.h"
+#include "sinks/jsonl_file.h"
 #include "support/paths.h"
 
 using namespace busdecode;
@@ -122,8 +123,8 @@ TEST(BisscExamples, GoldenOutputsMatch) {
     registerBissc();
     for (const auto& ex : bisscExamples()) {
         SCOPED_TRACE(ex.file);
-        EXPECT_EQ(bisscDecodeToJsonl(capturePath(ex.file), ex.options),
-                  readFile(capturePath(bisscGoldenName(ex.file))));
+        EXPECT_EQ(decodeFileToJsonl(capturePath(ex.file), "bissc", ex.options),
+                  readFile(capturePath(goldenPathFor(ex.file))));
     }
 }
 
@@ -138,6 +139,6 @@ TEST(BisscExamples, DecodeCliPrintsTheGoldenOutput) {
         }
         const auto r = runDecode(args);
         ASSERT_EQ(r.status, 0) << r.err;
-        EXPECT_EQ(r.out, readFile(capturePath(bisscGoldenName(ex.file))));
+        EXPECT_EQ(r.out, readFile(capturePath(goldenPathFor(ex.file))));
     }
 }

@@ -9,6 +9,7 @@
 
 #include "capture/capture_reader.h"
 #include "core/session.h"
+#include "sinks/jsonl_file.h"
 #include "ssi_examples.h"
 #include "ssi_test_util.h"
 #include "support/paths.h"
@@ -90,8 +91,8 @@ TEST(SsiExamples, GoldenOutputsMatch) {
     registerSsi();
     for (const auto& ex : ssiExamples()) {
         SCOPED_TRACE(ex.file);
-        const std::string golden = test::readFile(capturePath(goldenName(ex.file)));
-        EXPECT_EQ(decodeToJsonl(capturePath(ex.file), ex.options), golden);
+        const std::string golden = test::readFile(capturePath(goldenPathFor(ex.file)));
+        EXPECT_EQ(decodeFileToJsonl(capturePath(ex.file), "ssi", ex.options), golden);
         EXPECT_NE(golden.find("\"type\":\"summary\""), std::string::npos);
     }
 }
@@ -107,6 +108,6 @@ TEST(SsiExamples, DecodeCliPrintsTheGoldenOutput) {
         }
         const auto r = test::runDecode(args);
         ASSERT_EQ(r.status, 0) << r.err;
-        EXPECT_EQ(r.out, test::readFile(capturePath(goldenName(ex.file))));
+        EXPECT_EQ(r.out, test::readFile(capturePath(goldenPathFor(ex.file))));
     }
 }
