@@ -1,5 +1,7 @@
 #include "html_report.h"
 
+#include "sinks/xml_escape.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -244,30 +246,7 @@ std::string timingDiagramSvg(const Event& e, const Timebase& tb) {
 }  // namespace
 
 std::string htmlEscape(const std::string& s) {
-    std::string out;
-    out.reserve(s.size());
-    for (char c : s) {
-        switch (c) {
-            case '&':
-                out += "&amp;";
-                break;
-            case '<':
-                out += "&lt;";
-                break;
-            case '>':
-                out += "&gt;";
-                break;
-            case '"':
-                out += "&quot;";
-                break;
-            case '\'':
-                out += "&#39;";
-                break;
-            default:
-                out += c;
-        }
-    }
-    return out;
+    return xmlEscape(s);
 }
 
 std::string renderHtmlReport(const CaptureStats& stats) {

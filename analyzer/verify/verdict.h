@@ -3,7 +3,9 @@
 // capture, a summary line, and the JUnit XML file (one testsuite, one testcase per
 // capture and rule; a capture that could not be read is one testcase with an <error>).
 #include <string>
+
 #include <vector>
+#include "sinks/xml_escape.h"
 
 #include "rule_checker.h"
 
@@ -28,6 +30,5 @@ std::string summaryLine(const std::vector<CaptureVerdict>& all);
 // system-out, system-err; a testcase holds at most one failure or error).
 std::string junitXml(const std::vector<CaptureVerdict>& all, const std::string& rules_file);
 // Escapes text for XML attributes and character data; drops characters XML 1.0 forbids.
-std::string xmlEscape(const std::string& s);
 
 }  // namespace busdecode
