@@ -3,11 +3,10 @@
 // capture, a summary line, and the JUnit XML file (one testsuite, one testcase per
 // capture and rule; a capture that could not be read is one testcase with an <error>).
 #include <string>
-
 #include <vector>
-#include "sinks/xml_escape.h"
 
 #include "rule_checker.h"
+#include "sinks/xml_escape.h"
 
 namespace busdecode {
 
