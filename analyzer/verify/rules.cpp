@@ -55,7 +55,9 @@ public:
     [[noreturn]] void fail(const toml::source_region& where, const std::string& table,
                            const std::string& key, const std::string& msg) const {
         const std::string place = table.empty() ? key : fmt::format("[{}] {}", table, key);
-        throw InputError(fmt::format("{}:{}: {}: {}", file_, where.begin.line, place, msg));
+        // Keys may hold any character (quoted keys): keep the message on one line.
+        throw InputError(fmt::format("{}:{}: {}: {}", file_, where.begin.line, printable(place, 80),
+                                     printable(msg, 300)));
     }
 
     double number(const toml::node& n, const std::string& table, const std::string& key) const {
