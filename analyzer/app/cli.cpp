@@ -3,15 +3,15 @@
 // line on stderr and exit status 2.
 #include "cli.h"
 
+#include <unistd.h>
 #include <atomic>
 #include <csignal>
 #include <cstdio>
-#include <unistd.h>
 
-#include <QCommandLineParser>
-#include <QCoreApplication>
 #include <fmt/format.h>
 #include <fmt/ranges.h>
+#include <QCommandLineParser>
+#include <QCoreApplication>
 
 #include "app/decode_args.h"
 #include "app/list_decoders.h"
@@ -28,11 +28,14 @@ namespace {
 
 std::atomic<bool> g_stop{false};
 
-extern "C" void onInterrupt(int) { g_stop = true; }
+extern "C" void onInterrupt(int) {
+    g_stop = true;
+}
 
 std::vector<std::string> toStd(const QStringList& l) {
     std::vector<std::string> out;
-    for (const auto& s : l) out.push_back(s.toStdString());
+    for (const auto& s : l)
+        out.push_back(s.toStdString());
     return out;
 }
 
@@ -62,8 +65,10 @@ struct Parsed {
 
 Parsed parse(const QStringList& argv, bool verify) {
     QCommandLineParser p;
-    p.setApplicationDescription("Decode logic-analyser captures of encoder and motion-control buses.");
-    p.addPositionalArgument("CAPTURE", "VCD, CSV or sigrok .sr capture; - reads standard input", "CAPTURE...");
+    p.setApplicationDescription(
+        "Decode logic-analyser captures of encoder and motion-control buses.");
+    p.addPositionalArgument("CAPTURE", "VCD, CSV or sigrok .sr capture; - reads standard input",
+                            "CAPTURE...");
     QCommandLineOption proto("proto", "decoder to run (repeat for several buses)", "NAME");
     QCommandLineOption map("map", "bind a decoder role to a capture signal", "ROLE=SIGNAL");
     QCommandLineOption opt("opt", "set a decoder option", "KEY=VALUE");
@@ -76,18 +81,20 @@ Parsed parse(const QStringList& argv, bool verify) {
     QCommandLineOption list("list", "list decoders, roles, options and defaults");
     QCommandLineOption rules("rules", "verify: rules file (TOML)", "FILE");
     QCommandLineOption junit("junit", "verify: write JUnit XML", "FILE");
-    QCommandLineOption jobs("jobs", "verify: captures checked in parallel (0 = one per core)", "N", "0");
+    QCommandLineOption jobs("jobs", "verify: captures checked in parallel (0 = one per core)", "N",
+                            "0");
     QCommandLineOption help({"h", "help"}, "show this help");
     QCommandLineOption version("version", "show the version");
-    for (auto* o : {&proto, &map, &opt, &format, &report, &lcm, &rate, &follow, &realtime, &list, &rules,
-                    &junit, &jobs, &help, &version})
+    for (auto* o : {&proto, &map, &opt, &format, &report, &lcm, &rate, &follow, &realtime, &list,
+                    &rules, &junit, &jobs, &help, &version})
         p.addOption(*o);
     if (!p.parse(argv)) throw InputError(p.errorText().toStdString());
     if (p.isSet(help)) {
         fmt::print("{}", p.helpText().toStdString());
-        fmt::print("\nCommands:\n  decode CAPTURE... --proto NAME [...]\n"
-                   "  decode verify CAPTURE... --rules FILE [--junit FILE] [--jobs N]\n"
-                   "  decode monitor [--lcm URL]\n  decode --list\n");
+        fmt::print(
+            "\nCommands:\n  decode CAPTURE... --proto NAME [...]\n"
+            "  decode verify CAPTURE... --rules FILE [--junit FILE] [--jobs N]\n"
+            "  decode monitor [--lcm URL]\n  decode --list\n");
         std::exit(0);
     }
     if (p.isSet(version)) {
@@ -105,11 +112,13 @@ Parsed parse(const QStringList& argv, bool verify) {
     if (a.format != "text" && a.format != "jsonl")
         throw InputError(fmt::format("--format {}: expected text or jsonl", a.format));
     a.report = p.value(report).toStdString();
-    if (p.isSet(lcm)) a.lcm_url = p.value(lcm) == "default" ? std::string() : p.value(lcm).toStdString();
+    if (p.isSet(lcm))
+        a.lcm_url = p.value(lcm) == "default" ? std::string() : p.value(lcm).toStdString();
     if (p.isSet(rate)) {
         auto r = parseNumber(p.value(rate).toStdString());
-        if (!r || *r <= 0) throw InputError(fmt::format("--rate {}: expected a positive number of Hz",
-                                                        p.value(rate).toStdString()));
+        if (!r || *r <= 0)
+            throw InputError(fmt::format("--rate {}: expected a positive number of Hz",
+                                         p.value(rate).toStdString()));
         a.rate_hz = *r;
     }
     a.follow = p.isSet(follow);
@@ -117,7 +126,8 @@ Parsed parse(const QStringList& argv, bool verify) {
     a.rules = p.value(rules).toStdString();
     a.junit = p.value(junit).toStdString();
     auto j = parseInteger(p.value(jobs).toStdString());
-    if (!j || *j < 0 || *j > 256) throw InputError("--jobs: expected a whole number from 0 (all cores) to 256");
+    if (!j || *j < 0 || *j > 256)
+        throw InputError("--jobs: expected a whole number from 0 (all cores) to 256");
     a.jobs = int(*j);
     if (!verify && (!a.rules.empty() || !a.junit.empty()))
         throw InputError("--rules and --junit belong to 'decode verify'");
@@ -136,8 +146,10 @@ int runDecode(const DecodeArgs& a) {
     std::signal(SIGTERM, onInterrupt);
     // Live output wants every line at once; a batch run wants big writes.
     static char buffer[1 << 20];
-    if (a.follow || a.realtime || a.lcm_url) std::setvbuf(stdout, nullptr, _IOLBF, 0);
-    else std::setvbuf(stdout, buffer, _IOFBF, sizeof buffer);
+    if (a.follow || a.realtime || a.lcm_url)
+        std::setvbuf(stdout, nullptr, _IOLBF, 0);
+    else
+        std::setvbuf(stdout, buffer, _IOFBF, sizeof buffer);
 
     std::unique_ptr<OutputSink> lcm;
     if (a.lcm_url) lcm = makeLcmSink(*a.lcm_url);
@@ -151,12 +163,15 @@ int runDecode(const DecodeArgs& a) {
                 auto slash = capture.find_last_of('/');
                 std::string stem = capture.substr(slash == std::string::npos ? 0 : slash + 1);
                 auto dot = path.find_last_of('.');
-                path = dot == std::string::npos ? path + "-" + stem : path.substr(0, dot) + "-" + stem + path.substr(dot);
+                path = dot == std::string::npos
+                           ? path + "-" + stem
+                           : path.substr(0, dot) + "-" + stem + path.substr(dot);
             }
             owned.push_back(makeReportSink(path));
         }
         std::vector<OutputSink*> sinks;
-        for (auto& s : owned) sinks.push_back(s.get());
+        for (auto& s : owned)
+            sinks.push_back(s.get());
         if (lcm) sinks.push_back(lcm.get());
         decodeCapture(capture, requests, open, sinks, a.realtime, &g_stop);
         if (g_stop) break;

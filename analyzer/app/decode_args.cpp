@@ -6,12 +6,12 @@
 #include <set>
 #include <thread>
 
+#include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <QCoreApplication>
 #include <QDir>
 #include <QPluginLoader>
 #include <QString>
-#include <fmt/format.h>
-#include <fmt/ranges.h>
 
 #include "busdecode/plugin.h"
 #include "capture/prefetch_reader.h"
@@ -50,7 +50,8 @@ std::vector<DecoderRequest> buildRequests(const std::vector<std::string>& protos
     std::vector<const DecoderInfo*> infos;
     for (const auto& p : protos) {
         const DecoderFactory* f = Registry::instance().find(p);
-        if (!f) Registry::instance().create(p, {});  // throws "unknown decoder ... (available: ...)"
+        if (!f)
+            Registry::instance().create(p, {});  // throws "unknown decoder ... (available: ...)"
         reqs.push_back({p, {}, {}});
         infos.push_back(&f->info());
     }
@@ -68,15 +69,18 @@ std::vector<DecoderRequest> buildRequests(const std::vector<std::string>& protos
         bool used = false;
         for (std::size_t i = 0; i < reqs.size(); ++i) {
             if (!scope.empty() && reqs[i].proto != scope) continue;
-            const bool known = is_map ? declaresRole(*infos[i], key) : declaresOption(*infos[i], key);
+            const bool known =
+                is_map ? declaresRole(*infos[i], key) : declaresOption(*infos[i], key);
             if (!known && (scope.empty() && reqs.size() > 1)) continue;
             if (!known) {
                 // Let the decoder's own validation produce the error listing valid keys.
                 if (is_map) {
                     std::vector<std::string> roles;
-                    for (const auto& r : infos[i]->roles) roles.push_back(r.name);
-                    throw InputError(fmt::format("decoder {}: unknown role '{}' in --map (roles: {})",
-                                                 reqs[i].proto, key, fmt::join(roles, ", ")));
+                    for (const auto& r : infos[i]->roles)
+                        roles.push_back(r.name);
+                    throw InputError(
+                        fmt::format("decoder {}: unknown role '{}' in --map (roles: {})",
+                                    reqs[i].proto, key, fmt::join(roles, ", ")));
                 }
                 Options::resolve(*infos[i], {{key, value}});
             }
@@ -87,16 +91,20 @@ std::vector<DecoderRequest> buildRequests(const std::vector<std::string>& protos
             std::vector<std::string> keys;
             for (const auto* info : infos) {
                 if (is_map)
-                    for (const auto& r : info->roles) keys.push_back(info->id + "." + r.name);
+                    for (const auto& r : info->roles)
+                        keys.push_back(info->id + "." + r.name);
                 else
-                    for (const auto& o : info->options) keys.push_back(info->id + "." + o.key);
+                    for (const auto& o : info->options)
+                        keys.push_back(info->id + "." + o.key);
             }
-            throw InputError(fmt::format("{} {}: no chosen decoder has '{}' (valid: {})", what, text, key,
-                                         fmt::join(keys, ", ")));
+            throw InputError(fmt::format("{} {}: no chosen decoder has '{}' (valid: {})", what,
+                                         text, key, fmt::join(keys, ", ")));
         }
     };
-    for (const auto& m : maps) apply("--map", m, true);
-    for (const auto& o : opts) apply("--opt", o, false);
+    for (const auto& m : maps)
+        apply("--map", m, true);
+    for (const auto& o : opts)
+        apply("--opt", o, false);
     return reqs;
 }
 
@@ -104,9 +112,11 @@ void loadPlugins() {
     static std::once_flag once;
     std::call_once(once, [] {
         QStringList dirs;
-        const QString app = QCoreApplication::instance() ? QCoreApplication::applicationDirPath() : QString();
+        const QString app =
+            QCoreApplication::instance() ? QCoreApplication::applicationDirPath() : QString();
         if (const char* env = std::getenv("BUSDECODE_PLUGIN_PATH"))
-            for (const auto& d : QString::fromLocal8Bit(env).split(':', Qt::SkipEmptyParts)) dirs << d;
+            for (const auto& d : QString::fromLocal8Bit(env).split(':', Qt::SkipEmptyParts))
+                dirs << d;
         if (!app.isEmpty()) {
             dirs << app + "/plugins";
             dirs << app + "/../lib/busdecode/plugins";
@@ -127,7 +137,8 @@ void loadPlugins() {
                                path.toStdString(), loader.errorString().toStdString());
                     continue;
                 }
-                for (auto& f : plugin->factories()) Registry::instance().add(f);
+                for (auto& f : plugin->factories())
+                    Registry::instance().add(f);
             }
         }
     });
@@ -175,14 +186,15 @@ CaptureFacts decodeCapture(const std::string& path, const std::vector<DecoderReq
 }
 
 CaptureFacts decodeCapture(const std::string& path, const std::vector<DecoderRequest>& requests,
-                           const OpenOptions& open, const std::vector<OutputSink*>& sinks, bool realtime,
-                           const std::atomic<bool>* stop) {
+                           const OpenOptions& open, const std::vector<OutputSink*>& sinks,
+                           bool realtime, const std::atomic<bool>* stop) {
     // Read ahead on a second thread while this one decodes (two cores, pipelined).
     std::unique_ptr<CaptureReader> reader = prefetchReader(openCapture(path, open));
     if (realtime) reader = std::make_unique<PacedReader>(std::move(reader));
     Session session(requests, *reader, path);
     if (stop) session.setStopFlag(stop);
-    for (auto* s : sinks) session.addSink(s);
+    for (auto* s : sinks)
+        session.addSink(s);
     session.run();
     return session.facts();
 }

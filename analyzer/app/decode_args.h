@@ -13,19 +13,19 @@ namespace busdecode {
 
 struct DecodeArgs {
     std::vector<std::string> captures;
-    std::vector<std::string> protos;  // --proto, in order
-    std::vector<std::string> maps;    // --map ROLE=SIGNAL or PROTO.ROLE=SIGNAL
-    std::vector<std::string> opts;    // --opt KEY=VALUE or PROTO.KEY=VALUE
-    std::string format = "text";      // text | jsonl
-    std::string report;               // --report FILE ("" = none)
+    std::vector<std::string> protos;     // --proto, in order
+    std::vector<std::string> maps;       // --map ROLE=SIGNAL or PROTO.ROLE=SIGNAL
+    std::vector<std::string> opts;       // --opt KEY=VALUE or PROTO.KEY=VALUE
+    std::string format = "text";         // text | jsonl
+    std::string report;                  // --report FILE ("" = none)
     std::optional<std::string> lcm_url;  // --lcm [URL] (empty string = LCM's default)
-    double rate_hz = 0;               // --rate
-    bool follow = false;              // --follow
-    bool realtime = false;            // --realtime
+    double rate_hz = 0;                  // --rate
+    bool follow = false;                 // --follow
+    bool realtime = false;               // --realtime
     // verify only
-    std::string rules;                // --rules FILE
-    std::string junit;                // --junit FILE
-    int jobs = 0;                     // --jobs N (0 = one per core)
+    std::string rules;  // --rules FILE
+    std::string junit;  // --junit FILE
+    int jobs = 0;       // --jobs N (0 = one per core)
 };
 
 // Turns --proto/--map/--opt into one request per decoder. An unscoped key applies to
@@ -45,7 +45,7 @@ CaptureFacts decodeCapture(const std::string& path, const std::vector<DecoderReq
 // The same, optionally paced at the capture's own time scale (--realtime) and stopped
 // between blocks when *stop becomes true (Ctrl-C while following).
 CaptureFacts decodeCapture(const std::string& path, const std::vector<DecoderRequest>& requests,
-                           const OpenOptions& open, const std::vector<OutputSink*>& sinks, bool realtime,
-                           const std::atomic<bool>* stop);
+                           const OpenOptions& open, const std::vector<OutputSink*>& sinks,
+                           bool realtime, const std::atomic<bool>* stop);
 
 }  // namespace busdecode

@@ -11,11 +11,16 @@ namespace {
 
 const char* kindName(OptionSpec::Kind k) {
     switch (k) {
-        case OptionSpec::Kind::Int: return "int";
-        case OptionSpec::Kind::Float: return "number";
-        case OptionSpec::Kind::Bool: return "0/1";
-        case OptionSpec::Kind::Choice: return "choice";
-        case OptionSpec::Kind::String: return "text";
+        case OptionSpec::Kind::Int:
+            return "int";
+        case OptionSpec::Kind::Float:
+            return "number";
+        case OptionSpec::Kind::Bool:
+            return "0/1";
+        case OptionSpec::Kind::Choice:
+            return "choice";
+        case OptionSpec::Kind::String:
+            return "text";
     }
     return "";
 }
@@ -31,17 +36,21 @@ void printDecoderList(std::FILE* out) {
         if (!d.description.empty()) fmt::print(out, "    {}\n", d.description);
         fmt::print(out, "  roles:\n");
         for (const auto& r : d.roles)
-            fmt::print(out, "    {:<10} {:<9} auto: {}{}\n", r.name, r.required ? "required" : "optional",
-                       fmt::join(r.aliases, " "), r.help.empty() ? "" : "  -- " + r.help);
-        if (!d.need_one_of.empty()) fmt::print(out, "    (bind at least one of: {})\n", fmt::join(d.need_one_of, ", "));
+            fmt::print(out, "    {:<10} {:<9} auto: {}{}\n", r.name,
+                       r.required ? "required" : "optional", fmt::join(r.aliases, " "),
+                       r.help.empty() ? "" : "  -- " + r.help);
+        if (!d.need_one_of.empty())
+            fmt::print(out, "    (bind at least one of: {})\n", fmt::join(d.need_one_of, ", "));
         fmt::print(out, "  options:\n");
         for (const auto& o : d.options) {
             std::string allowed;
-            if (o.kind == OptionSpec::Kind::Choice) allowed = fmt::format(" [{}]", fmt::join(o.choices, "|"));
+            if (o.kind == OptionSpec::Kind::Choice)
+                allowed = fmt::format(" [{}]", fmt::join(o.choices, "|"));
             else if (o.kind == OptionSpec::Kind::Int || o.kind == OptionSpec::Kind::Float) {
                 if (o.min > -1e299 || o.max < 1e299)
-                    allowed = fmt::format(" [{}..{}]", o.min > -1e299 ? fmt::format("{}", o.min) : "",
-                                          o.max < 1e299 ? fmt::format("{}", o.max) : "");
+                    allowed =
+                        fmt::format(" [{}..{}]", o.min > -1e299 ? fmt::format("{}", o.min) : "",
+                                    o.max < 1e299 ? fmt::format("{}", o.max) : "");
                 if (o.allow_auto) allowed += " or auto";
             }
             fmt::print(out, "    {:<14} {:<7} default {:<8}{}  {}\n", o.key, kindName(o.kind),

@@ -1,8 +1,8 @@
 #pragma once
 // Bit-serial CRC, MSB first, as BiSS (CRC6 0x43, CRC4 0x13, CRC16 0x190D9) and most
 // serial encoder protocols define it: the input is a bit string, not bytes.
-#include <cstdint>
 #include <cstddef>
+#include <cstdint>
 
 namespace busdecode {
 
@@ -21,14 +21,16 @@ public:
     }
     // Pushes the low `n` bits of `bits`, most significant first.
     void pushBits(std::uint64_t bits, int n) {
-        for (int i = n - 1; i >= 0; --i) push((bits >> i) & 1u);
+        for (int i = n - 1; i >= 0; --i)
+            push((bits >> i) & 1u);
     }
     std::uint32_t value() const { return (reg_ ^ xorout_) & mask(); }
     int width() const { return width_; }
 
     // Builds from a polynomial written with its top bit (0x43 for CRC6, 0x13 for CRC4,
     // 0x190D9 for CRC16): the form users find in datasheets.
-    static BitCrc fromFullPoly(std::uint32_t full_poly, std::uint32_t init = 0, bool inverted = true);
+    static BitCrc fromFullPoly(std::uint32_t full_poly, std::uint32_t init = 0,
+                               bool inverted = true);
 
 private:
     std::uint32_t mask() const { return width_ >= 32 ? 0xFFFFFFFFu : ((1u << width_) - 1u); }
@@ -37,11 +39,15 @@ private:
 };
 
 // One-shot helper over the low n bits of `bits` (MSB first).
-std::uint32_t crcOfBits(std::uint64_t bits, int n, int width, std::uint32_t poly, std::uint32_t init,
-                        std::uint32_t xorout);
+std::uint32_t crcOfBits(std::uint64_t bits, int n, int width, std::uint32_t poly,
+                        std::uint32_t init, std::uint32_t xorout);
 
 // BiSS conventions: CRC6 poly 0x43 and CRC4 poly 0x13, init 0, sent inverted.
-inline std::uint32_t bissCrc6(std::uint64_t bits, int n) { return crcOfBits(bits, n, 6, 0x03, 0, 0x3F); }
-inline std::uint32_t bissCrc4(std::uint64_t bits, int n) { return crcOfBits(bits, n, 4, 0x03, 0, 0x0F); }
+inline std::uint32_t bissCrc6(std::uint64_t bits, int n) {
+    return crcOfBits(bits, n, 6, 0x03, 0, 0x3F);
+}
+inline std::uint32_t bissCrc4(std::uint64_t bits, int n) {
+    return crcOfBits(bits, n, 4, 0x03, 0, 0x0F);
+}
 
 }  // namespace busdecode

@@ -27,9 +27,7 @@ public:
     virtual ~Decoder() = default;
 
     // Called once before any edge.
-    virtual void start(const DecoderContext& ctx) {
-        ctx_ = ctx;
-    }
+    virtual void start(const DecoderContext& ctx) { ctx_ = ctx; }
     // A level change on role `role` (index into DecoderInfo::roles) at tick t.
     virtual void edge(Tick t, int role, bool level) = 0;
     // Time has advanced to `now` with no further edge on this decoder's lines before it.

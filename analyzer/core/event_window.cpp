@@ -19,7 +19,8 @@ void EventWindow::forEach(std::string_view proto, std::string_view type, Tick fr
 
 void EventWindow::remember(const Event& e, std::size_t keep) {
     released_.push_back(e);
-    while (released_.size() > keep) released_.pop_front();
+    while (released_.size() > keep)
+        released_.pop_front();
 }
 
 }  // namespace busdecode

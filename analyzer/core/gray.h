@@ -4,7 +4,9 @@
 
 namespace busdecode {
 
-inline std::uint64_t binaryToGray(std::uint64_t b) { return b ^ (b >> 1); }
+inline std::uint64_t binaryToGray(std::uint64_t b) {
+    return b ^ (b >> 1);
+}
 
 // MSB-first XOR chain b[i] = b[i+1] ^ g[i], done with shifts in log2(64) steps.
 inline std::uint64_t grayToBinary(std::uint64_t g) {

@@ -32,16 +32,22 @@ namespace {
 
 std::string describe(const OptionSpec& o) {
     switch (o.kind) {
-        case OptionSpec::Kind::Bool: return "0 or 1";
-        case OptionSpec::Kind::Choice: return fmt::format("one of {}", fmt::join(o.choices, ", "));
-        case OptionSpec::Kind::String: return "text";
+        case OptionSpec::Kind::Bool:
+            return "0 or 1";
+        case OptionSpec::Kind::Choice:
+            return fmt::format("one of {}", fmt::join(o.choices, ", "));
+        case OptionSpec::Kind::String:
+            return "text";
         case OptionSpec::Kind::Int:
         case OptionSpec::Kind::Float: {
             std::string what = o.kind == OptionSpec::Kind::Int ? "an integer" : "a number";
             std::string range;
-            if (o.min > -1e299 && o.max < 1e299) range = fmt::format(" from {} to {}", o.min, o.max);
-            else if (o.min > -1e299) range = fmt::format(" >= {}", o.min);
-            else if (o.max < 1e299) range = fmt::format(" <= {}", o.max);
+            if (o.min > -1e299 && o.max < 1e299)
+                range = fmt::format(" from {} to {}", o.min, o.max);
+            else if (o.min > -1e299)
+                range = fmt::format(" >= {}", o.min);
+            else if (o.max < 1e299)
+                range = fmt::format(" <= {}", o.max);
             return what + range + (o.allow_auto ? " or auto" : "");
         }
     }
@@ -50,8 +56,8 @@ std::string describe(const OptionSpec& o) {
 
 std::string normalise(const DecoderInfo& info, const OptionSpec& o, const std::string& v) {
     auto bad = [&]() {
-        return InputError(fmt::format("decoder {}: option {}={}: expected {}", info.id, o.key, v,
-                                      describe(o)));
+        return InputError(
+            fmt::format("decoder {}: option {}={}: expected {}", info.id, o.key, v, describe(o)));
     };
     switch (o.kind) {
         case OptionSpec::Kind::Bool: {
@@ -63,7 +69,8 @@ std::string normalise(const DecoderInfo& info, const OptionSpec& o, const std::s
             for (const auto& c : o.choices)
                 if (c == v) return v;
             throw bad();
-        case OptionSpec::Kind::String: return v;
+        case OptionSpec::Kind::String:
+            return v;
         case OptionSpec::Kind::Int: {
             if (o.allow_auto && v == "auto") return v;
             auto i = parseInteger(v);
@@ -98,7 +105,8 @@ Options Options::resolve(const DecoderInfo& info, const std::map<std::string, st
             if (o.key == k) spec = &o;
         if (!spec) {
             std::vector<std::string> keys;
-            for (const auto& o : info.options) keys.push_back(o.key);
+            for (const auto& o : info.options)
+                keys.push_back(o.key);
             throw InputError(fmt::format("decoder {}: unknown option '{}' (valid: {})", info.id, k,
                                          fmt::join(keys, ", ")));
         }
@@ -125,6 +133,8 @@ double Options::number(const std::string& key) const {
     return d ? *d : 0.0;
 }
 
-bool Options::flag(const std::string& key) const { return text(key) == "1"; }
+bool Options::flag(const std::string& key) const {
+    return text(key) == "1";
+}
 
 }  // namespace busdecode

@@ -23,7 +23,8 @@ public:
     Options() = default;
     // Applies defaults, then `given` (key -> text). Throws InputError naming the decoder,
     // the option and the valid choices or range.
-    static Options resolve(const DecoderInfo& info, const std::map<std::string, std::string>& given);
+    static Options resolve(const DecoderInfo& info,
+                           const std::map<std::string, std::string>& given);
 
     bool has(const std::string& key) const { return values_.count(key) != 0; }
     const std::string& text(const std::string& key) const;

@@ -25,9 +25,9 @@ const DecoderFactory* Registry::find(const std::string& id) const {
 
 std::vector<const DecoderFactory*> Registry::all() const {
     std::vector<const DecoderFactory*> out;
-    for (const auto& f : factories_) out.push_back(f.get());
-    std::sort(out.begin(), out.end(),
-              [](auto* a, auto* b) { return a->info().id < b->info().id; });
+    for (const auto& f : factories_)
+        out.push_back(f.get());
+    std::sort(out.begin(), out.end(), [](auto* a, auto* b) { return a->info().id < b->info().id; });
     return out;
 }
 
@@ -36,8 +36,10 @@ std::unique_ptr<Decoder> Registry::create(const std::string& id,
     const DecoderFactory* f = find(id);
     if (!f) {
         std::vector<std::string> ids;
-        for (auto* x : all()) ids.push_back(x->info().id);
-        throw InputError(fmt::format("unknown decoder '{}' (available: {})", id, fmt::join(ids, ", ")));
+        for (auto* x : all())
+            ids.push_back(x->info().id);
+        throw InputError(
+            fmt::format("unknown decoder '{}' (available: {})", id, fmt::join(ids, ", ")));
     }
     return f->create(Options::resolve(f->info(), options));
 }

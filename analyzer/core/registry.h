@@ -30,7 +30,9 @@ class SimpleFactory : public DecoderFactory {
 public:
     explicit SimpleFactory(DecoderInfo info) : info_(std::move(info)) {}
     const DecoderInfo& info() const override { return info_; }
-    std::unique_ptr<Decoder> create(const Options& o) const override { return std::make_unique<D>(o); }
+    std::unique_ptr<Decoder> create(const Options& o) const override {
+        return std::make_unique<D>(o);
+    }
 
 private:
     DecoderInfo info_;

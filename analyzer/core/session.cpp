@@ -20,7 +20,8 @@ namespace busdecode {
 namespace {
 
 std::string lower(std::string s) {
-    for (auto& c : s) c = char(std::tolower((unsigned char)c));
+    for (auto& c : s)
+        c = char(std::tolower((unsigned char)c));
     return s;
 }
 
@@ -110,7 +111,8 @@ struct Session::Impl : EventSink {
         e.instance = slots[emitting].instance;
         // Insert keeping start order (events mostly arrive in order: search from the back).
         std::size_t at = pending.size();
-        while (at > 0 && pending[at - 1].start > e.start) --at;
+        while (at > 0 && pending[at - 1].start > e.start)
+            --at;
         pending.insert(pending.begin() + at, std::move(e));
         pending_slot.insert(pending_slot.begin() + at, emitting);
     }
@@ -130,7 +132,8 @@ struct Session::Impl : EventSink {
             slots[slot].decoder->correlate(e, window);
             window.setPending(nullptr);
         }
-        for (auto* s : *sinks) s->onEvent(e, *facts);
+        for (auto* s : *sinks)
+            s->onEvent(e, *facts);
         window.remember(e, 4096);
     }
 
@@ -160,8 +163,10 @@ struct Session::Impl : EventSink {
             return;
         }
         s.glitch->push(t, role, level, [&](const GlitchFilter::Out& o) {
-            if (o.is_glitch) s.decoder->glitch(o.t, o.role);
-            else s.decoder->edge(o.t, o.role, o.level);
+            if (o.is_glitch)
+                s.decoder->glitch(o.t, o.role);
+            else
+                s.decoder->edge(o.t, o.role, o.level);
         });
     }
 
@@ -171,8 +176,10 @@ struct Session::Impl : EventSink {
             emitting = i;
             if (s.glitch)
                 s.glitch->release(t, [&](const GlitchFilter::Out& o) {
-                    if (o.is_glitch) s.decoder->glitch(o.t, o.role);
-                    else s.decoder->edge(o.t, o.role, o.level);
+                    if (o.is_glitch)
+                        s.decoder->glitch(o.t, o.role);
+                    else
+                        s.decoder->edge(o.t, o.role, o.level);
                 });
             // Edges the filter still holds lie before t: the decoder may only be told
             // that time has passed up to the oldest of them.
@@ -191,11 +198,13 @@ Session::Session(std::vector<DecoderRequest> requests, CaptureReader& reader, st
     facts_.file = std::move(file_name);
     facts_.format = reader.formatName();
     facts_.timebase = reader.timebase();
-    if (requests.empty()) throw InputError("no decoder chosen: use --proto NAME (see decode --list)");
+    if (requests.empty())
+        throw InputError("no decoder chosen: use --proto NAME (see decode --list)");
 
     const auto& sigs = reader.signals();
     std::map<std::string, int> proto_count;
-    for (const auto& r : requests) proto_count[r.proto]++;
+    for (const auto& r : requests)
+        proto_count[r.proto]++;
     std::map<std::string, int> proto_seen;
 
     for (auto& req : requests) {
@@ -223,10 +232,12 @@ Session::Session(std::vector<DecoderRequest> requests, CaptureReader& reader, st
 
         for (const auto& [role, _] : req.map) {
             bool known = false;
-            for (const auto& rs : info.roles) known |= rs.name == role;
+            for (const auto& rs : info.roles)
+                known |= rs.name == role;
             if (!known) {
                 std::vector<std::string> roles;
-                for (const auto& rs : info.roles) roles.push_back(rs.name);
+                for (const auto& rs : info.roles)
+                    roles.push_back(rs.name);
                 throw InputError(fmt::format("decoder {}: unknown role '{}' in --map (roles: {})",
                                              info.id, role, fmt::join(roles, ", ")));
             }
@@ -263,7 +274,8 @@ Session::Session(std::vector<DecoderRequest> requests, CaptureReader& reader, st
             bound_refs.push_back(*ref);
             int line = -1;
             for (int i = 0; i < int(impl_->lines.size()); ++i)
-                if (impl_->lines[i].signal == ref->signal && impl_->lines[i].bit == ref->bit) line = i;
+                if (impl_->lines[i].signal == ref->signal && impl_->lines[i].bit == ref->bit)
+                    line = i;
             if (line < 0) {
                 line = int(impl_->lines.size());
                 impl_->lines.push_back(*ref);
@@ -279,8 +291,9 @@ Session::Session(std::vector<DecoderRequest> requests, CaptureReader& reader, st
                 for (const auto& name : info.need_one_of)
                     any |= info.roles[r].name == name && slot.role_line[r] >= 0;
             if (!any)
-                throw InputError(fmt::format("decoder {}: bind at least one of the roles {} (signals: {})",
-                                             info.id, fmt::join(info.need_one_of, ", "), signalList(sigs)));
+                throw InputError(
+                    fmt::format("decoder {}: bind at least one of the roles {} (signals: {})",
+                                info.id, fmt::join(info.need_one_of, ", "), signalList(sigs)));
         }
         facts_.protos.push_back(slot.instance);
         impl_->slots.push_back(std::move(slot));
@@ -296,8 +309,12 @@ Session::Session(std::vector<DecoderRequest> requests, CaptureReader& reader, st
 
 Session::~Session() = default;
 
-void Session::requestStop() { impl_->stop = true; }
-void Session::setStopFlag(const std::atomic<bool>* flag) { impl_->external_stop = flag; }
+void Session::requestStop() {
+    impl_->stop = true;
+}
+void Session::setStopFlag(const std::atomic<bool>* flag) {
+    impl_->external_stop = flag;
+}
 
 void Session::run() {
     Impl& im = *impl_;
@@ -309,13 +326,15 @@ void Session::run() {
         auto& slot = im.slots[s];
         slot.ctx.timebase = reader.timebase();
         slot.ctx.capture_start = facts_.start;
-        for (int line : slot.role_line) slot.ctx.initial_levels.push_back(line < 0 ? -1 : im.levels[line]);
+        for (int line : slot.role_line)
+            slot.ctx.initial_levels.push_back(line < 0 ? -1 : im.levels[line]);
         slot.ctx.sink = &im;
         im.emitting = s;
         slot.decoder->start(slot.ctx);
         slot.decoder->setSink(&im);
     }
-    for (auto* s : sinks_) s->begin(facts_);
+    for (auto* s : sinks_)
+        s->begin(facts_);
 
     EdgeBlock block;
     block.edges.reserve(kEdgeBlockSize);
@@ -325,7 +344,8 @@ void Session::run() {
             im.levels[e.line] = e.level;
             im.now = e.t;
             ++facts_.edges;
-            for (const auto& tg : im.targets[e.line]) im.deliver(tg.slot, e.t, tg.role, e.level);
+            for (const auto& tg : im.targets[e.line])
+                im.deliver(tg.slot, e.t, tg.role, e.level);
         }
         if (block.known_until != kNoTick && block.known_until > im.now) im.now = block.known_until;
         im.advanceAll(im.now);
@@ -342,15 +362,18 @@ void Session::run() {
         im.emitting = s;
         if (slot.glitch)
             slot.glitch->flush([&](const GlitchFilter::Out& o) {
-                if (o.is_glitch) slot.decoder->glitch(o.t, o.role);
-                else slot.decoder->edge(o.t, o.role, o.level);
+                if (o.is_glitch)
+                    slot.decoder->glitch(o.t, o.role);
+                else
+                    slot.decoder->edge(o.t, o.role, o.level);
             });
         slot.decoder->advance(facts_.end);
         slot.decoder->finish(facts_.end);
     }
     im.release(true);
     facts_.bytes = reader.bytesRead();
-    for (auto* s : sinks_) s->end(facts_);
+    for (auto* s : sinks_)
+        s->end(facts_);
 }
 
 namespace {

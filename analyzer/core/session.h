@@ -16,9 +16,9 @@
 namespace busdecode {
 
 struct DecoderRequest {
-    std::string proto;                          // decoder id
-    std::map<std::string, std::string> map;     // role -> signal name or index
-    std::map<std::string, std::string> options; // key -> value text (glitch_ns included)
+    std::string proto;                           // decoder id
+    std::map<std::string, std::string> map;      // role -> signal name or index
+    std::map<std::string, std::string> options;  // key -> value text (glitch_ns included)
 };
 
 // What the sinks learn about the capture before the first event.
@@ -51,7 +51,8 @@ class Session {
 public:
     // Binds roles (throws InputError listing the capture's signals when a role can't be
     // bound) and validates options (InputError naming decoder, option and valid values).
-    Session(std::vector<DecoderRequest> requests, CaptureReader& reader, std::string file_name = "");
+    Session(std::vector<DecoderRequest> requests, CaptureReader& reader,
+            std::string file_name = "");
     ~Session();
     void addSink(OutputSink* sink) { sinks_.push_back(sink); }
     // Reads the whole capture (or follows it) and decodes. Input errors throw InputError.
@@ -71,7 +72,8 @@ private:
 };
 
 // Test helper: decodes an in-memory capture and returns the events in output order.
-std::vector<Event> decodeWaveform(const struct Waveform& w, const std::vector<DecoderRequest>& requests);
+std::vector<Event> decodeWaveform(const struct Waveform& w,
+                                  const std::vector<DecoderRequest>& requests);
 
 // Splits "bissc.bits" into ("bissc", "bits") when the prefix names a requested decoder.
 std::pair<std::string, std::string> splitScopedKey(const std::string& key);

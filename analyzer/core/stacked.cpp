@@ -33,14 +33,20 @@ void LowerStack::edge(Tick t, int upper_role, bool level) {
         lower_->edge(t, role_map_[upper_role], level);
 }
 
-void LowerStack::advance(Tick now) { lower_->advance(now); }
-void LowerStack::finish(Tick end) { lower_->finish(end); }
+void LowerStack::advance(Tick now) {
+    lower_->advance(now);
+}
+void LowerStack::finish(Tick end) {
+    lower_->finish(end);
+}
 
 void LowerStack::glitch(Tick t, int upper_role) {
     if (upper_role >= 0 && upper_role < int(role_map_.size()) && role_map_[upper_role] >= 0)
         lower_->glitch(t, role_map_[upper_role]);
 }
 
-Tick LowerStack::watermark(Tick now) const { return lower_->watermark(now); }
+Tick LowerStack::watermark(Tick now) const {
+    return lower_->watermark(now);
+}
 
 }  // namespace busdecode

@@ -26,8 +26,10 @@ struct Timebase {
         __int128 q = v / den, r = v % den;
         if (2 * (r < 0 ? -r : r) >= den) q += (v < 0 ? -1 : 1);  // round half away from zero
         // Saturated beyond +-292 years (a coarse timebase with huge tick counts).
-        if (q > std::numeric_limits<std::int64_t>::max()) return std::numeric_limits<std::int64_t>::max();
-        if (q < std::numeric_limits<std::int64_t>::min()) return std::numeric_limits<std::int64_t>::min();
+        if (q > std::numeric_limits<std::int64_t>::max())
+            return std::numeric_limits<std::int64_t>::max();
+        if (q < std::numeric_limits<std::int64_t>::min())
+            return std::numeric_limits<std::int64_t>::min();
         return (std::int64_t)q;
     }
     double toNsF(double ticks) const { return ticks * nsPerTick(); }

@@ -15,7 +15,9 @@ struct Null {
 using Value = std::variant<Null, bool, std::int64_t, std::uint64_t, double, std::string,
                            std::vector<std::int64_t>>;
 
-inline bool isNull(const Value& v) { return std::holds_alternative<Null>(v); }
+inline bool isNull(const Value& v) {
+    return std::holds_alternative<Null>(v);
+}
 // Numeric view of integers, bools and doubles (NaN for others); handy in rules and stats.
 double asDouble(const Value& v);
 // Integer view (0 for non-numeric); doubles are truncated.

@@ -6,18 +6,22 @@
 
 namespace busdecode {
 
-WaveBuilder::WaveBuilder(Timebase tb, std::vector<std::string> names, std::vector<std::uint8_t> initial)
+WaveBuilder::WaveBuilder(Timebase tb, std::vector<std::string> names,
+                         std::vector<std::uint8_t> initial)
     : tb_(tb), names_(std::move(names)), initial_(std::move(initial)) {
     if (initial_.size() != names_.size()) initial_.resize(names_.size(), 1);
     levels_ = initial_;
     per_line_.resize(names_.size());
 }
 
-Tick WaveBuilder::ticksFromNs(double ns) const { return Tick(std::llround(tb_.fromNs(ns))); }
+Tick WaveBuilder::ticksFromNs(double ns) const {
+    return Tick(std::llround(tb_.fromNs(ns)));
+}
 
 void WaveBuilder::set(std::uint32_t line, Tick t, bool level) {
     auto& edges = per_line_.at(line);
-    if (!edges.empty() && t < edges.back().t) throw std::logic_error("WaveBuilder: time went backwards");
+    if (!edges.empty() && t < edges.back().t)
+        throw std::logic_error("WaveBuilder: time went backwards");
     if (levels_[line] == std::uint8_t(level)) return;
     if (!edges.empty() && edges.back().t == t) {
         edges.pop_back();  // a zero-width pulse is no pulse
@@ -28,14 +32,17 @@ void WaveBuilder::set(std::uint32_t line, Tick t, bool level) {
     last_ = std::max(last_, t);
 }
 
-void WaveBuilder::setNs(std::uint32_t line, double ns, bool level) { set(line, ticksFromNs(ns), level); }
+void WaveBuilder::setNs(std::uint32_t line, double ns, bool level) {
+    set(line, ticksFromNs(ns), level);
+}
 
 Waveform WaveBuilder::build(Tick end) const {
     Waveform w;
     w.timebase = tb_;
     w.names = names_;
     w.initial = initial_;
-    for (const auto& e : per_line_) w.edges.insert(w.edges.end(), e.begin(), e.end());
+    for (const auto& e : per_line_)
+        w.edges.insert(w.edges.end(), e.begin(), e.end());
     std::stable_sort(w.edges.begin(), w.edges.end(), [](const Edge& a, const Edge& b) {
         return a.t < b.t || (a.t == b.t && a.line < b.line);
     });

@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cctype>
 
-#include "core/atomic_file.h"
 #include "capture_stats.h"
+#include "core/atomic_file.h"
 #include "html_report.h"
 #include "text_report.h"
 

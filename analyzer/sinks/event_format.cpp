@@ -12,14 +12,26 @@ void appendJsonString(std::string& out, const std::string& s) {
     out += '"';
     for (unsigned char c : s) {
         switch (c) {
-            case '"': out += "\\\""; break;
-            case '\\': out += "\\\\"; break;
-            case '\n': out += "\\n"; break;
-            case '\r': out += "\\r"; break;
-            case '\t': out += "\\t"; break;
+            case '"':
+                out += "\\\"";
+                break;
+            case '\\':
+                out += "\\\\";
+                break;
+            case '\n':
+                out += "\\n";
+                break;
+            case '\r':
+                out += "\\r";
+                break;
+            case '\t':
+                out += "\\t";
+                break;
             default:
-                if (c < 0x20) out += fmt::format("\\u{:04x}", c);
-                else out += char(c);
+                if (c < 0x20)
+                    out += fmt::format("\\u{:04x}", c);
+                else
+                    out += char(c);
         }
     }
     out += '"';
@@ -29,15 +41,21 @@ void appendValue(std::string& out, const Value& v) {
     std::visit(
         [&](const auto& x) {
             using T = std::decay_t<decltype(x)>;
-            if constexpr (std::is_same_v<T, Null>) out += "null";
-            else if constexpr (std::is_same_v<T, bool>) out += x ? "true" : "false";
+            if constexpr (std::is_same_v<T, Null>)
+                out += "null";
+            else if constexpr (std::is_same_v<T, bool>)
+                out += x ? "true" : "false";
             else if constexpr (std::is_same_v<T, std::int64_t> || std::is_same_v<T, std::uint64_t>)
                 out += fmt::format("{}", x);
             else if constexpr (std::is_same_v<T, double>) {
-                if (!std::isfinite(x)) out += "null";
-                else if (x == std::floor(x) && std::fabs(x) < 1e15) out += fmt::format("{}", std::int64_t(x));
-                else out += fmt::format("{}", x);
-            } else if constexpr (std::is_same_v<T, std::string>) appendJsonString(out, x);
+                if (!std::isfinite(x))
+                    out += "null";
+                else if (x == std::floor(x) && std::fabs(x) < 1e15)
+                    out += fmt::format("{}", std::int64_t(x));
+                else
+                    out += fmt::format("{}", x);
+            } else if constexpr (std::is_same_v<T, std::string>)
+                appendJsonString(out, x);
             else {
                 out += '[';
                 for (std::size_t i = 0; i < x.size(); ++i) {
@@ -53,7 +71,8 @@ void appendValue(std::string& out, const Value& v) {
 std::string valueToText(const Value& v) {
     if (auto s = std::get_if<std::string>(&v)) return *s;
     if (auto b = std::get_if<bool>(&v)) return *b ? "1" : "0";
-    if (auto d = std::get_if<double>(&v)) return std::isfinite(*d) ? fmt::format("{:.6g}", *d) : "-";
+    if (auto d = std::get_if<double>(&v))
+        return std::isfinite(*d) ? fmt::format("{:.6g}", *d) : "-";
     return valueToJson(v);
 }
 
@@ -111,7 +130,8 @@ std::string eventToText(const Event& e, const Timebase& tb) {
                                    e.instance.empty() ? e.proto : e.instance, e.type, body);
     if (!e.errors.empty()) {
         line += "  !";
-        for (std::size_t i = 0; i < e.errors.size(); ++i) line += (i ? "," : "") + e.errors[i];
+        for (std::size_t i = 0; i < e.errors.size(); ++i)
+            line += (i ? "," : "") + e.errors[i];
     }
     return line;
 }

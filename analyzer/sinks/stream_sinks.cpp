@@ -24,7 +24,8 @@ public:
     void begin(const CaptureFacts& f) override {
         tallies_.clear();
         std::string binds;
-        for (const auto& b : f.bindings) binds += fmt::format(" {}.{}={}", b.instance, b.role, b.signal);
+        for (const auto& b : f.bindings)
+            binds += fmt::format(" {}.{}={}", b.instance, b.role, b.signal);
         fmt::print(out_, "# {} ({}, {:.6g} MS/s timebase){}\n", f.file, f.format,
                    f.timebase.sampleRateHz() / 1e6, binds);
     }
@@ -35,7 +36,8 @@ public:
         auto& t = tallies_[e.instance.empty() ? e.proto : e.instance];
         t.by_type[e.type]++;
         if (!e.errors.empty()) t.faulty++;
-        for (const auto& err : e.errors) t.by_error[err]++;
+        for (const auto& err : e.errors)
+            t.by_error[err]++;
     }
     void end(const CaptureFacts& f) override {
         const double dur = double(f.timebase.toNs(f.end - f.start));
@@ -43,10 +45,13 @@ public:
         for (const auto& inst : f.protos) {
             const auto& t = tallies_[inst];
             std::string types, errs;
-            for (const auto& [k, n] : t.by_type) types += fmt::format("{}{} {}", types.empty() ? "" : ", ", n, k);
-            for (const auto& [k, n] : t.by_error) errs += fmt::format("{}{} {}", errs.empty() ? "" : ", ", n, k);
-            fmt::print(out_, "# {}: {}; {} with errors{}\n", inst, types.empty() ? "no events" : types,
-                       t.faulty, errs.empty() ? "" : " (" + errs + ")");
+            for (const auto& [k, n] : t.by_type)
+                types += fmt::format("{}{} {}", types.empty() ? "" : ", ", n, k);
+            for (const auto& [k, n] : t.by_error)
+                errs += fmt::format("{}{} {}", errs.empty() ? "" : ", ", n, k);
+            fmt::print(out_, "# {}: {}; {} with errors{}\n", inst,
+                       types.empty() ? "no events" : types, t.faulty,
+                       errs.empty() ? "" : " (" + errs + ")");
         }
         std::fflush(out_);
     }
@@ -72,7 +77,11 @@ private:
 
 }  // namespace
 
-std::unique_ptr<OutputSink> makeTextSink(std::FILE* out) { return std::make_unique<TextSink>(out); }
-std::unique_ptr<OutputSink> makeJsonlSink(std::FILE* out) { return std::make_unique<JsonlSink>(out); }
+std::unique_ptr<OutputSink> makeTextSink(std::FILE* out) {
+    return std::make_unique<TextSink>(out);
+}
+std::unique_ptr<OutputSink> makeJsonlSink(std::FILE* out) {
+    return std::make_unique<JsonlSink>(out);
+}
 
 }  // namespace busdecode

@@ -7,9 +7,9 @@
 #include <fmt/format.h>
 
 #include "batch.h"
+#include "core/atomic_file.h"
 #include "core/options.h"
 #include "core/registry.h"
-#include "core/atomic_file.h"
 #include "rules.h"
 
 namespace busdecode {

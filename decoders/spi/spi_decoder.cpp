@@ -77,7 +77,7 @@ void SpiDecoder::sampleBit(Tick t) {
         // Saturated: an absurd gap before the last bit must not overflow (fuzz finding).
         const Tick period = t - prev_sample_;
         emitWord(period > std::numeric_limits<Tick>::max() - t ? std::numeric_limits<Tick>::max()
-                                                                : t + period,
+                                                               : t + period,
                  false);
         resetWord();
     }

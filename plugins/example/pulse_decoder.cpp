@@ -62,6 +62,8 @@ void PulseDecoder::edge(Tick t, int, bool level) {
     idle();
 }
 
-void PulseDecoder::finish(Tick) { idle(); }
+void PulseDecoder::finish(Tick) {
+    idle();
+}
 
 }  // namespace pulse

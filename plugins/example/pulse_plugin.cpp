@@ -1,7 +1,7 @@
 // The Qt plugin wrapper: the root object hands out the decoder factory.
-#include <QObject>
 #include <busdecode/plugin.h>
 #include <core/registry.h>
+#include <QObject>
 
 #include "pulse_decoder.h"
 
@@ -12,7 +12,8 @@ class PulsePlugin : public QObject, public busdecode::DecoderPlugin {
 
 public:
     std::vector<std::shared_ptr<const busdecode::DecoderFactory>> factories() const override {
-        return {std::make_shared<busdecode::SimpleFactory<pulse::PulseDecoder>>(pulse::pulseInfo())};
+        return {
+            std::make_shared<busdecode::SimpleFactory<pulse::PulseDecoder>>(pulse::pulseInfo())};
     }
 };
 

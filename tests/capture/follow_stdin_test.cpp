@@ -117,7 +117,8 @@ TEST(Follow, TruncatedOrDeletedFileIsAnError) {
                 r->next(b);
             ADD_FAILURE() << "no error";
         } catch (const InputError& e) {
-            EXPECT_EQ(std::string(e.what()), p + (remove ? ": deleted while following" : ": truncated while following"));
+            EXPECT_EQ(std::string(e.what()),
+                      p + (remove ? ": deleted while following" : ": truncated while following"));
         }
     }
 }

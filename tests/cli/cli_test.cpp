@@ -2,9 +2,9 @@
 // clear line with exit status 2 for every kind of bad input.
 #include <gtest/gtest.h>
 
+#include <QJsonArray>
 #include <QJsonDocument>
 #include <QJsonObject>
-#include <QJsonArray>
 #include <sstream>
 
 #include "support/paths.h"
@@ -17,11 +17,14 @@ namespace {
 std::vector<std::string> lines(const std::string& s) {
     std::vector<std::string> out;
     std::istringstream in(s);
-    for (std::string l; std::getline(in, l);) out.push_back(l);
+    for (std::string l; std::getline(in, l);)
+        out.push_back(l);
     return out;
 }
 
-int countLines(const std::string& s) { return int(lines(s).size()); }
+int countLines(const std::string& s) {
+    return int(lines(s).size());
+}
 
 // One SPI word (mode 3) and, on separate lines, two UART bytes at 115200 baud.
 std::string mixedCapture() {
@@ -44,14 +47,17 @@ TEST(Cli, ListShowsEveryBuiltInDecoderWithRolesAndOptions) {
     auto r = runDecode({"--list"});
     ASSERT_EQ(r.status, 0) << r.err;
     for (const char* id : {"bissc", "spi", "ssi", "tmc8100", "tmcl", "uart"})
-        EXPECT_NE(("\n" + r.out).find(std::string("\n") + id + "  "), std::string::npos) << id << "\n" << r.out;
+        EXPECT_NE(("\n" + r.out).find(std::string("\n") + id + "  "), std::string::npos)
+            << id << "\n"
+            << r.out;
     EXPECT_NE(r.out.find("glitch_ns"), std::string::npos);
     EXPECT_NE(r.out.find("cpol"), std::string::npos);
 }
 
 TEST(Cli, JsonlHasTheContractKeysInTimeOrderAcrossTwoBuses) {
     const auto path = writeTemp("mixed.vcd", mixedCapture());
-    auto r = runDecode({path, "--proto", "spi", "--proto", "uart", "--opt", "uart.baud=115200", "--format", "jsonl"});
+    auto r = runDecode({path, "--proto", "spi", "--proto", "uart", "--opt", "uart.baud=115200",
+                        "--format", "jsonl"});
     ASSERT_EQ(r.status, 0) << r.err;
     double last = -1;
     int spi = 0, uart = 0;
@@ -60,7 +66,8 @@ TEST(Cli, JsonlHasTheContractKeysInTimeOrderAcrossTwoBuses) {
         auto doc = QJsonDocument::fromJson(QByteArray::fromStdString(l), &err);
         ASSERT_EQ(err.error, QJsonParseError::NoError) << l;
         auto o = doc.object();
-        for (const char* k : {"proto", "type", "start_ns", "end_ns", "errors"}) EXPECT_TRUE(o.contains(k)) << l;
+        for (const char* k : {"proto", "type", "start_ns", "end_ns", "errors"})
+            EXPECT_TRUE(o.contains(k)) << l;
         EXPECT_GE(o["start_ns"].toDouble(), last);
         last = o["start_ns"].toDouble();
         if (o["proto"] == "spi") {
@@ -89,8 +96,8 @@ TEST(Cli, TextOutputHasOneLinePerEventAndASummary) {
 
 TEST(Cli, StandardInputIsACapture) {
     const auto path = writeTemp("stdin.vcd", mixedCapture());
-    auto r = runCommand(shellQuote(binDir() + "/decode") + " - --proto uart --opt baud=115200 --format jsonl < " +
-                        shellQuote(path));
+    auto r = runCommand(shellQuote(binDir() + "/decode") +
+                        " - --proto uart --opt baud=115200 --format jsonl < " + shellQuote(path));
     ASSERT_EQ(r.status, 0) << r.err;
     EXPECT_EQ(countLines(r.out), 2) << r.out;
 }
@@ -101,14 +108,17 @@ struct BadInput {
 };
 
 // Readable test names in ctest output instead of the raw bytes of the parameter.
-void PrintTo(const BadInput& b, std::ostream* os) { *os << '"' << b.expect << '"'; }
+void PrintTo(const BadInput& b, std::ostream* os) {
+    *os << '"' << b.expect << '"';
+}
 
 class CliErrors : public ::testing::TestWithParam<BadInput> {};
 
 TEST_P(CliErrors, OneLineOnStderrAndExitStatus2) {
     const auto path = writeTemp("ok.vcd", mixedCapture());
     std::vector<std::string> args;
-    for (auto a : GetParam().args) args.push_back(a == "@" ? path : a);
+    for (auto a : GetParam().args)
+        args.push_back(a == "@" ? path : a);
     auto r = runDecode(args);
     EXPECT_EQ(r.status, 2) << r.out << r.err;
     EXPECT_EQ(countLines(r.err), 1) << r.err;
@@ -122,17 +132,20 @@ INSTANTIATE_TEST_SUITE_P(
         BadInput{{"@", "--proto", "nosuch"}, "unknown decoder 'nosuch' (available: "},
         BadInput{{"@", "--proto", "ssi"}, "role 'data' is not bound"},
         BadInput{{"@", "--proto", "ssi"}, "signals: top.cs, top.sclk, top.mosi, top.miso, top.tx"},
-        BadInput{{"@", "--proto", "spi", "--opt", "cpol=2"}, "option cpol=2: expected an integer from 0 to 1"},
+        BadInput{{"@", "--proto", "spi", "--opt", "cpol=2"},
+                 "option cpol=2: expected an integer from 0 to 1"},
         BadInput{{"@", "--proto", "spi", "--opt", "speed=3"}, "unknown option 'speed'"},
         BadInput{{"@", "--proto", "uart", "--opt", "parity=maybe"}, "one of"},
-        BadInput{{"@", "--proto", "spi", "--map", "sclk=nosuch"}, "--map sclk=nosuch: no such signal"},
+        BadInput{{"@", "--proto", "spi", "--map", "sclk=nosuch"},
+                 "--map sclk=nosuch: no such signal"},
         BadInput{{"@", "--proto", "spi", "--format", "xml"}, "--format xml"},
-        BadInput{{"@"}, "no decoder chosen"},
-        BadInput{{"--proto", "spi"}, "no capture given"},
+        BadInput{{"@"}, "no decoder chosen"}, BadInput{{"--proto", "spi"}, "no capture given"},
         BadInput{{"@", "--proto", "spi", "--bogus"}, "bogus"}));
 
 TEST(Cli, MalformedVcdNamesFileAndLine) {
-    const auto path = writeTemp("bad.vcd", "$timescale 1 ns $end\n$var wire 1 ! a $end\n$enddefinitions $end\n#0 1!\n#10 1?\n");
+    const auto path = writeTemp(
+        "bad.vcd",
+        "$timescale 1 ns $end\n$var wire 1 ! a $end\n$enddefinitions $end\n#0 1!\n#10 1?\n");
     auto r = runDecode({path, "--proto", "uart", "--map", "tx=a"});
     EXPECT_EQ(r.status, 2);
     EXPECT_NE(r.err.find(path + ":5:"), std::string::npos) << r.err;

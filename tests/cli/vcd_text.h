@@ -11,7 +11,8 @@ namespace busdecode::test {
 class VcdText {
 public:
     // names: line names (id chars assigned in order); initial levels
-    VcdText(std::vector<std::string> names, std::vector<int> initial, const std::string& timescale = "1 ns");
+    VcdText(std::vector<std::string> names, std::vector<int> initial,
+            const std::string& timescale = "1 ns");
     void set(int line, std::int64_t t, int level);
     std::string str(std::int64_t end) const;
 

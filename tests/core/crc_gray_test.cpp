@@ -7,19 +7,20 @@
 using namespace busdecode;
 
 TEST(BissCrc6, OfficialAndCapturedVectors) {
-    EXPECT_EQ(bissCrc6(0b010011010101, 12), 0x1Cu);                      // V1 AN21
-    EXPECT_EQ(bissCrc6((0x05AC53ull << 2) | 0b00, 26), 0b101111u);        // V2 AN18
-    EXPECT_EQ(bissCrc6((0x0000000ull << 2) | 0b11, 28), 0x3Au);          // V3
-    EXPECT_EQ(bissCrc6((0x3FFFFFFull << 2) | 0b11, 28), 0x22u);          // V4
-    EXPECT_EQ(bissCrc6((0x123456ull << 2) | 0b11, 26), 0x35u);           // V5
-    EXPECT_EQ(bissCrc6((0x0A5Aull << 2) | 0b10, 15), 0x2Bu);             // V6
-    EXPECT_EQ(bissCrc6((0x2AAAAull << 2) | 0b01, 20), 0x2Du);            // V7
-    EXPECT_EQ(bissCrc6((0x12345678ull << 2) | 0b00, 34), 0x00u);         // V8
+    EXPECT_EQ(bissCrc6(0b010011010101, 12), 0x1Cu);                 // V1 AN21
+    EXPECT_EQ(bissCrc6((0x05AC53ull << 2) | 0b00, 26), 0b101111u);  // V2 AN18
+    EXPECT_EQ(bissCrc6((0x0000000ull << 2) | 0b11, 28), 0x3Au);     // V3
+    EXPECT_EQ(bissCrc6((0x3FFFFFFull << 2) | 0b11, 28), 0x22u);     // V4
+    EXPECT_EQ(bissCrc6((0x123456ull << 2) | 0b11, 26), 0x35u);      // V5
+    EXPECT_EQ(bissCrc6((0x0A5Aull << 2) | 0b10, 15), 0x2Bu);        // V6
+    EXPECT_EQ(bissCrc6((0x2AAAAull << 2) | 0b01, 20), 0x2Du);       // V7
+    EXPECT_EQ(bissCrc6((0x12345678ull << 2) | 0b00, 34), 0x00u);    // V8
 }
 
 TEST(BissCrc16, AN21Vector) {
     BitCrc crc = BitCrc::fromFullPoly(0x190D9, 0, true);
-    for (std::uint8_t b : {0xD9, 0xCF, 0xE0, 0xC0, 0xDA}) crc.pushBits(b, 8);
+    for (std::uint8_t b : {0xD9, 0xCF, 0xE0, 0xC0, 0xDA})
+        crc.pushBits(b, 8);
     EXPECT_EQ(crc.value(), 0x5F29u);
 }
 

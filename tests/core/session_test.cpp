@@ -69,7 +69,9 @@ DecoderInfo riseInfo() {
 }
 
 struct RegisterRise {
-    RegisterRise() { Registry::instance().add(std::make_shared<SimpleFactory<RiseDecoder>>(riseInfo())); }
+    RegisterRise() {
+        Registry::instance().add(std::make_shared<SimpleFactory<RiseDecoder>>(riseInfo()));
+    }
 } register_rise;
 
 Waveform twoLines() {
@@ -125,17 +127,19 @@ TEST(Session, GlitchFilterRemovesShortPulsesAndReportsThem) {
 
 TEST(Session, EventsFromSeveralDecodersComeOutInStartOrder) {
     auto w = twoLines();
-    auto ev = decodeWaveform(w, {{"rise", {{"in", "a"}}, {{"tag", "other"}}}, {"rise", {{"in", "input"}}, {}}});
+    auto ev = decodeWaveform(
+        w, {{"rise", {{"in", "a"}}, {{"tag", "other"}}}, {"rise", {{"in", "input"}}, {}}});
     ASSERT_EQ(ev.size(), 4u);
-    for (std::size_t i = 1; i < ev.size(); ++i) EXPECT_LE(ev[i - 1].start, ev[i].start);
+    for (std::size_t i = 1; i < ev.size(); ++i)
+        EXPECT_LE(ev[i - 1].start, ev[i].start);
     EXPECT_EQ(ev[0].instance, "rise#1");
     EXPECT_EQ(ev[1].instance, "rise#2");
 }
 
 TEST(Session, CorrelationSeesOtherDecodersEventsByTime) {
     auto w = twoLines();
-    auto ev = decodeWaveform(
-        w, {{"rise", {{"in", "a"}}, {{"tag", "other"}}}, {"rise", {{"in", "input"}}, {{"correlate", "1"}}}});
+    auto ev = decodeWaveform(w, {{"rise", {{"in", "a"}}, {{"tag", "other"}}},
+                                 {"rise", {{"in", "input"}}, {{"correlate", "1"}}}});
     int checked = 0;
     for (const auto& e : ev) {
         if (e.type != "edge") continue;

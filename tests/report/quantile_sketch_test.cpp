@@ -108,9 +108,11 @@ TEST(QuantileSketch, ConstantValueIsExact) {
 
 TEST(QuantileSketch, IntegerFieldsGiveIntegerQuantilesEvenWhenABucketHoldsNeighbours) {
     busdecode::QuantileSketch s;
-    for (double v : {151.0, 152.0, 152.0, 152.0}) s.add(v);  // one 1 % bucket holds both
+    for (double v : {151.0, 152.0, 152.0, 152.0})
+        s.add(v);  // one 1 % bucket holds both
     EXPECT_EQ(s.median(), 152.0);
     busdecode::QuantileSketch f;
-    for (double v : {151.5, 152.0, 152.0, 152.0}) f.add(v);  // not integers: the bucket mean stays
+    for (double v : {151.5, 152.0, 152.0, 152.0})
+        f.add(v);  // not integers: the bucket mean stays
     EXPECT_NE(f.median(), std::round(f.median()));
 }

@@ -1,13 +1,13 @@
 #include "paths.h"
 
+#include <sys/wait.h>
+#include <unistd.h>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
-#include <sys/wait.h>
-#include <unistd.h>
 
 namespace busdecode::test {
 
@@ -28,7 +28,8 @@ std::string binDir() {
 
 std::string tempDir() {
     static std::string dir = [] {
-        std::string tmpl = (std::filesystem::temp_directory_path() / "busdecode-test-XXXXXX").string();
+        std::string tmpl =
+            (std::filesystem::temp_directory_path() / "busdecode-test-XXXXXX").string();
         if (!mkdtemp(tmpl.data())) throw std::runtime_error("mkdtemp failed");
         return tmpl;
     }();
@@ -51,8 +52,10 @@ void writeFile(const std::string& path, const std::string& text) {
 std::string shellQuote(const std::string& s) {
     std::string out = "'";
     for (char c : s) {
-        if (c == '\'') out += "'\\''";
-        else out += c;
+        if (c == '\'')
+            out += "'\\''";
+        else
+            out += c;
     }
     return out + "'";
 }
@@ -62,7 +65,8 @@ RunResult runCommand(const std::string& cmdline) {
     static int counter = 0;
     const std::string outf = dir + "/run" + std::to_string(++counter) + ".out";
     const std::string errf = dir + "/run" + std::to_string(counter) + ".err";
-    const std::string full = "( " + cmdline + " ) >" + shellQuote(outf) + " 2>" + shellQuote(errf) + " </dev/null";
+    const std::string full =
+        "( " + cmdline + " ) >" + shellQuote(outf) + " 2>" + shellQuote(errf) + " </dev/null";
     int st = std::system(full.c_str());
     RunResult r;
     r.status = (st != -1 && WIFEXITED(st)) ? WEXITSTATUS(st) : -1;
@@ -73,7 +77,8 @@ RunResult runCommand(const std::string& cmdline) {
 
 RunResult runDecode(const std::vector<std::string>& args) {
     std::string cmd = shellQuote(binDir() + "/decode");
-    for (const auto& a : args) cmd += " " + shellQuote(a);
+    for (const auto& a : args)
+        cmd += " " + shellQuote(a);
     return runCommand(cmd);
 }
 
