@@ -74,9 +74,10 @@ void SpiDecoder::sampleBit(Tick t) {
     ++count_;
     if (count_ == bits_) {
         // sigrok's end estimate: one bit period (the last sample interval) after the last bit.
-        // Saturated: an absurd gap before the last bit must not overflow (fuzz finding).
+        // Saturated: an absurd gap before the last bit must not overflow (fuzz finding;
+        // period >= 0 as edges come in time order, so max - period cannot overflow).
         const Tick period = t - prev_sample_;
-        emitWord(period > std::numeric_limits<Tick>::max() - t ? std::numeric_limits<Tick>::max()
+        emitWord(t > std::numeric_limits<Tick>::max() - period ? std::numeric_limits<Tick>::max()
                                                                : t + period,
                  false);
         resetWord();
