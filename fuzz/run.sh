@@ -30,7 +30,8 @@ if [ ${#targets[@]} -eq 0 ]; then
     done
 fi
 
-# Seeds (small files only: libFuzzer keeps the first -max_len bytes anyway).
+# Seeds (small files only: libFuzzer keeps the first -max_len bytes anyway). Short
+# inputs keep the executions per second up; the readers' paths need no long files.
 seeds="$build/seeds"
 if [ ! -d "$seeds" ]; then
     "$build/bin/fuzz_make_seeds" "$seeds" >/dev/null
@@ -56,11 +57,11 @@ seed_corpus() {  # TARGET
 }
 options_for() {  # TARGET -> libFuzzer options
     case "$1" in
-        vcd) echo "-dict=$src/fuzz/dict/vcd.dict -max_len=16384" ;;
-        csv_*) echo "-dict=$src/fuzz/dict/csv.dict -max_len=65536" ;;
-        sr) echo "-dict=$src/fuzz/dict/sr.dict -max_len=32768" ;;
-        rules) echo "-dict=$src/fuzz/dict/rules.dict -max_len=4096" ;;
-        *) echo "-max_len=16384" ;;
+        vcd) echo "-dict=$src/fuzz/dict/vcd.dict -max_len=4096" ;;
+        csv_*) echo "-dict=$src/fuzz/dict/csv.dict -max_len=4096" ;;
+        sr) echo "-dict=$src/fuzz/dict/sr.dict -max_len=8192" ;;
+        rules) echo "-dict=$src/fuzz/dict/rules.dict -max_len=2048" ;;
+        *) echo "-max_len=4096" ;;
     esac
 }
 
