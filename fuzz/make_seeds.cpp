@@ -111,7 +111,8 @@ int main(int argc, char** argv) {
         const bench::BenchBus bus = bench::makeBus(id, id == "uart" ? 8 : 3);
         const Waveform& w = bus.chunk;
         const fs::path tmp = out / "tmp";
-        fs::create_directories(tmp);
+        for (const char* d : {"tmp", "vcd", "csv_saleae", "csv_sigrok", "csv_plain"})
+            fs::create_directories(out / d);
         writeVcd(w, (out / "vcd" / (id + ".vcd")).string());
         writeCsv(w, (out / "csv_saleae" / (id + ".csv")).string(), CsvDialect::SaleaeLogic2);
         if (w.timebase.num == 1 &&
