@@ -88,10 +88,15 @@ Tick Tmc8100Decoder::watermark(Tick now) const {
 }
 
 void Tmc8100Decoder::updateBusy() {
-    if (waiting_.empty())
+    // Events may still start at the oldest command waiting for replies, or at the first
+    // 8/16-bit frame of a datagram still being assembled.
+    Tick from = kNoTick;
+    if (!waiting_.empty()) from = waiting_.front().start;
+    if (acc_bits_ > 0 && (from == kNoTick || acc_start_ < from)) from = acc_start_;
+    if (from == kNoTick)
         idle();
     else
-        setBusyFrom(waiting_.front().start);
+        setBusyFrom(from);
 }
 
 void Tmc8100Decoder::onTransfer(Event&& spi) {
@@ -106,7 +111,10 @@ void Tmc8100Decoder::onTransfer(Event&& spi) {
         acc_mosi_ = (acc_mosi_ << bits) | mosi.value_or(0);
         acc_miso_ = (acc_miso_ << bits) | miso.value_or(0);
         acc_bits_ += bits;
-        if (acc_bits_ < 32) return;
+        if (acc_bits_ < 32) {
+            updateBusy();
+            return;
+        }
         Event dg = std::move(spi);
         dg.start = acc_start_;
         if (mosi) dg.set("mosi", acc_mosi_);
