@@ -319,42 +319,17 @@ std::shared_ptr<const DecoderFactory> makeTmclFactory() {
         {"bus", false, {"rs485", "line"}, "one half-duplex RS-485 line carrying both directions"},
     };
     info.need_one_of = {"host", "module", "bus"};
-    OptionSpec baud{"baud",
-                    OptionSpec::Kind::Float,
-                    "9600",
-                    {},
-                    1,
-                    1e9,
-                    "bit rate passed to the UART layer, or auto (shortest pulse)"};
-    baud.allow_auto = true;
-    OptionSpec host{"host_address",
-                    OptionSpec::Kind::Int,
-                    "auto",
-                    {},
-                    0,
-                    255,
-                    "host (reply) address; helps tell replies from commands on a bus line"};
-    host.allow_auto = true;
-    OptionSpec module{"module_address",
-                      OptionSpec::Kind::Int,
-                      "auto",
-                      {},
-                      0,
-                      255,
-                      "module address; helps tell commands from replies on a bus line"};
-    module.allow_auto = true;
     info.options = {
-        baud,
-        host,
-        module,
-        {"gap_bytes",
-         OptionSpec::Kind::Float,
-         "3",
-         {},
-         0.5,
-         1e6,
-         "a pause longer than this many character times inside a datagram resynchronises"},
-        {"invert", OptionSpec::Kind::Bool, "0", {}, -1e300, 1e300, "1: the lines idle low"},
+        numberOption("baud", "9600", 1, 1e9,
+                     "bit rate passed to the UART layer, or auto (shortest pulse)", true),
+        intOption("host_address", "auto", 0, 255,
+                  "host (reply) address; helps tell replies from commands on a bus line", true),
+        intOption("module_address", "auto", 0, 255,
+                  "module address; helps tell commands from replies on a bus line", true),
+        numberOption("gap_bytes", "3", 0.5, 1e6,
+                     "a pause longer than this many character times inside a datagram "
+                     "resynchronises"),
+        boolOption("invert", "0", "1: the lines idle low"),
     };
     info.events = {
         {"command",
