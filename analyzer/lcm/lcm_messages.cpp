@@ -93,9 +93,9 @@ struct Stamp {
     std::int64_t utime;
 };
 
-// The leading fields every typed message shares.
+// The stamp every message carries: times, sequence, instance, errors.
 template <class Msg>
-void fillCommon(Msg& m, const Stamp& s, const FieldReader& r) {
+void fillStamp(Msg& m, const Stamp& s) {
     m.utime = s.utime;
     m.seq = s.seq;
     m.start_ns = s.tb.toNs(s.e.start);
@@ -103,6 +103,12 @@ void fillCommon(Msg& m, const Stamp& s, const FieldReader& r) {
     m.instance = s.e.instance.empty() ? s.e.proto : s.e.instance;
     m.errors = s.e.errors;
     m.num_errors = static_cast<std::int16_t>(m.errors.size());
+}
+
+// The leading fields every typed message shares.
+template <class Msg>
+void fillCommon(Msg& m, const Stamp& s, const FieldReader& r) {
+    fillStamp(m, s);
     m.null_fields = r.nulls();
     m.num_null_fields = static_cast<std::int16_t>(m.null_fields.size());
 }
@@ -250,15 +256,9 @@ busdecode_lcm::event_field_t genericField(const Field& f) {
 
 int publishGeneric(lcm::LCM& lc, const std::string& channel, const Stamp& s) {
     busdecode_lcm::event_fields_t m{};
-    m.utime = s.utime;
-    m.seq = s.seq;
-    m.start_ns = s.tb.toNs(s.e.start);
-    m.end_ns = s.tb.toNs(s.e.end);
+    fillStamp(m, s);
     m.proto = s.e.proto;
     m.type = s.e.type;
-    m.instance = s.e.instance.empty() ? s.e.proto : s.e.instance;
-    m.errors = s.e.errors;
-    m.num_errors = static_cast<std::int16_t>(m.errors.size());
     for (const Field& f : s.e.fields)
         m.fields.push_back(genericField(f));
     m.num_fields = static_cast<std::int16_t>(m.fields.size());
@@ -267,16 +267,10 @@ int publishGeneric(lcm::LCM& lc, const std::string& channel, const Stamp& s) {
 
 int publishAnnotation(lcm::LCM& lc, const std::string& typed_channel, const Stamp& s) {
     busdecode_lcm::event_annotation_t m{};
-    m.utime = s.utime;
-    m.seq = s.seq;
-    m.start_ns = s.tb.toNs(s.e.start);
-    m.end_ns = s.tb.toNs(s.e.end);
+    fillStamp(m, s);
     m.proto = s.e.proto;
     m.type = s.e.type;
-    m.instance = s.e.instance.empty() ? s.e.proto : s.e.instance;
     m.channel = typed_channel;
-    m.errors = s.e.errors;
-    m.num_errors = static_cast<std::int16_t>(m.errors.size());
     m.text = eventToText(s.e, s.tb);
     m.json = eventToJson(s.e, s.tb);
     return lc.publish(kLcmEventsChannel, &m);
