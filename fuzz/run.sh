@@ -2,7 +2,9 @@
 # Runs the libFuzzer targets one after another, each for SECONDS (default 600), on one
 # core each (-workers/-jobs are left at 1: the build machine is shared).
 #
-#   fuzz/run.sh [-b BUILD_DIR] [-t SECONDS] [TARGET...]     (default: every fuzz_* built)
+#   fuzz/run.sh [-b BUILD_DIR] [-t SECONDS | -r RUNS] [TARGET...]   (default: every fuzz_* built)
+#
+# -r stops each target after RUNS executions instead of after SECONDS.
 #
 # Corpora live in BUILD_DIR/corpus/<target> (seeded from the generators via
 # fuzz_make_seeds, from captures/ and ../shared/captures, and from fuzz/seeds/), crashes
@@ -12,10 +14,12 @@ set -euo pipefail
 src="$(cd "$(dirname "$0")/.." && pwd)"
 build="$src/build-fuzz"
 secs=600
-while getopts "b:t:" o; do
+runs_limit=""
+while getopts "b:t:r:" o; do
     case $o in
         b) build="$(cd "$OPTARG" && pwd)" ;;
         t) secs="$OPTARG" ;;
+        r) runs_limit="$OPTARG" ;;
         *) exit 2 ;;
     esac
 done
@@ -61,7 +65,7 @@ options_for() {  # TARGET -> libFuzzer options
         csv_*) echo "-dict=$src/fuzz/dict/csv.dict -max_len=4096" ;;
         sr) echo "-dict=$src/fuzz/dict/sr.dict -max_len=8192" ;;
         rules) echo "-dict=$src/fuzz/dict/rules.dict -max_len=2048" ;;
-        *) echo "-max_len=4096" ;;
+        *) echo "-max_len=${DECODER_MAX_LEN:-4096}" ;;
     esac
 }
 
@@ -73,7 +77,10 @@ for t in "${targets[@]}"; do
     log="$build/logs/$t.log"
     # shellcheck disable=SC2046
     set +e
-    "$build/bin/fuzz_$t" "$build/corpus/$t" $(options_for "$t") -max_total_time="$secs" \
+    limit="-max_total_time=$secs"
+    [ -n "$runs_limit" ] && limit="-runs=$runs_limit"
+    start=$(date +%s)
+    "$build/bin/fuzz_$t" "$build/corpus/$t" $(options_for "$t") "$limit" \
         -timeout=10 -rss_limit_mb=2048 -malloc_limit_mb=1024 -print_final_stats=1 \
         -artifact_prefix="$build/artifacts/$t/" >"$log" 2>&1
     rc=$?
@@ -82,5 +89,5 @@ for t in "${targets[@]}"; do
     rate=$(grep -o 'stat::average_exec_per_sec: *[0-9]*' "$log" | grep -o '[0-9]*$' | tail -1)
     res=ok
     [ $rc -ne 0 ] && res="FINDING (see $log, $build/artifacts/$t/)"
-    printf '%-16s %12s %10s %8s  %s\n' "$t" "${runs:-?}" "${rate:-?}" "$secs" "$res"
+    printf '%-16s %12s %10s %8s  %s\n' "$t" "${runs:-?}" "${rate:-?}" "$(($(date +%s) - start))" "$res"
 done
