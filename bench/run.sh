@@ -8,7 +8,7 @@
 # temporary directory (removed at the end), then times `decode` against `sigrok-cli`
 # and `wc -l` on the same cached files (hyperfine, median), records peak memory
 # (/usr/bin/time -v) on 1 GB and 5 GB captures, times the doubling curve, measures the
-# --follow latency, and prints a table of ratios. -q: a quick run (small files, no 5 GB).
+# --follow latency, times `verify --jobs 1` against all cores, and prints a table of ratios. -q: a quick run (small files, no 5 GB).
 # Needs: a Release/RelWithDebInfo build (default ./build), hyperfine, sigrok-cli, python3.
 set -euo pipefail
 src="$(cd "$(dirname "$0")/.." && pwd)"
@@ -145,6 +145,23 @@ echo "measuring --follow latency ..." >&2
 read -r lat_med lat_p90 lat_max got sent < <(python3 "$src/bench/follow_latency.py" "$decode" 60 0.05)
 row "--follow latency (last edge written -> event on stdout)" "$got/$sent frames" \
     "median $lat_med ms, p90 $lat_p90 ms, max $lat_max ms" "" "< 50 ms" "$(verdict "$lat_max < 50")"
+
+# 6. verify --jobs: files checked in parallel (4 BiSS-C captures of SIZE/4 MB each)
+echo "timing verify --jobs ..." >&2
+vfiles=()
+for i in 1 2 3 4; do
+    gen bissc vcd $((size / 4)) "verify_$i.vcd" >/dev/null
+    vfiles+=("$tmp/verify_$i.vcd")
+done
+printf '[bissc]\nmax_crc_errors = 0\nmin_frames = 1\nmax_faults = 0\n\n[decode]\nproto = ["bissc"]\n' >"$tmp/rules.toml"
+read -r t_j1 c_j1 < <(median 3 "$decode" verify "${vfiles[@]}" --rules "$tmp/rules.toml" --jobs 1)
+read -r t_jn c_jn < <(median 3 "$decode" verify "${vfiles[@]}" --rules "$tmp/rules.toml" --jobs "$(nproc)")
+r_jobs="$(ratio "$t_j1" "$t_jn")"
+row "verify, 4 x $(mb "${vfiles[0]}") MB BiSS-C VCD: --jobs 1 vs --jobs $(nproc)" "" \
+    "--jobs $(nproc): $(fmt_s "$t_jn") s wall, $(fmt_s "$c_jn") s CPU" \
+    "--jobs 1: $(fmt_s "$t_j1") s wall, $(fmt_s "$c_j1") s CPU: **${r_jobs}x** faster" \
+    "uses every core" "$(verdict "$r_jobs >= 1.5")"
+rm -f "${vfiles[@]}"
 
 echo
 echo "Machine: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'), $(nproc) cores, $(free -g | awk '/Mem:/ {print $2}') GB RAM; load average at the start: $load_start, at the end: $(cut -d' ' -f1-3 /proc/loadavg)"

@@ -4,7 +4,8 @@
 #
 #   fuzz/run.sh [-b BUILD_DIR] [-t SECONDS | -r RUNS] [TARGET...]   (default: every fuzz_* built)
 #
-# -r stops each target after RUNS executions instead of after SECONDS.
+# -r stops each target after RUNS executions instead of after SECONDS. DECODER_MAX_LEN
+# (default 4096) caps the decoder targets' inputs: shorter edge streams run faster.
 #
 # Corpora live in BUILD_DIR/corpus/<target> (seeded from the generators via
 # fuzz_make_seeds, from captures/ and ../shared/captures, and from fuzz/seeds/), crashes
