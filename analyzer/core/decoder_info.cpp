@@ -13,24 +13,28 @@ OptionSpec make(std::string key, OptionSpec::Kind kind, std::string def, std::st
     return o;
 }
 
-}  // namespace
-
-OptionSpec intOption(std::string key, std::string def, double min, double max, std::string help,
-                     bool allow_auto) {
-    OptionSpec o = make(std::move(key), OptionSpec::Kind::Int, std::move(def), std::move(help));
+// Integer and real options differ only in their kind.
+OptionSpec ranged(OptionSpec::Kind kind, std::string key, std::string def, double min, double max,
+                  std::string help, bool allow_auto) {
+    OptionSpec o = make(std::move(key), kind, std::move(def), std::move(help));
     o.min = min;
     o.max = max;
     o.allow_auto = allow_auto;
     return o;
 }
 
+}  // namespace
+
+OptionSpec intOption(std::string key, std::string def, double min, double max, std::string help,
+                     bool allow_auto) {
+    return ranged(OptionSpec::Kind::Int, std::move(key), std::move(def), min, max, std::move(help),
+                  allow_auto);
+}
+
 OptionSpec numberOption(std::string key, std::string def, double min, double max, std::string help,
                         bool allow_auto) {
-    OptionSpec o = make(std::move(key), OptionSpec::Kind::Float, std::move(def), std::move(help));
-    o.min = min;
-    o.max = max;
-    o.allow_auto = allow_auto;
-    return o;
+    return ranged(OptionSpec::Kind::Float, std::move(key), std::move(def), min, max,
+                  std::move(help), allow_auto);
 }
 
 OptionSpec boolOption(std::string key, std::string def, std::string help) {
