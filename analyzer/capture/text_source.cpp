@@ -179,6 +179,35 @@ TextSource::Status TextSource::slowNextLine(std::string_view& line) {
     }
 }
 
+TextSource::Status TextSource::nextLines(std::string_view& text, std::uint64_t first_line) {
+    for (;;) {
+        // A run never exceeds kMaxLine + 1 bytes, so no line in it is too long; a line
+        // crossing the run's end starts the next run and is checked there.
+        const std::size_t window = std::min(std::size_t(end_ - pos_), kMaxLine + 1);
+        const char* nl = static_cast<const char*>(memrchr(pos_, '\n', window));
+        if (nl) {
+            if (mapped_ && std::size_t(pos_ - released_) > kReleaseStep) releaseMapped();
+            text = std::string_view(pos_, std::size_t(nl + 1 - pos_));
+            pos_ = nl + 1;
+            return Status::Line;
+        }
+        if (std::size_t(end_ - pos_) > kMaxLine)
+            throw InputError(at(first_line, "line longer than 1 MiB (not a text capture?)"));
+        if (!mapped_ && !eof_ && !stopRequested()) {
+            if (fill() > 0) continue;
+            if (!eof_) return Status::NoData;
+        }
+        // As nextLine(): a last line without a newline counts, unless a followed capture
+        // was stopped (that line may be half written).
+        if (pos_ < end_ && (mapped_ || eof_)) {
+            text = std::string_view(pos_, std::size_t(end_ - pos_));
+            pos_ = end_;
+            return Status::Line;
+        }
+        return Status::Eof;
+    }
+}
+
 void TextSource::skipByteOrderMark() {
     // Windows tools start UTF-8 text with EF BB BF; it is not part of the first line.
     if (line_no_ != 0 || bytesRead() != 0) return;

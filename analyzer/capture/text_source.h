@@ -44,6 +44,12 @@ public:
         }
         return slowNextLine(line);
     }
+    // Bulk form for byte-level scanners: the next run of complete lines, newlines
+    // included (at most kMaxLine + 1 bytes; the last line of the input may lack its
+    // newline). The caller counts lines from then on: lineNo() is not advanced, and
+    // `first_line` (the number of the run's first line) only names a line that is too
+    // long. Statuses and the view's lifetime are those of nextLine().
+    Status nextLines(std::string_view& text, std::uint64_t first_line);
     // 1-based number of the line last returned.
     std::uint64_t lineNo() const { return line_no_; }
     // Blocks up to `ms` milliseconds for more input (pipes, followed files).

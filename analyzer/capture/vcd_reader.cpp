@@ -27,6 +27,7 @@
 #include <fmt/format.h>
 
 #include "core/options.h"
+#include "decimal_scan.h"
 #include "readers.h"
 
 namespace busdecode {
@@ -48,6 +49,7 @@ public:
         : src_(std::move(src)), opts_(opts) {
         short1_.assign(94, -1);
         short2_.assign(94 * 94, -1);
+        scalar1_.assign(94, kNotScalar);  // select() fills it
         parseHeader();
     }
 
@@ -72,6 +74,17 @@ public:
             max_targets_ = std::max(max_targets_, per_code[c].size());
         }
         level_.assign(lines.size(), 1);
+        // The one-character identifiers with a single target on bit 0 (or none).
+        scalar1_.assign(94, kNotScalar);
+        for (unsigned i = 0; i < 94; ++i) {
+            const int code = short1_[i];
+            if (code < 0) continue;
+            const Code& c = codes_[std::size_t(code)];
+            if (c.tend == c.tbegin)
+                scalar1_[i] = kUnselected;
+            else if (c.tend - c.tbegin == 1 && targets_[c.tbegin].bit == 0)
+                scalar1_[i] = std::int32_t(targets_[c.tbegin].line);
+        }
     }
 
     std::vector<std::uint8_t> initialLevels() override {
@@ -126,7 +139,10 @@ private:
     };
     enum class Stop { Full, Eof, NoData, FirstDone };
 
-    [[noreturn]] void fail(const std::string& what) const { throw InputError(src_->at(what)); }
+    // Messages name line_: the line being parsed, in the header and in the value changes.
+    [[noreturn]] void fail(const std::string& what) const {
+        throw InputError(src_->at(line_, what));
+    }
     [[noreturn]] void failAt(std::uint64_t line, const std::string& what) const {
         throw InputError(src_->at(line, what));
     }
@@ -156,6 +172,7 @@ private:
             if (st == TextSource::Status::Line) {
                 p_ = line.data();
                 e_ = line.data() + line.size();
+                line_ = src_->lineNo();
                 return true;
             }
             if (st == TextSource::Status::Eof) return false;
@@ -323,18 +340,29 @@ private:
     }
 
     // Parses value changes. block == nullptr: the initial phase (levels only, stops at
-    // the first timestamp after the start).
+    // the first timestamp after the start). Scans runs of whole lines (up to 1 MiB) as
+    // one byte stream: a newline is a separator that counts a line, so there is no
+    // per-line call or search.
     Stop pump(EdgeBlock* block) {
         for (;;) {
-            while (p_ < e_ && isSpace(*p_))
+            while (p_ < e_) {
+                if (*p_ == '\n')
+                    ++line_;
+                else if (!isSpace(*p_))
+                    break;
                 ++p_;
+            }
             if (p_ >= e_) {
-                std::string_view line;
-                auto st = src_->nextLine(line);
+                if (!in_runs_) {  // the header's last line is done: runs start on the next
+                    in_runs_ = true;
+                    ++line_;
+                }
+                std::string_view text;
+                auto st = src_->nextLines(text, line_);
                 if (st == TextSource::Status::Eof) return Stop::Eof;
                 if (st == TextSource::Status::NoData) return Stop::NoData;
-                p_ = line.data();
-                e_ = line.data() + line.size();
+                p_ = text.data();
+                e_ = text.data() + text.size();
                 continue;
             }
             if (in_block_) {  // inside $comment ... $end
@@ -348,14 +376,11 @@ private:
             const char c = *p_;
             switch (c) {
                 case '#': {
-                    const char* q = p_ + 1;
-                    std::uint64_t t = 0;
-                    bool overflow = false;
-                    while (q < e_ && unsigned(*q - '0') < 10) {
-                        overflow |= t > (std::uint64_t(INT64_MAX) - 9) / 10;
-                        t = t * 10 + unsigned(*q++ - '0');
-                    }
-                    if (q == p_ + 1 || (q < e_ && !isSpace(*q)))
+                    const DecimalScan num = scanDecimal(p_ + 1, e_);
+                    const char* q = num.end;
+                    const std::uint64_t t = num.value;
+                    const bool overflow = num.overflow;
+                    if (q == p_ + 1 || (q < e_ && !isSpace(*q) && *q != '\n'))
                         fail(fmt::format(
                             "expected a time after '#', found '{}'",
                             printable(std::string_view(p_, std::size_t(tokenEnd(p_) - p_)))));
@@ -378,6 +403,18 @@ private:
                 }
                 case '0':
                 case '1':
+                    // The bulk of a capture: `0!` / `1"`, a one-character identifier of
+                    // a scalar; scalar1_ knows its one line (or that nobody wants it).
+                    if (e_ - p_ >= 3 && static_cast<unsigned char>(p_[2]) <= ' ') {
+                        const unsigned i = static_cast<unsigned char>(p_[1]) - 33u;
+                        if (i < 94 && scalar1_[i] != kNotScalar) {
+                            if (scalar1_[i] >= 0)
+                                set(std::uint32_t(scalar1_[i]), std::uint8_t(c - '0'), block);
+                            p_ += 2;
+                            break;
+                        }
+                    }
+                    [[fallthrough]];
                 case 'x':
                 case 'X':
                 case 'z':
@@ -479,11 +516,18 @@ private:
     std::vector<Target> targets_;
     std::size_t max_targets_ = 1;
     std::vector<int> short1_, short2_;
+    // Per one-character identifier: its selected line, kUnselected, or kNotScalar (not
+    // declared, or several targets / a vector bit: the general path handles it).
+    static constexpr std::int32_t kNotScalar = -1, kUnselected = -2;
+    std::vector<std::int32_t> scalar1_;
     std::unordered_map<std::string, int, StringHash, std::equal_to<>> long_;
     std::vector<std::uint8_t> level_;
 
-    const char* p_ = nullptr;  // the rest of the current line
+    // The rest of the current line (header), or of the current run of lines.
+    const char* p_ = nullptr;
     const char* e_ = nullptr;
+    std::uint64_t line_ = 0;  // number of the line p_ is in
+    bool in_runs_ = false;    // p_/e_ span a run of lines from TextSource::nextLines
     bool in_block_ = false;
     bool seen_time_ = false;
     bool initial_ = true;

@@ -47,6 +47,9 @@ public:
         (void)e;
         (void)window;
     }
+    // True if this decoder may set Event::wants_correlation. The session keeps the
+    // window of recent events (a copy of each) only when some decoder says so.
+    virtual bool correlates() const { return false; }
 
     // The earliest start tick of any event this decoder may still emit. The session
     // releases events in time order up to the minimum over all decoders.

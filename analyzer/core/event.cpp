@@ -11,6 +11,14 @@ Event& Event::set(std::string key, Value v) {
             return *this;
         }
     }
+    // One allocation instead of a growth series for the usual handful of fields.
+    if (fields.capacity() == 0) fields.reserve(8);
+    fields.push_back({std::move(key), std::move(v)});
+    return *this;
+}
+
+Event& Event::add(std::string key, Value v) {
+    if (fields.capacity() == 0) fields.reserve(24);
     fields.push_back({std::move(key), std::move(v)});
     return *this;
 }

@@ -17,8 +17,8 @@ void EventWindow::forEach(std::string_view proto, std::string_view type, Tick fr
             if (!visit(e)) return;
 }
 
-void EventWindow::remember(const Event& e, std::size_t keep) {
-    released_.push_back(e);
+void EventWindow::remember(Event&& e, std::size_t keep) {
+    released_.push_back(std::move(e));
     while (released_.size() > keep)
         released_.pop_front();
 }

@@ -20,7 +20,7 @@ public:
     const std::deque<Event>& released() const { return released_; }
 
     // Session side.
-    void remember(const Event& e, std::size_t keep);
+    void remember(Event&& e, std::size_t keep);
     void setPending(const std::deque<Event>* pending) { pending_ = pending; }
 
 private:

@@ -3,8 +3,9 @@
 // BiSS-C samples SL at MA rise + line delay + T/2, a UART samples mid-bit from the start
 // edge, SSI can sample a delayed data line. Decoders schedule sample times, feed the
 // line's edges and the passing of time, and pop resolved samples in order.
+#include <cstddef>
 #include <cstdint>
-#include <deque>
+#include <vector>
 
 #include "time.h"
 
@@ -20,12 +21,13 @@ public:
 
     void reset(bool level) {
         level_ = level;
-        queue_.clear();
-        ready_.clear();
+        buf_.clear();
+        head_ = resolved_ = 0;
     }
     // Schedules a sample at tick t (fractional ticks allowed). Times must not decrease.
-    void schedule(double t, std::uint32_t tag) { queue_.push_back({t, tag, false}); }
-    void cancelAll() { queue_.clear(); }
+    void schedule(double t, std::uint32_t tag) { buf_.push_back({t, tag, false}); }
+    // Drops the samples not resolved yet (resolved ones can still be popped).
+    void cancelAll() { buf_.resize(resolved_); }
 
     // An edge of the sampled line at t: samples strictly before t see the old level.
     void lineEdge(Tick t, bool level) {
@@ -37,29 +39,36 @@ public:
     // End of capture: resolves every remaining sample with the current level.
     void flush() { resolveBefore(1e300); }
 
-    bool ready() const { return !ready_.empty(); }
+    bool ready() const { return head_ < resolved_; }
     Sample pop() {
-        Sample s = ready_.front();
-        ready_.pop_front();
+        const Sample s = buf_[head_++];
+        if (head_ == buf_.size()) {
+            buf_.clear();
+            head_ = resolved_ = 0;
+        } else if (head_ >= kCompactAt && head_ == resolved_) {
+            buf_.erase(buf_.begin(), buf_.begin() + std::ptrdiff_t(head_));
+            head_ = resolved_ = 0;
+        }
         return s;
     }
     bool level() const { return level_; }
-    std::size_t pending() const { return queue_.size(); }
+    std::size_t pending() const { return buf_.size() - resolved_; }
     // Time of the earliest unresolved sample (only valid when pending() > 0).
-    double nextTime() const { return queue_.front().t; }
+    double nextTime() const { return buf_[resolved_].t; }
 
 private:
+    // One buffer, in time order: [head_, resolved_) resolved and not popped yet,
+    // [resolved_, end) scheduled. Emptied whenever everything is popped (the usual case,
+    // once per frame), compacted if a decoder keeps samples pending for long.
+    static constexpr std::size_t kCompactAt = 4096;
+
     void resolveBefore(double t) {
-        while (!queue_.empty() && queue_.front().t < t) {
-            Sample s = queue_.front();
-            queue_.pop_front();
-            s.level = level_;
-            ready_.push_back(s);
-        }
+        while (resolved_ < buf_.size() && buf_[resolved_].t < t)
+            buf_[resolved_++].level = level_;
     }
     bool level_ = true;
-    std::deque<Sample> queue_;
-    std::deque<Sample> ready_;
+    std::vector<Sample> buf_;
+    std::size_t head_ = 0, resolved_ = 0;
 };
 
 }  // namespace busdecode

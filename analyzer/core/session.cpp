@@ -99,6 +99,7 @@ struct Session::Impl : EventSink {
     std::deque<Event> pending;
     std::deque<int> pending_slot;
     EventWindow window;
+    bool keep_window = false;  // some decoder correlates: remember released events
     int emitting = -1;
     Tick now = 0;
     std::atomic<bool> stop{false};
@@ -126,7 +127,7 @@ struct Session::Impl : EventSink {
         return w;
     }
 
-    void output(Event& e, int slot) {
+    void output(Event&& e, int slot) {
         if (e.wants_correlation) {
             window.setPending(&pending);
             slots[slot].decoder->correlate(e, window);
@@ -134,7 +135,7 @@ struct Session::Impl : EventSink {
         }
         for (auto* s : *sinks)
             s->onEvent(e, *facts);
-        window.remember(e, 4096);
+        if (keep_window) window.remember(std::move(e), 4096);
     }
 
     void release(bool all) {
@@ -151,7 +152,7 @@ struct Session::Impl : EventSink {
             const int slot = pending_slot.front();
             pending.pop_front();
             pending_slot.pop_front();
-            output(out, slot);
+            output(std::move(out), slot);
         }
     }
 
@@ -299,6 +300,8 @@ Session::Session(std::vector<DecoderRequest> requests, CaptureReader& reader, st
         impl_->slots.push_back(std::move(slot));
     }
 
+    for (const auto& slot : impl_->slots)
+        impl_->keep_window |= slot.decoder->correlates();
     impl_->targets.resize(impl_->lines.size());
     for (int s = 0; s < int(impl_->slots.size()); ++s)
         for (int r = 0; r < int(impl_->slots[s].role_line.size()); ++r)
@@ -336,17 +339,37 @@ void Session::run() {
     for (auto* s : sinks_)
         s->begin(facts_);
 
+    // The per-edge path: a line bound to one decoder without a glitch filter (the usual
+    // case) calls it directly; anything else goes through deliver().
+    struct Route {
+        Decoder* direct = nullptr;
+        int slot = -1, role = 0;
+    };
+    std::vector<Route> routes(im.targets.size());
+    for (std::size_t l = 0; l < im.targets.size(); ++l)
+        if (im.targets[l].size() == 1 && !im.slots[im.targets[l][0].slot].glitch)
+            routes[l] = {im.slots[im.targets[l][0].slot].decoder.get(), im.targets[l][0].slot,
+                         im.targets[l][0].role};
+
     EdgeBlock block;
     block.edges.reserve(kEdgeBlockSize);
+    std::uint64_t edges = 0;
     while (!im.stopped() && reader.next(block)) {
         for (const Edge& e : block.edges) {
             if (im.levels[e.line] == e.level) continue;  // repeated value, not an edge
             im.levels[e.line] = e.level;
-            im.now = e.t;
-            ++facts_.edges;
+            ++edges;
+            const Route& r = routes[e.line];
+            if (r.direct) {
+                im.emitting = r.slot;
+                r.direct->edge(e.t, r.role, e.level);
+                continue;
+            }
             for (const auto& tg : im.targets[e.line])
                 im.deliver(tg.slot, e.t, tg.role, e.level);
         }
+        facts_.edges = edges;
+        if (!block.edges.empty()) im.now = std::max(im.now, block.edges.back().t);
         if (block.known_until != kNoTick && block.known_until > im.now) im.now = block.known_until;
         im.advanceAll(im.now);
         im.release(false);

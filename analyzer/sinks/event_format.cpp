@@ -46,21 +46,21 @@ void appendValue(std::string& out, const Value& v) {
             else if constexpr (std::is_same_v<T, bool>)
                 out += x ? "true" : "false";
             else if constexpr (std::is_same_v<T, std::int64_t> || std::is_same_v<T, std::uint64_t>)
-                out += fmt::format("{}", x);
+                out += std::string_view(fmt::format_int(x).c_str());
             else if constexpr (std::is_same_v<T, double>) {
                 if (!std::isfinite(x))
                     out += "null";
                 else if (x == std::floor(x) && std::fabs(x) < 1e15)
-                    out += fmt::format("{}", std::int64_t(x));
+                    out += std::string_view(fmt::format_int(std::int64_t(x)).c_str());
                 else
-                    out += fmt::format("{}", x);
+                    fmt::format_to(std::back_inserter(out), "{}", x);
             } else if constexpr (std::is_same_v<T, std::string>)
                 appendJsonString(out, x);
             else {
                 out += '[';
                 for (std::size_t i = 0; i < x.size(); ++i) {
                     if (i) out += ',';
-                    out += fmt::format("{}", x[i]);
+                    out += std::string_view(fmt::format_int(x[i]).c_str());
                 }
                 out += ']';
             }
@@ -87,11 +87,17 @@ std::string valueToJson(const Value& v) {
 std::string eventToJson(const Event& e, const Timebase& tb) {
     std::string out;
     out.reserve(256);
+    appendEventJson(out, e, tb);
+    return out;
+}
+
+void appendEventJson(std::string& out, const Event& e, const Timebase& tb) {
     out += "{\"proto\":";
     appendJsonString(out, e.proto);
     out += ",\"type\":";
     appendJsonString(out, e.type);
-    out += fmt::format(",\"start_ns\":{},\"end_ns\":{}", tb.toNs(e.start), tb.toNs(e.end));
+    fmt::format_to(std::back_inserter(out), ",\"start_ns\":{},\"end_ns\":{}", tb.toNs(e.start),
+                   tb.toNs(e.end));
     for (const auto& f : e.fields) {
         if (f.key == "proto" || f.key == "type" || f.key == "start_ns" || f.key == "end_ns" ||
             f.key == "errors")
@@ -107,7 +113,6 @@ std::string eventToJson(const Event& e, const Timebase& tb) {
         appendJsonString(out, e.errors[i]);
     }
     out += "]}";
-    return out;
 }
 
 std::string formatDuration(double ns) {
@@ -119,21 +124,34 @@ std::string formatDuration(double ns) {
 }
 
 std::string eventToText(const Event& e, const Timebase& tb) {
-    std::string body = e.summary;
-    if (body.empty()) {
+    std::string line;
+    appendEventText(line, e, tb);
+    return line;
+}
+
+void appendEventText(std::string& out, const Event& e, const Timebase& tb) {
+    fmt::format_to(std::back_inserter(out), "{:>14.9f} s  {:<8} {:<12} ",
+                   double(tb.toNs(e.start)) / 1e9, e.instance.empty() ? e.proto : e.instance,
+                   e.type);
+    if (!e.summary.empty()) {
+        out += e.summary;
+    } else {
+        bool first = true;
         for (const auto& f : e.fields) {
-            if (!body.empty()) body += ' ';
-            body += f.key + "=" + valueToText(f.value);
+            if (!first) out += ' ';
+            first = false;
+            out += f.key;
+            out += '=';
+            out += valueToText(f.value);
         }
     }
-    std::string line = fmt::format("{:>14.9f} s  {:<8} {:<12} {}", double(tb.toNs(e.start)) / 1e9,
-                                   e.instance.empty() ? e.proto : e.instance, e.type, body);
     if (!e.errors.empty()) {
-        line += "  !";
-        for (std::size_t i = 0; i < e.errors.size(); ++i)
-            line += (i ? "," : "") + e.errors[i];
+        out += "  !";
+        for (std::size_t i = 0; i < e.errors.size(); ++i) {
+            if (i) out += ',';
+            out += e.errors[i];
+        }
     }
-    return line;
 }
 
 }  // namespace busdecode

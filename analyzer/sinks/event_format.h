@@ -11,10 +11,13 @@ namespace busdecode {
 
 // {"proto":..,"type":..,"start_ns":..,"end_ns":..,<fields in order>,"errors":[..]}
 std::string eventToJson(const Event& e, const Timebase& tb);
+// The same appended to `out` (sinks reuse one buffer: no allocation per event).
+void appendEventJson(std::string& out, const Event& e, const Timebase& tb);
 // JSON text of one value (numbers as integers when integral, strings escaped).
 std::string valueToJson(const Value& v);
 // "   12.345678 ms  bissc  frame  pos=0x... crc ok  [crc, short_frame]"
 std::string eventToText(const Event& e, const Timebase& tb);
+void appendEventText(std::string& out, const Event& e, const Timebase& tb);
 // A time in ns formatted with a unit that suits it ("12.345 us").
 std::string formatDuration(double ns);
 

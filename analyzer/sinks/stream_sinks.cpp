@@ -23,6 +23,7 @@ public:
     explicit TextSink(std::FILE* out) : out_(out) {}
     void begin(const CaptureFacts& f) override {
         tallies_.clear();
+        last_tally_ = nullptr;
         std::string binds;
         for (const auto& b : f.bindings)
             binds += fmt::format(" {}.{}={}", b.instance, b.role, b.signal);
@@ -30,11 +31,20 @@ public:
                    f.timebase.sampleRateHz() / 1e6, binds);
     }
     void onEvent(const Event& e, const CaptureFacts& f) override {
-        std::string line = eventToText(e, f.timebase);
-        line += '\n';
-        std::fwrite(line.data(), 1, line.size(), out_);
-        auto& t = tallies_[e.instance.empty() ? e.proto : e.instance];
-        t.by_type[e.type]++;
+        line_.clear();
+        appendEventText(line_, e, f.timebase);
+        line_ += '\n';
+        std::fwrite(line_.data(), 1, line_.size(), out_);
+        // Runs of one instance and type are the rule: skip the map look-ups for them.
+        const std::string& inst = e.instance.empty() ? e.proto : e.instance;
+        if (!last_tally_ || inst != last_inst_ || e.type != last_type_) {
+            last_inst_ = inst;
+            last_type_ = e.type;
+            last_tally_ = &tallies_[inst];
+            last_count_ = &last_tally_->by_type[e.type];
+        }
+        Tally& t = *last_tally_;
+        ++*last_count_;
         if (!e.errors.empty()) t.faulty++;
         for (const auto& err : e.errors)
             t.by_error[err]++;
@@ -59,20 +69,26 @@ public:
 private:
     std::FILE* out_;
     std::map<std::string, Tally> tallies_;
+    std::string line_;  // reused for every event
+    std::string last_inst_, last_type_;
+    Tally* last_tally_ = nullptr;
+    std::uint64_t* last_count_ = nullptr;
 };
 
 class JsonlSink : public OutputSink {
 public:
     explicit JsonlSink(std::FILE* out) : out_(out) {}
     void onEvent(const Event& e, const CaptureFacts& f) override {
-        std::string line = eventToJson(e, f.timebase);
-        line += '\n';
-        std::fwrite(line.data(), 1, line.size(), out_);
+        line_.clear();
+        appendEventJson(line_, e, f.timebase);
+        line_ += '\n';
+        std::fwrite(line_.data(), 1, line_.size(), out_);
     }
     void end(const CaptureFacts&) override { std::fflush(out_); }
 
 private:
     std::FILE* out_;
+    std::string line_;  // reused for every event
 };
 
 }  // namespace

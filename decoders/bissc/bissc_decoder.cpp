@@ -28,6 +28,7 @@ BisscDecoder::BisscDecoder(const Options& options)
 
 void BisscDecoder::start(const DecoderContext& ctx) {
     Decoder::start(ctx);
+    min_quiet_ = tb().fromNs(kMinQuietNs);
     ma_ = ctx.initial_levels.size() > kMa ? ctx.initial_levels[kMa] != 0 : true;
     sl_ = ctx.initial_levels.size() > kSl ? ctx.initial_levels[kSl] != 0 : true;
     sampler_.reset(sl_);
@@ -70,17 +71,11 @@ void BisscDecoder::addError(const std::string& e) {
     if (std::find(f_.errors.begin(), f_.errors.end(), e) == f_.errors.end()) f_.errors.push_back(e);
 }
 
-double BisscDecoder::meanPeriod() const {
-    const auto& r = f_.rises;
-    if (r.size() >= 2) return double(r.back() - r.front()) / double(r.size() - 1);
-    return last_period_;
-}
-
 double BisscDecoder::quietLimit() const {
-    return std::max(tb().fromNs(kMinQuietNs), 3.0 * meanPeriod()) + f_.delay;
+    return std::max(min_quiet_, 3.0 * meanPeriod()) + f_.delay;
 }
 
-void BisscDecoder::checkQuiet(Tick now) {
+void BisscDecoder::checkQuietSlow(Tick now) {
     if (state_ == State::TimeoutEnded) {
         // The clock did not go on within a clock phase of its last edge: frame over.
         if (!isClockPhase(double(now - last_ma_edge_), !ma_) && now >= f_.timeout_end) {
@@ -92,7 +87,10 @@ void BisscDecoder::checkQuiet(Tick now) {
         return;
     }
     if (state_ != State::WaitAck && state_ != State::Data) return;
-    if (last_ma_edge_ == kNoTick || double(now - last_ma_edge_) <= quietLimit()) return;
+    if (last_ma_edge_ == kNoTick) return;
+    const double quiet = double(now - last_ma_edge_);
+    // quietLimit() >= min_quiet_ + delay: most calls (one per edge) end here.
+    if (quiet <= min_quiet_ + f_.delay || quiet <= quietLimit()) return;
     if (state_ == State::WaitAck && f_.from_hold && f_.rises.size() == 1) {
         // MA rose from low and stayed high: the master went back to idle after CDM = 1.
         state_ = State::Idle;
@@ -134,13 +132,21 @@ void BisscDecoder::resolveHoldStart(Tick ack) {
     }
     if (!idle_return) return;
     f_.rises.erase(f_.rises.begin());
+    f_.period_rises = 0;  // the first rise changed: the cached mean period is stale
     f_.start = f_.hold_fall;
     f_.from_hold = false;
     setBusyFrom(f_.start);
 }
 
 void BisscDecoder::beginFrame(Tick start, bool from_hold) {
+    // A fresh frame, keeping the vectors' storage (one frame every few microseconds).
+    std::vector<Tick> rises = std::move(f_.rises);
+    std::vector<std::string> errors = std::move(f_.errors);
+    rises.clear();
+    errors.clear();
     f_ = Frame{};
+    f_.rises = std::move(rises);
+    f_.errors = std::move(errors);
     f_.start = start;
     f_.from_hold = from_hold;
     sampler_.reset(sl_);
@@ -431,30 +437,30 @@ void BisscDecoder::closeFrame(Tick end, Tick timeout_end, const char* error, boo
     if (f_.ack != kNoTick) last_delay_ = f_.delay;
     const bool acked = f_.ack != kNoTick;
 
-    e.set("position", position);
-    e.set("st", st);
-    e.set("mt", mt);
-    e.set("nE", ne);
-    e.set("nW", nw);
-    e.set("crc_rx", crc_rx);
-    e.set("crc_ok", crc_ok);
-    e.set("cds", cds);
-    e.set("cdm", cdm);
-    e.set("line_delay_ns",
+    e.add("position", position);
+    e.add("st", st);
+    e.add("mt", mt);
+    e.add("nE", ne);
+    e.add("nW", nw);
+    e.add("crc_rx", crc_rx);
+    e.add("crc_ok", crc_ok);
+    e.add("cds", cds);
+    e.add("cdm", cdm);
+    e.add("line_delay_ns",
           acked ? Value(std::int64_t(std::llround(tb().toNsF(f_.delay)))) : Value(Null{}));
-    e.set("proc_cycles", f_.start_index >= 0 ? Value(std::int64_t(f_.proc_cycles)) : Value(Null{}));
-    e.set("ack_delay_ns",
+    e.add("proc_cycles", f_.start_index >= 0 ? Value(std::int64_t(f_.proc_cycles)) : Value(Null{}));
+    e.add("ack_delay_ns",
           acked ? Value(std::int64_t(std::llround(tb().toNsF(f_.ack_delay)))) : Value(Null{}));
-    e.set("clock_hz", clock_hz);
-    e.set("timeout_ns", timeout_ns);
-    e.set("extra_clocks", f_.stop_index >= 0
+    e.add("clock_hz", clock_hz);
+    e.add("timeout_ns", timeout_ns);
+    e.add("extra_clocks", f_.stop_index >= 0
                               ? Value(std::int64_t(f_.rises.size()) - 1 - f_.stop_index)
                               : Value(Null{}));
-    e.set("clocks", std::int64_t(f_.rises.size()));
-    e.set("bits", std::int64_t(s_.bits));
-    e.set("crc_bits", std::int64_t(s_.crc_bits));
-    e.set("hold_cdm", f_.from_hold);
-    e.set("retriggered", f_.retriggered);
+    e.add("clocks", std::int64_t(f_.rises.size()));
+    e.add("bits", std::int64_t(s_.bits));
+    e.add("crc_bits", std::int64_t(s_.crc_bits));
+    e.add("hold_cdm", f_.from_hold);
+    e.add("retriggered", f_.retriggered);
 
     if (complete) {
         e.summary = fmt::format("pos={} (0x{:X}) nE={} nW={} crc=0x{:02X} {} cds={} cdm={}", pos,

@@ -74,25 +74,46 @@ private:
         // took the remaining clocks for a new request (the MB5U with a RESOLUTE does this).
         bool retriggered = false;
         double max_high = 0, max_low = 0;  // longest MA clock phases seen in the frame
+        mutable double period = 0;         // meanPeriod() cache, valid for period_rises
+        mutable std::size_t period_rises = 0;
         std::vector<std::string> errors;
     };
 
     void onMa(Tick t, bool level);
     void onSl(Tick t, bool level);
     void beginFrame(Tick start, bool from_hold);
-    double sampleTime(std::size_t k) const;
-    void scheduleUpTo(double t);
+    // Per-edge helpers, inlined into onMa/onSl (defined in bissc_decoder.cpp only).
+    [[gnu::always_inline]] inline double sampleTime(std::size_t k) const;
+    [[gnu::always_inline]] inline void scheduleUpTo(double t);
     void startDelayEstimate(double ack_delay);
     void refineDelay(Tick t);
-    void drainSamples();
+    [[gnu::always_inline]] inline void drainSamples();
     void takeSample(int index, bool level, double t);
-    double meanPeriod() const;  // ticks, over the frame's rising edges so far
+    // Ticks, over the frame's rising edges so far. Asked several times per edge: it
+    // divides once per new rising edge.
+    double meanPeriod() const {
+        const auto& r = f_.rises;
+        if (r.size() < 2) return last_period_;
+        if (f_.period_rises != r.size()) {
+            f_.period = double(r.back() - r.front()) / double(r.size() - 1);
+            f_.period_rises = r.size();
+        }
+        return f_.period;
+    }
     double quietLimit() const;  // MA silence (ticks) that ends a frame in progress
     // Emits the frame in progress. timeout_end = the SL rising edge ending the slave's
     // timeout, or kNoTick; feed_control passes its CDM/CDS bits on to the reassembler.
     void closeFrame(Tick end, Tick timeout_end, const char* error, bool feed_control);
     void addError(const std::string& e);
-    void checkQuiet(Tick now);
+    // Closes a frame whose clock went quiet. Called on every edge: the inline part only
+    // rules out the usual case (clock running, well within kMinQuietNs).
+    void checkQuiet(Tick now) {
+        if (state_ == State::TimeoutEnded ||
+            ((state_ == State::WaitAck || state_ == State::Data) && last_ma_edge_ != kNoTick &&
+             double(now - last_ma_edge_) > min_quiet_ + f_.delay))
+            checkQuietSlow(now);
+    }
+    void checkQuietSlow(Tick now);
     void resolveHoldStart(Tick ack);
     // Could an MA phase of this length (ending with an edge to `level`) be a clock phase?
     bool isClockPhase(double length, bool level) const;
@@ -107,6 +128,7 @@ private:
     double last_delay_ = -1;  // line delay of the previous frame (ticks), -1 unknown
     bool glitch_pending_ = false;
     double last_period_ = 0;  // mean clock period of the previous frame (ticks)
+    double min_quiet_ = 0;    // kMinQuietNs in ticks
 };
 
 std::shared_ptr<const DecoderFactory> makeBisscFactory();

@@ -38,6 +38,7 @@ public:
     void finish(Tick end) override;
     void glitch(Tick t, int role) override;
     void correlate(Event& e, const EventWindow& window) override;
+    bool correlates() const override { return true; }
     Tick watermark(Tick now) const override;
 
 private:

@@ -43,6 +43,7 @@ public:
         });
         e.set("peers", std::int64_t(n));
     }
+    bool correlates() const override { return correlate_; }
     static std::vector<Tick> glitches;
 
 private:

@@ -1,0 +1,87 @@
+#pragma once
+// Unsigned decimal numbers read eight digits at a time (SWAR: one 64-bit load, a digit
+// test for all eight bytes, and three multiplies to combine them). VCD timestamps are
+// 6 to 12 digits on every line of a capture; a byte loop spends more on them than on
+// everything else the tokeniser does.
+#include <bit>
+#include <climits>
+#include <cstdint>
+#include <cstring>
+
+namespace busdecode {
+
+struct DecimalScan {
+    std::uint64_t value = 0;
+    const char* end = nullptr;  // first byte after the digits
+    int digits = 0;             // how many digits (0: none at the start)
+    bool overflow = false;      // beyond 2^62: value is meaningless
+};
+
+namespace detail {
+
+// Number of leading bytes of w (memory order) that are '0'..'9', 0..8.
+inline int leadingDigits(std::uint64_t w) {
+    constexpr std::uint64_t k30 = 0x3030303030303030ULL, k06 = 0x0606060606060606ULL,
+                            kF0 = 0xF0F0F0F0F0F0F0F0ULL;
+    // A byte is a digit iff its high nibble is 3 both as is and after adding 6 (0x3A..0x3F
+    // become 0x40..). A carry out of a byte (>= 0xFA) only disturbs the bytes after it,
+    // which lie beyond the first non-digit anyway.
+    const std::uint64_t non_digit = ((w ^ k30) | ((w + k06) ^ k30)) & kF0;
+    return non_digit ? std::countr_zero(non_digit) / 8 : 8;
+}
+
+// The value of the first n (1..8) digit bytes of w (memory order, little-endian).
+inline std::uint64_t digitsValue(std::uint64_t w, int n) {
+    std::uint64_t v = (w - 0x3030303030303030ULL) << (8 * (8 - n));  // leading zeros in front
+    v = (v * 10) + (v >> 8);
+    v = (((v & 0x000000FF000000FFULL) * (100 + (1000000ULL << 32))) +
+         (((v >> 16) & 0x000000FF000000FFULL) * (1 + (10000ULL << 32)))) >>
+        32;
+    return v & 0xFFFFFFFFULL;
+}
+
+}  // namespace detail
+
+// Reads the decimal digits starting at p (none is fine), never reading at or past e.
+inline DecimalScan scanDecimal(const char* p, const char* e) {
+    static_assert(std::endian::native == std::endian::little, "SWAR digit scan is little-endian");
+    static constexpr std::uint64_t kPow10[9] = {1,      10,      100,      1000,     10000,
+                                                100000, 1000000, 10000000, 100000000};
+    const char* const start = p;
+    DecimalScan r;
+    std::uint64_t t = 0;
+    for (;;) {
+        if (e - p >= 8) {
+            std::uint64_t w;
+            std::memcpy(&w, p, 8);
+            const int n = detail::leadingDigits(w);
+            if (n > 0) t = t * kPow10[n] + detail::digitsValue(w, n);
+            p += n;
+            if (n == 8) continue;
+        } else {
+            while (p < e && unsigned(*p - '0') < 10)
+                t = t * 10 + unsigned(*p++ - '0');
+        }
+        break;
+    }
+    r.end = p;
+    r.digits = int(p - start);
+    r.value = t;
+    // Up to 18 digits stay below 10^18 < 2^62 (no wrap above). Longer ones, rare (leading
+    // zeros, or a broken file), are redone exactly.
+    if (r.digits > 18) {
+        t = 0;
+        for (const char* q = start; q < p; ++q) {
+            if (t > (std::uint64_t(INT64_MAX) - 9) / 10) {  // no wrap below this
+                r.overflow = true;
+                break;
+            }
+            t = t * 10 + unsigned(*q - '0');
+        }
+        r.value = t;
+        r.overflow |= t > (std::uint64_t(1) << 62);
+    }
+    return r;
+}
+
+}  // namespace busdecode
