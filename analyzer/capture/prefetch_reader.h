@@ -15,6 +15,6 @@
 namespace busdecode {
 
 // `ahead`: blocks read ahead at most (memory: ahead * kEdgeBlockSize edges).
-std::unique_ptr<CaptureReader> prefetchReader(std::unique_ptr<CaptureReader> inner, int ahead = 4);
+std::unique_ptr<CaptureReader> prefetchReader(std::unique_ptr<CaptureReader> inner, int ahead = 32);
 
 }  // namespace busdecode

@@ -19,6 +19,7 @@
 // - Initial levels are those at the first timestamp (including `$dumpvars` before it);
 //   startTick is the first timestamp, endTick the last one.
 #include <algorithm>
+#include <array>
 #include <charconv>
 #include <string>
 #include <unordered_map>
@@ -37,6 +38,15 @@ namespace {
 inline bool isSpace(char c) {
     return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v';
 }
+
+// Separators between tokens of the value changes: 1 = isSpace, 3 = a newline.
+constexpr auto kSeparator = [] {
+    std::array<std::uint8_t, 256> k{};
+    for (char c : {' ', '\t', '\r', '\f', '\v'})
+        k[static_cast<unsigned char>(c)] = 1;
+    k['\n'] = 3;
+    return k;
+}();
 
 struct StringHash {
     using is_transparent = void;
@@ -346,10 +356,9 @@ private:
     Stop pump(EdgeBlock* block) {
         for (;;) {
             while (p_ < e_) {
-                if (*p_ == '\n')
-                    ++line_;
-                else if (!isSpace(*p_))
-                    break;
+                const std::uint8_t k = kSeparator[static_cast<unsigned char>(*p_)];
+                if (!k) break;
+                line_ += k >> 1;  // a newline
                 ++p_;
             }
             if (p_ >= e_) {
@@ -398,6 +407,18 @@ private:
                     } else if (tt > cur_) {
                         cur_ = tt;
                         if (!block) return Stop::FirstDone;
+                        // The rest of a sigrok-style line, `#120 1! 0"`: one-character
+                        // scalars right here, one edge at most each (the general loop
+                        // takes over at anything else, and at a full block).
+                        while (e_ - p_ >= 4 && p_[0] == ' ' && (p_[1] == '0' || p_[1] == '1') &&
+                               kSeparator[static_cast<unsigned char>(p_[3])] &&
+                               block->edges.size() < kEdgeBlockSize) {
+                            const unsigned i = static_cast<unsigned char>(p_[2]) - 33u;
+                            if (i >= 94 || scalar1_[i] == kNotScalar) break;
+                            if (scalar1_[i] >= 0)
+                                set(std::uint32_t(scalar1_[i]), std::uint8_t(p_[1] - '0'), block);
+                            p_ += 3;
+                        }
                     }
                     break;
                 }

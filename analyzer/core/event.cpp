@@ -18,7 +18,7 @@ Event& Event::set(std::string key, Value v) {
 }
 
 Event& Event::add(std::string key, Value v) {
-    if (fields.capacity() == 0) fields.reserve(24);
+    if (fields.capacity() == 0) fields.reserve(8);
     fields.push_back({std::move(key), std::move(v)});
     return *this;
 }

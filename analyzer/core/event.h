@@ -31,7 +31,7 @@ struct Event {
 
     Event& set(std::string key, Value v);  // replaces an existing key
     // Appends a key the event does not have yet, without searching: for decoders filling
-    // a fresh event (a BiSS-C frame has 21 fields; set() would compare keys 210 times).
+    // a fresh event (a BiSS-C frame has 20 fields; set() would compare keys 190 times).
     Event& add(std::string key, Value v);
     const Value* get(std::string_view key) const;
     bool has(std::string_view key) const { return get(key) != nullptr; }

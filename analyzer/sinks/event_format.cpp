@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include <fmt/compile.h>
 #include <fmt/format.h>
 
 namespace busdecode {
@@ -68,6 +69,31 @@ void appendValue(std::string& out, const Value& v) {
         v);
 }
 
+// ns as seconds with 9 decimals, right-aligned in 14 columns: what "{:>14.9f}" makes of
+// ns / 1e9, from integers (a double conversion per event costs more than the rest of
+// the line).
+void appendSeconds(std::string& out, std::int64_t ns) {
+    constexpr std::int64_t kExact = 1'000'000'000'000'000;  // below this the two agree
+    if (ns <= -kExact || ns >= kExact) {
+        fmt::format_to(std::back_inserter(out), FMT_COMPILE("{:>14.9f}"), double(ns) / 1e9);
+        return;
+    }
+    const std::int64_t mag = ns < 0 ? -ns : ns;
+    char digits[32];
+    char* end = fmt::format_to(digits, FMT_COMPILE("{}{}.{:09}"), ns < 0 ? "-" : "",
+                               mag / 1'000'000'000, mag % 1'000'000'000);
+    const std::size_t len = std::size_t(end - digits);
+    if (len < 14) out.append(14 - len, ' ');
+    out.append(digits, len);
+}
+
+// "{:<width}" for the ASCII names decoders give their protocols and event types (fmt
+// would measure the display width code point by code point).
+void appendPadded(std::string& out, const std::string& s, std::size_t width) {
+    out += s;
+    if (s.size() < width) out.append(width - s.size(), ' ');
+}
+
 std::string valueToText(const Value& v) {
     if (auto s = std::get_if<std::string>(&v)) return *s;
     if (auto b = std::get_if<bool>(&v)) return *b ? "1" : "0";
@@ -130,9 +156,12 @@ std::string eventToText(const Event& e, const Timebase& tb) {
 }
 
 void appendEventText(std::string& out, const Event& e, const Timebase& tb) {
-    fmt::format_to(std::back_inserter(out), "{:>14.9f} s  {:<8} {:<12} ",
-                   double(tb.toNs(e.start)) / 1e9, e.instance.empty() ? e.proto : e.instance,
-                   e.type);
+    appendSeconds(out, tb.toNs(e.start));
+    out += " s  ";
+    appendPadded(out, e.instance.empty() ? e.proto : e.instance, 8);
+    out += ' ';
+    appendPadded(out, e.type, 12);
+    out += ' ';
     if (!e.summary.empty()) {
         out += e.summary;
     } else {

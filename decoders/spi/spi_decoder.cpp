@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include "core/hex_text.h"
 #include "spi_info.h"
 
 namespace busdecode {
@@ -95,17 +96,20 @@ void SpiDecoder::emitWord(Tick end, bool short_frame) {
     std::string text;
     auto put = [&](const char* key, const char* label, const BitWord& w, bool bound) {
         if (!bound) {
-            e.set(key, Null{});
+            e.add(key, Null{});
             return;
         }
         // MSB-first words keep the newest 64 bits; LSB-first words the first 64.
         std::uint64_t v = lowBits(w.value(), n);
-        e.set(key, v);
-        text += fmt::format("{}{} 0x{:0{}X}", text.empty() ? "" : " ", label, v, digits);
+        e.add(key, v);
+        if (!text.empty()) text += ' ';
+        text += label;
+        text += " 0x";
+        appendHex(text, v, digits);
     };
     put("mosi", "MOSI", mosi_, bound_[kSpiMosi]);
     put("miso", "MISO", miso_, bound_[kSpiMiso]);
-    e.set("bits", std::int64_t(n));
+    e.add("bits", std::int64_t(n));
     if (short_frame) {
         e.error("short_frame");
         text += fmt::format(" ({} of {} bits)", n, bits_);

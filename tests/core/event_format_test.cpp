@@ -1,0 +1,93 @@
+// The text line's time column is formatted from integers; it must read exactly as
+// "{:>14.9f}" of the time in seconds always did, and the reused-buffer forms must
+// write what the string forms return.
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include <fmt/format.h>
+
+#include "core/hex_text.h"
+#include "sinks/event_format.h"
+
+using namespace busdecode;
+
+namespace {
+
+Event eventAt(Tick start) {
+    Event e;
+    e.proto = "spi";
+    e.type = "transfer";
+    e.start = start;
+    e.end = start + 10;
+    e.add("mosi", std::uint64_t(0xA5)).add("bits", std::int64_t(8));
+    return e;
+}
+
+std::string oldTimeColumn(std::int64_t ns) {
+    return fmt::format("{:>14.9f}", double(ns) / 1e9);
+}
+
+}  // namespace
+
+TEST(EventFormat, TimeColumnAsTheDoubleFormatHad) {
+    const Timebase ns{1, 1'000'000'000};
+    std::mt19937_64 rng(7);
+    std::vector<std::int64_t> starts = {0,
+                                        1,
+                                        -1,
+                                        999'999'999,
+                                        1'000'000'000,
+                                        -1'000'000'000,
+                                        123'456'789'012,
+                                        999'999'999'999'999,
+                                        -999'999'999'999'999};
+    for (int i = 0; i < 100000; ++i) {
+        const int digits = int(rng() % 16);
+        std::int64_t mod = 1;
+        for (int k = 0; k < digits; ++k)
+            mod *= 10;
+        std::int64_t v = std::int64_t(rng() % std::uint64_t(mod));
+        starts.push_back(rng() % 2 ? -v : v);
+    }
+    for (std::int64_t t : starts) {
+        const std::string line = eventToText(eventAt(t), ns);
+        ASSERT_EQ(line.substr(0, line.find(" s  ")), oldTimeColumn(t)) << t;
+    }
+}
+
+TEST(EventFormat, AppendFormsMatchStringForms) {
+    const Timebase tb{1, 100'000'000};
+    Event e = eventAt(12345);
+    e.error("short_frame");
+    std::string text = "keep:", json = "keep:";
+    appendEventText(text, e, tb);
+    appendEventJson(json, e, tb);
+    EXPECT_EQ(text, "keep:" + eventToText(e, tb));
+    EXPECT_EQ(json, "keep:" + eventToJson(e, tb));
+    EXPECT_EQ(eventToText(e, tb),
+              "   0.000123450 s  spi      transfer     mosi=165 bits=8  !short_frame");
+    EXPECT_EQ(eventToJson(e, tb),
+              "{\"proto\":\"spi\",\"type\":\"transfer\",\"start_ns\":123450,\"end_ns\":123550,"
+              "\"mosi\":165,\"bits\":8,\"errors\":[\"short_frame\"]}");
+}
+
+TEST(EventFormat, AddAppendsSetReplaces) {
+    Event e;
+    e.add("a", std::int64_t(1)).add("b", std::int64_t(2));
+    e.set("a", std::int64_t(3));
+    ASSERT_EQ(e.fields.size(), 2u);
+    EXPECT_EQ(std::get<std::int64_t>(*e.get("a")), 3);
+    EXPECT_EQ(std::get<std::int64_t>(*e.get("b")), 2);
+}
+
+TEST(HexText, AsTheFormatStringHad) {
+    std::mt19937_64 rng(3);
+    for (int i = 0; i < 20000; ++i) {
+        const std::uint64_t v = rng() >> (rng() % 64);
+        const int width = int(rng() % 20);
+        std::string got = "x";
+        appendHex(got, v, width);
+        ASSERT_EQ(got, "x" + fmt::format("{:0{}X}", v, width));
+    }
+}
