@@ -157,10 +157,15 @@ printf '[bissc]\nmax_crc_errors = 0\nmin_frames = 1\nmax_faults = 0\n\n[decode]\
 read -r t_j1 c_j1 < <(median 3 "$decode" verify "${vfiles[@]}" --rules "$tmp/rules.toml" --jobs 1)
 read -r t_jn c_jn < <(median 3 "$decode" verify "${vfiles[@]}" --rules "$tmp/rules.toml" --jobs "$(nproc)")
 r_jobs="$(ratio "$t_j1" "$t_jn")"
+# One job already runs its reader on a second thread, so the speed-up of --jobs N is
+# bounded by how idle the cores were with --jobs 1; the target is that --jobs N keeps
+# every core busy (CPU seconds per wall second >= 0.85 x cores).
+busy_1="$(ratio "$c_j1" "$t_j1")"
+busy_n="$(ratio "$c_jn" "$t_jn")"
 row "verify, 4 x $(mb "${vfiles[0]}") MB BiSS-C VCD: --jobs 1 vs --jobs $(nproc)" "" \
-    "--jobs $(nproc): $(fmt_s "$t_jn") s wall, $(fmt_s "$c_jn") s CPU" \
-    "--jobs 1: $(fmt_s "$t_j1") s wall, $(fmt_s "$c_j1") s CPU: **${r_jobs}x** faster" \
-    "uses every core" "$(verdict "$r_jobs >= 1.5")"
+    "--jobs $(nproc): $(fmt_s "$t_jn") s wall, $(fmt_s "$c_jn") s CPU: **$busy_n cores busy**" \
+    "--jobs 1: $(fmt_s "$t_j1") s wall, $(fmt_s "$c_j1") s CPU ($busy_1 cores busy): --jobs $(nproc) **${r_jobs}x** faster" \
+    "uses every core" "$(verdict "$busy_n >= 0.85 * $(nproc)")"
 rm -f "${vfiles[@]}"
 
 echo
