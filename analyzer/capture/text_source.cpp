@@ -163,20 +163,35 @@ TextSource::Status TextSource::slowNextLine(std::string_view& line) {
             ++line_no_;
             return Status::Line;
         }
-        if (!mapped_ && !eof_ && !stopRequested()) {
-            if (fill() > 0) continue;
-            if (!eof_) return Status::NoData;
+        std::string_view rest;
+        switch (noNewline(rest)) {
+            case Tail::Refilled:
+                continue;
+            case Tail::NoData:
+                return Status::NoData;
+            case Tail::Eof:
+                return Status::Eof;
+            case Tail::LastLine:
+                line = trimCr(rest.data(), rest.data() + rest.size());
+                ++line_no_;
+                return Status::Line;
         }
-        // The end: a last line without a newline still counts (not when a followed
-        // capture is stopped: that line may be half written).
-        if (pos_ < end_ && (mapped_ || eof_)) {
-            line = trimCr(pos_, end_);
-            pos_ = end_;
-            ++line_no_;
-            return Status::Line;
-        }
-        return Status::Eof;
     }
+}
+
+TextSource::Tail TextSource::noNewline(std::string_view& rest) {
+    if (!mapped_ && !eof_ && !stopRequested()) {
+        if (fill() > 0) return Tail::Refilled;
+        if (!eof_) return Tail::NoData;
+    }
+    // The end: a last line without a newline still counts (not when a followed capture
+    // is stopped: that line may be half written).
+    if (pos_ < end_ && (mapped_ || eof_)) {
+        rest = std::string_view(pos_, std::size_t(end_ - pos_));
+        pos_ = end_;
+        return Tail::LastLine;
+    }
+    return Tail::Eof;
 }
 
 TextSource::Status TextSource::nextLines(std::string_view& text, std::uint64_t first_line) {
@@ -193,18 +208,16 @@ TextSource::Status TextSource::nextLines(std::string_view& text, std::uint64_t f
         }
         if (std::size_t(end_ - pos_) > kMaxLine)
             throw InputError(at(first_line, "line longer than 1 MiB (not a text capture?)"));
-        if (!mapped_ && !eof_ && !stopRequested()) {
-            if (fill() > 0) continue;
-            if (!eof_) return Status::NoData;
+        switch (noNewline(text)) {
+            case Tail::Refilled:
+                continue;
+            case Tail::NoData:
+                return Status::NoData;
+            case Tail::Eof:
+                return Status::Eof;
+            case Tail::LastLine:
+                return Status::Line;
         }
-        // As nextLine(): a last line without a newline counts, unless a followed capture
-        // was stopped (that line may be half written).
-        if (pos_ < end_ && (mapped_ || eof_)) {
-            text = std::string_view(pos_, std::size_t(end_ - pos_));
-            pos_ = end_;
-            return Status::Line;
-        }
-        return Status::Eof;
     }
 }
 

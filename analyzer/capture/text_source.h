@@ -76,6 +76,10 @@ private:
         return std::string_view(b, std::size_t(e - b));
     }
     Status slowNextLine(std::string_view& line);
+    // No newline in what is buffered: read more (Refilled, or NoData on live input for
+    // now), or hand out the input's last line, which has no newline (LastLine), or Eof.
+    enum class Tail { Refilled, NoData, LastLine, Eof };
+    Tail noNewline(std::string_view& rest);
     // Reads more into the buffer; returns bytes added (0 = nothing now or at the end).
     std::size_t fill();
     bool stopRequested() const;

@@ -35,11 +35,7 @@ namespace busdecode {
 
 namespace {
 
-inline bool isSpace(char c) {
-    return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v';
-}
-
-// Separators between tokens of the value changes: 1 = isSpace, 3 = a newline.
+// Separators between tokens: 1 = blank (space, tab, CR, FF, VT), 3 = a newline.
 constexpr auto kSeparator = [] {
     std::array<std::uint8_t, 256> k{};
     for (char c : {' ', '\t', '\r', '\f', '\v'})
@@ -47,6 +43,10 @@ constexpr auto kSeparator = [] {
     k['\n'] = 3;
     return k;
 }();
+
+inline bool isSpace(char c) {
+    return kSeparator[static_cast<unsigned char>(c)] == 1;
+}
 
 struct StringHash {
     using is_transparent = void;
@@ -389,7 +389,7 @@ private:
                     const char* q = num.end;
                     const std::uint64_t t = num.value;
                     const bool overflow = num.overflow;
-                    if (q == p_ + 1 || (q < e_ && !isSpace(*q) && *q != '\n'))
+                    if (q == p_ + 1 || (q < e_ && !kSeparator[static_cast<unsigned char>(*q)]))
                         fail(fmt::format(
                             "expected a time after '#', found '{}'",
                             printable(std::string_view(p_, std::size_t(tokenEnd(p_) - p_)))));
@@ -411,29 +411,19 @@ private:
                         // scalars right here, one edge at most each (the general loop
                         // takes over at anything else, and at a full block).
                         while (e_ - p_ >= 4 && p_[0] == ' ' && (p_[1] == '0' || p_[1] == '1') &&
-                               kSeparator[static_cast<unsigned char>(p_[3])] &&
-                               block->edges.size() < kEdgeBlockSize) {
-                            const unsigned i = static_cast<unsigned char>(p_[2]) - 33u;
-                            if (i >= 94 || scalar1_[i] == kNotScalar) break;
-                            if (scalar1_[i] >= 0)
-                                set(std::uint32_t(scalar1_[i]), std::uint8_t(p_[1] - '0'), block);
+                               static_cast<unsigned char>(p_[3]) <= ' ' &&
+                               block->edges.size() < kEdgeBlockSize && quickScalar(p_ + 1, block))
                             p_ += 3;
-                        }
                     }
                     break;
                 }
                 case '0':
                 case '1':
-                    // The bulk of a capture: `0!` / `1"`, a one-character identifier of
-                    // a scalar; scalar1_ knows its one line (or that nobody wants it).
-                    if (e_ - p_ >= 3 && static_cast<unsigned char>(p_[2]) <= ' ') {
-                        const unsigned i = static_cast<unsigned char>(p_[1]) - 33u;
-                        if (i < 94 && scalar1_[i] != kNotScalar) {
-                            if (scalar1_[i] >= 0)
-                                set(std::uint32_t(scalar1_[i]), std::uint8_t(c - '0'), block);
-                            p_ += 2;
-                            break;
-                        }
+                    // The bulk of a capture: `0!` / `1"`.
+                    if (e_ - p_ >= 3 && static_cast<unsigned char>(p_[2]) <= ' ' &&
+                        quickScalar(p_, block)) {
+                        p_ += 2;
+                        break;
                     }
                     [[fallthrough]];
                 case 'x':
@@ -514,6 +504,16 @@ private:
                 }
             }
         }
+    }
+
+    // `0!` / `1"` at v: a 0/1 value and a one-character identifier (the caller checked
+    // that the token ends after it). Applied through scalar1_ when that identifier is a
+    // plain scalar (or unselected); false sends it to the general path.
+    [[gnu::always_inline]] bool quickScalar(const char* v, EdgeBlock* block) {
+        const unsigned i = static_cast<unsigned char>(v[1]) - 33u;
+        if (i >= 94 || scalar1_[i] == kNotScalar) return false;
+        if (scalar1_[i] >= 0) set(std::uint32_t(scalar1_[i]), std::uint8_t(v[0] - '0'), block);
+        return true;
     }
 
     // Hot path: a lookup; the message is built out of line.

@@ -84,9 +84,13 @@ struct Session::Impl : EventSink {
         std::optional<GlitchFilter> glitch;
         DecoderContext ctx;
     };
+    // Where a selected line's edges go; the decoder and its glitch filter (or null) are
+    // resolved once here, not per edge.
     struct Target {
         int slot;
         int role;
+        Decoder* decoder;
+        GlitchFilter* glitch;
     };
 
     CaptureReader* reader = nullptr;
@@ -156,18 +160,20 @@ struct Session::Impl : EventSink {
         }
     }
 
-    void deliver(int slot_index, Tick t, int role, bool level) {
-        Slot& s = slots[slot_index];
-        emitting = slot_index;
-        if (!s.glitch) {
-            s.decoder->edge(t, role, level);
-            return;
-        }
-        s.glitch->push(t, role, level, [&](const GlitchFilter::Out& o) {
+    void deliver(const Target& tg, Tick t, bool level) {
+        emitting = tg.slot;
+        if (!tg.glitch)
+            tg.decoder->edge(t, tg.role, level);
+        else
+            deliverFiltered(tg, t, level);
+    }
+    // Kept out of the per-edge loop: the filter's code would crowd the common path.
+    [[gnu::noinline]] void deliverFiltered(const Target& tg, Tick t, bool level) {
+        tg.glitch->push(t, tg.role, level, [&](const GlitchFilter::Out& o) {
             if (o.is_glitch)
-                s.decoder->glitch(o.t, o.role);
+                tg.decoder->glitch(o.t, o.role);
             else
-                s.decoder->edge(o.t, o.role, o.level);
+                tg.decoder->edge(o.t, o.role, o.level);
         });
     }
 
@@ -306,7 +312,9 @@ Session::Session(std::vector<DecoderRequest> requests, CaptureReader& reader, st
     for (int s = 0; s < int(impl_->slots.size()); ++s)
         for (int r = 0; r < int(impl_->slots[s].role_line.size()); ++r)
             if (impl_->slots[s].role_line[r] >= 0)
-                impl_->targets[impl_->slots[s].role_line[r]].push_back({s, r});
+                impl_->targets[impl_->slots[s].role_line[r]].push_back(
+                    {s, r, impl_->slots[s].decoder.get(),
+                     impl_->slots[s].glitch ? &*impl_->slots[s].glitch : nullptr});
     reader.select(impl_->lines);
 }
 
@@ -339,18 +347,6 @@ void Session::run() {
     for (auto* s : sinks_)
         s->begin(facts_);
 
-    // The per-edge path: a line bound to one decoder without a glitch filter (the usual
-    // case) calls it directly; anything else goes through deliver().
-    struct Route {
-        Decoder* direct = nullptr;
-        int slot = -1, role = 0;
-    };
-    std::vector<Route> routes(im.targets.size());
-    for (std::size_t l = 0; l < im.targets.size(); ++l)
-        if (im.targets[l].size() == 1 && !im.slots[im.targets[l][0].slot].glitch)
-            routes[l] = {im.slots[im.targets[l][0].slot].decoder.get(), im.targets[l][0].slot,
-                         im.targets[l][0].role};
-
     EdgeBlock block;
     block.edges.reserve(kEdgeBlockSize);
     std::uint64_t edges = 0;
@@ -359,14 +355,8 @@ void Session::run() {
             if (im.levels[e.line] == e.level) continue;  // repeated value, not an edge
             im.levels[e.line] = e.level;
             ++edges;
-            const Route& r = routes[e.line];
-            if (r.direct) {
-                im.emitting = r.slot;
-                r.direct->edge(e.t, r.role, e.level);
-                continue;
-            }
             for (const auto& tg : im.targets[e.line])
-                im.deliver(tg.slot, e.t, tg.role, e.level);
+                im.deliver(tg, e.t, e.level);
         }
         facts_.edges = edges;
         if (!block.edges.empty()) im.now = std::max(im.now, block.edges.back().t);

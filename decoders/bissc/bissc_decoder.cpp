@@ -87,11 +87,8 @@ void BisscDecoder::checkQuietSlow(Tick now) {
         }
         return;
     }
-    if (state_ != State::WaitAck && state_ != State::Data) return;
-    if (last_ma_edge_ == kNoTick) return;
-    const double quiet = double(now - last_ma_edge_);
-    // quietLimit() >= min_quiet_ + delay: most calls (one per edge) end here.
-    if (quiet <= min_quiet_ + f_.delay || quiet <= quietLimit()) return;
+    // checkQuiet() only calls this in WaitAck / Data with a clock edge seen.
+    if (double(now - last_ma_edge_) <= quietLimit()) return;
     if (state_ == State::WaitAck && f_.from_hold && f_.rises.size() == 1) {
         // MA rose from low and stayed high: the master went back to idle after CDM = 1.
         state_ = State::Idle;
