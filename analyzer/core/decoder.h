@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "decoder_info.h"
+#include "edge.h"
 #include "event.h"
 #include "options.h"
 #include "time.h"
@@ -30,6 +31,14 @@ public:
     virtual void start(const DecoderContext& ctx) { ctx_ = ctx; }
     // A level change on role `role` (index into DecoderInfo::roles) at tick t.
     virtual void edge(Tick t, int role, bool level) = 0;
+    // A run of edges in time order, none repeating its line's level; role_of_line maps
+    // Edge::line to the role. The session hands over whole blocks this way when this is
+    // the only decoder and no glitch filter sits in between. BlockDecoder below inlines
+    // the decoder's edge() into the loop; this fallback makes one virtual call per edge.
+    virtual void edges(const Edge* first, const Edge* last, const int* role_of_line) {
+        for (; first != last; ++first)
+            edge(first->t, role_of_line[first->line], first->level != 0);
+    }
     // Time has advanced to `now` with no further edge on this decoder's lines before it.
     // Called between edge blocks; lets timeouts close frames promptly in live decoding.
     virtual void advance(Tick now) { (void)now; }
@@ -76,6 +85,18 @@ protected:
 
 private:
     Tick busy_since_ = kNoTick;
+};
+
+// Base for decoders: the block loop calls Derived::edge directly (no virtual call per
+// edge), so the compiler can inline the decoder's edge handling into it.
+template <class Derived>
+class BlockDecoder : public Decoder {
+public:
+    void edges(const Edge* first, const Edge* last, const int* role_of_line) final {
+        Derived& d = static_cast<Derived&>(*this);
+        for (; first != last; ++first)
+            d.Derived::edge(first->t, role_of_line[first->line], first->level != 0);
+    }
 };
 
 class DecoderFactory {

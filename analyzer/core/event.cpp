@@ -11,14 +11,7 @@ Event& Event::set(std::string key, Value v) {
             return *this;
         }
     }
-    return add(std::move(key), std::move(v));
-}
-
-Event& Event::add(std::string key, Value v) {
-    // One allocation instead of a growth series for the usual handful of fields.
-    if (fields.capacity() == 0) fields.reserve(8);
-    fields.push_back({std::move(key), std::move(v)});
-    return *this;
+    return add(key, std::move(v));
 }
 
 const Value* Event::get(std::string_view key) const {

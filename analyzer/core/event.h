@@ -12,6 +12,9 @@
 namespace busdecode {
 
 struct Field {
+    Field() = default;
+    template <class V>
+    Field(std::string_view k, V&& v) : key(k), value(std::forward<V>(v)) {}
     std::string key;
     Value value;
 };
@@ -32,7 +35,14 @@ struct Event {
     Event& set(std::string key, Value v);  // replaces an existing key
     // Appends a key the event does not have yet, without searching: for decoders filling
     // a fresh event (a BiSS-C frame has 20 fields; set() would compare keys 190 times).
-    Event& add(std::string key, Value v);
+    // Built in place, without a temporary Value or Field: decoders call this for every
+    // field of every frame.
+    template <class V>
+    Event& add(std::string_view key, V&& v) {
+        if (fields.capacity() == 0) fields.reserve(8);  // one allocation, not a growth series
+        fields.emplace_back(key, std::forward<V>(v));
+        return *this;
+    }
     const Value* get(std::string_view key) const;
     bool has(std::string_view key) const { return get(key) != nullptr; }
     Event& error(std::string e);  // adds once

@@ -104,6 +104,9 @@ struct Session::Impl : EventSink {
     std::deque<int> pending_slot;
     EventWindow window;
     bool keep_window = false;  // some decoder correlates: remember released events
+    // One decoder, no glitch filter, one role per line: blocks go to Decoder::edges.
+    bool block_path = false;
+    std::vector<int> role_of_line;
     int emitting = -1;
     Tick now = 0;
     std::atomic<bool> stop{false};
@@ -315,7 +318,13 @@ Session::Session(std::vector<DecoderRequest> requests, CaptureReader& reader, st
                 impl_->targets[impl_->slots[s].role_line[r]].push_back(
                     {s, r, impl_->slots[s].decoder.get(),
                      impl_->slots[s].glitch ? &*impl_->slots[s].glitch : nullptr});
-    reader.select(impl_->lines);
+    Impl& im = *impl_;
+    im.block_path = im.slots.size() == 1 && !im.slots[0].glitch;
+    for (const auto& tgs : im.targets) {
+        im.block_path &= tgs.size() == 1;
+        im.role_of_line.push_back(tgs.empty() ? -1 : tgs[0].role);
+    }
+    reader.select(im.lines);
 }
 
 Session::~Session() = default;
@@ -351,12 +360,26 @@ void Session::run() {
     block.edges.reserve(kEdgeBlockSize);
     std::uint64_t edges = 0;
     while (!im.stopped() && reader.next(block)) {
-        for (const Edge& e : block.edges) {
-            if (im.levels[e.line] == e.level) continue;  // repeated value, not an edge
-            im.levels[e.line] = e.level;
-            ++edges;
-            for (const auto& tg : im.targets[e.line])
-                im.deliver(tg, e.t, e.level);
+        if (im.block_path) {
+            // Repeated values dropped in place, then the block in one call.
+            Edge* kept = block.edges.data();
+            std::size_t n = 0;
+            for (const Edge& e : block.edges) {
+                if (im.levels[e.line] == e.level) continue;  // repeated value, not an edge
+                im.levels[e.line] = e.level;
+                kept[n++] = e;
+            }
+            edges += n;
+            im.emitting = 0;
+            im.slots[0].decoder->edges(kept, kept + n, im.role_of_line.data());
+        } else {
+            for (const Edge& e : block.edges) {
+                if (im.levels[e.line] == e.level) continue;  // repeated value, not an edge
+                im.levels[e.line] = e.level;
+                ++edges;
+                for (const auto& tg : im.targets[e.line])
+                    im.deliver(tg, e.t, e.level);
+            }
         }
         facts_.edges = edges;
         if (!block.edges.empty()) im.now = std::max(im.now, block.edges.back().t);

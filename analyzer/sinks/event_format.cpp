@@ -5,6 +5,8 @@
 #include <fmt/compile.h>
 #include <fmt/format.h>
 
+#include "core/number_text.h"
+
 namespace busdecode {
 
 namespace {
@@ -38,12 +40,6 @@ void appendJsonString(std::string& out, const std::string& s) {
     out += '"';
 }
 
-template <typename Int>
-void appendInt(std::string& out, Int v) {
-    const fmt::format_int text(v);
-    out.append(text.data(), text.size());
-}
-
 void appendValue(std::string& out, const Value& v) {
     std::visit(
         [&](const auto& x) {
@@ -53,12 +49,12 @@ void appendValue(std::string& out, const Value& v) {
             else if constexpr (std::is_same_v<T, bool>)
                 out += x ? "true" : "false";
             else if constexpr (std::is_same_v<T, std::int64_t> || std::is_same_v<T, std::uint64_t>)
-                appendInt(out, x);
+                appendDecimal(out, x);
             else if constexpr (std::is_same_v<T, double>) {
                 if (!std::isfinite(x))
                     out += "null";
                 else if (x == std::floor(x) && std::fabs(x) < 1e15)
-                    appendInt(out, std::int64_t(x));
+                    appendDecimal(out, std::int64_t(x));
                 else
                     fmt::format_to(std::back_inserter(out), "{}", x);
             } else if constexpr (std::is_same_v<T, std::string>)
@@ -67,7 +63,7 @@ void appendValue(std::string& out, const Value& v) {
                 out += '[';
                 for (std::size_t i = 0; i < x.size(); ++i) {
                     if (i) out += ',';
-                    appendInt(out, x[i]);
+                    appendDecimal(out, x[i]);
                 }
                 out += ']';
             }

@@ -3,11 +3,9 @@
 #include <algorithm>
 #include <cmath>
 
-#include <fmt/compile.h>
-#include <fmt/format.h>
-
 #include "core/bit_word.h"
 #include "core/crc.h"
+#include "core/number_text.h"
 
 namespace busdecode {
 
@@ -106,7 +104,7 @@ bool BisscDecoder::isClockPhase(double length, bool level) const {
     // A rising edge ends a low phase. BiSS keeps clock phases well below the slave's
     // timeout, so a phase much longer than any in the frame is not clocking.
     constexpr double kPhaseTolerance = 1.25;
-    const double longest = level ? f_.max_low : f_.max_high;
+    const double longest = double(level ? f_.max_low : f_.max_high);
     return longest > 0 && length <= kPhaseTolerance * longest;
 }
 
@@ -163,8 +161,8 @@ void BisscDecoder::onMa(Tick t, bool level) {
     checkQuiet(t);
     if ((state_ == State::WaitAck || state_ == State::Data) && !f_.rises.empty() &&
         last_ma_edge_ != kNoTick) {
-        double& longest = level ? f_.max_low : f_.max_high;
-        longest = std::max(longest, double(t - last_ma_edge_));
+        Tick& longest = level ? f_.max_low : f_.max_high;
+        longest = std::max(longest, t - last_ma_edge_);
     }
     last_ma_edge_ = t;
     ma_ = level;
@@ -395,94 +393,107 @@ void BisscDecoder::closeFrame(Tick end, Tick timeout_end, const char* error, boo
 
     const bool complete = f_.slot == Slot::Done;
     const int pos_bits = std::min(s_.bits, s_.st_bits + s_.mt_bits);
-    Value position = Null{}, st = Null{}, mt = Null{}, ne = Null{}, nw = Null{};
-    Value crc_rx = Null{}, crc_ok = Null{}, cds = Null{}, cdm = Null{};
     std::uint64_t pos = 0;
     bool crc_good = true;
     if (complete) {
         pos = lowBits(f_.data, pos_bits);
-        position = pos;
-        st = lowBits(pos, s_.st_bits);
-        mt = s_.mt_bits > 0 ? lowBits(pos >> s_.st_bits, s_.mt_bits) : std::uint64_t(0);
-        ne = std::int64_t(f_.ne);
-        nw = std::int64_t(f_.nw);
         if (s_.crc_bits > 0) {
             BitCrc crc = BitCrc::fromFullPoly(s_.crc_poly, s_.crc_init, s_.crc_inverted);
             crc.pushBits(f_.data, s_.bits);
             crc.push(f_.ne);
             crc.push(f_.nw);
             crc_good = crc.value() == f_.crc_rx;
-            crc_rx = std::int64_t(f_.crc_rx);
-            crc_ok = crc_good;
             if (!crc_good) e.error("crc");
         }
         if (f_.ne == 0) e.error("error_bit");
         if (f_.nw == 0) e.error("warning_bit");
     }
-    if (f_.cds >= 0) cds = std::int64_t(f_.cds);
-    Value timeout_ns = Null{};
-    if (timeout_end != kNoTick && complete) {
-        cdm = std::int64_t(f_.ma_at_timeout_end ? 0 : 1);  // MA low in the timeout: CDM = 1
-        const std::int64_t to = tb().toNs(timeout_end - f_.rises.back());
-        timeout_ns = to;
-        if (s_.timeout_min_ns > 0 && double(to) < s_.timeout_min_ns) e.error("timeout_short");
+    const bool timed_out = timeout_end != kNoTick && complete;
+    const int cdm = timed_out ? (f_.ma_at_timeout_end ? 0 : 1) : -1;  // MA low: CDM = 1
+    std::int64_t timeout_ns = 0;
+    if (timed_out) {
+        timeout_ns = tb().toNs(timeout_end - f_.rises.back());
+        if (s_.timeout_min_ns > 0 && double(timeout_ns) < s_.timeout_min_ns)
+            e.error("timeout_short");
     }
-    Value clock_hz = Null{};
     const double period = meanPeriod();
-    if (f_.rises.size() >= 2 && period > 0) {
-        clock_hz = std::round(1.0 / (period * tb().secondsPerTick()));  // whole Hz
-        last_period_ = period;
-    }
+    const bool clocked = f_.rises.size() >= 2 && period > 0;
+    if (clocked) last_period_ = period;
     if (f_.ack != kNoTick) last_delay_ = f_.delay;
     const bool acked = f_.ack != kNoTick;
+    const std::int64_t delay_ns = acked ? std::llround(tb().toNsF(f_.delay)) : 0;
 
-    e.add("position", position);
-    e.add("st", st);
-    e.add("mt", mt);
-    e.add("nE", ne);
-    e.add("nW", nw);
-    e.add("crc_rx", crc_rx);
-    e.add("crc_ok", crc_ok);
-    e.add("cds", cds);
-    e.add("cdm", cdm);
-    e.add("line_delay_ns",
-          acked ? Value(std::int64_t(std::llround(tb().toNsF(f_.delay)))) : Value(Null{}));
-    e.add("proc_cycles", f_.start_index >= 0 ? Value(std::int64_t(f_.proc_cycles)) : Value(Null{}));
-    e.add("ack_delay_ns",
-          acked ? Value(std::int64_t(std::llround(tb().toNsF(f_.ack_delay)))) : Value(Null{}));
-    e.add("clock_hz", clock_hz);
-    e.add("timeout_ns", timeout_ns);
-    e.add("extra_clocks", f_.stop_index >= 0
-                              ? Value(std::int64_t(f_.rises.size()) - 1 - f_.stop_index)
-                              : Value(Null{}));
+    // Fields in place, Null where the frame did not get that far (one frame every few
+    // microseconds of capture: no temporaries).
+    auto add = [&e](const char* key, bool known, auto v) {
+        if (known)
+            e.add(key, v);
+        else
+            e.add(key, Null{});
+    };
+    add("position", complete, pos);
+    add("st", complete, lowBits(pos, s_.st_bits));
+    add("mt", complete, s_.mt_bits > 0 ? lowBits(pos >> s_.st_bits, s_.mt_bits) : std::uint64_t(0));
+    add("nE", complete, std::int64_t(f_.ne));
+    add("nW", complete, std::int64_t(f_.nw));
+    add("crc_rx", complete && s_.crc_bits > 0, std::int64_t(f_.crc_rx));
+    add("crc_ok", complete && s_.crc_bits > 0, crc_good);
+    add("cds", f_.cds >= 0, std::int64_t(f_.cds));
+    add("cdm", timed_out, std::int64_t(cdm));
+    add("line_delay_ns", acked, delay_ns);
+    add("proc_cycles", f_.start_index >= 0, std::int64_t(f_.proc_cycles));
+    add("ack_delay_ns", acked,
+        acked ? std::int64_t(std::llround(tb().toNsF(f_.ack_delay))) : std::int64_t(0));
+    add("clock_hz", clocked,
+        clocked ? std::round(1.0 / (period * tb().secondsPerTick())) : 0.0);  // whole Hz
+    add("timeout_ns", timed_out, timeout_ns);
+    add("extra_clocks", f_.stop_index >= 0,
+        std::int64_t(f_.rises.size()) - 1 - std::int64_t(f_.stop_index));
     e.add("clocks", std::int64_t(f_.rises.size()));
     e.add("bits", std::int64_t(s_.bits));
     e.add("crc_bits", std::int64_t(s_.crc_bits));
     e.add("hold_cdm", f_.from_hold);
     e.add("retriggered", f_.retriggered);
 
+    // "pos={} (0x{:X}) nE={} nW={} crc=0x{:02X} {} cds={} cdm={} delay={}ns busy={}",
+    // appended piece by piece.
+    std::string& text = e.summary;
+    text.reserve(96);  // one allocation: the summary is 50 to 90 characters
     if (complete) {
-        // Compiled format strings: one frame every few microseconds of capture.
-        fmt::format_to(std::back_inserter(e.summary),
-                       FMT_COMPILE("pos={} (0x{:X}) nE={} nW={} crc=0x{:02X} {} cds={} cdm="), pos,
-                       pos, f_.ne, f_.nw, f_.crc_rx, crc_good ? "ok" : "bad", f_.cds);
-        if (isNull(cdm))
-            e.summary += '?';
+        text += "pos=";
+        appendDecimal(text, pos);
+        text += " (0x";
+        appendHex(text, pos, 1);
+        text += ") nE=";
+        appendDecimal(text, f_.ne);
+        text += " nW=";
+        appendDecimal(text, f_.nw);
+        text += " crc=0x";
+        appendHex(text, f_.crc_rx, 2);
+        text += crc_good ? " ok cds=" : " bad cds=";
+        appendDecimal(text, f_.cds);
+        text += " cdm=";
+        if (cdm < 0)
+            text += '?';
         else
-            fmt::format_to(std::back_inserter(e.summary), FMT_COMPILE("{}"), asInt(cdm));
+            appendDecimal(text, cdm);
     } else {
-        e.summary = "incomplete frame";
+        text = "incomplete frame";
     }
-    if (acked)
-        fmt::format_to(std::back_inserter(e.summary), FMT_COMPILE(" delay={}ns"),
-                       std::llround(tb().toNsF(f_.delay)));
-    if (f_.proc_cycles > 0)
-        fmt::format_to(std::back_inserter(e.summary), FMT_COMPILE(" busy={}"), f_.proc_cycles);
+    if (acked) {
+        text += " delay=";
+        appendDecimal(text, delay_ns);
+        text += "ns";
+    }
+    if (f_.proc_cycles > 0) {
+        text += " busy=";
+        appendDecimal(text, f_.proc_cycles);
+    }
 
     ControlBits bits;
     bits.start = e.start;
     bits.end = e.end;
-    bits.cdm = isNull(cdm) ? -1 : int(asInt(cdm));
+    bits.cdm = cdm;
     bits.cds = complete ? f_.cds : -1;
 
     emit(std::move(e));

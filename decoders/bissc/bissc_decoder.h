@@ -21,7 +21,7 @@
 
 namespace busdecode {
 
-class BisscDecoder : public Decoder {
+class BisscDecoder : public BlockDecoder<BisscDecoder> {
 public:
     enum Role { kMa = 0, kSl = 1 };
 
@@ -73,8 +73,8 @@ private:
         // The slave timed out while the master was still clocking past the stop bit, and
         // took the remaining clocks for a new request (the MB5U with a RESOLUTE does this).
         bool retriggered = false;
-        double max_high = 0, max_low = 0;  // longest MA clock phases seen in the frame
-        mutable double period = 0;         // meanPeriod() cache, valid for period_rises
+        Tick max_high = 0, max_low = 0;  // longest MA clock phases seen in the frame (ticks)
+        mutable double period = 0;       // meanPeriod() cache, valid for period_rises
         mutable std::size_t period_rises = 0;
         std::vector<std::string> errors;
     };

@@ -12,15 +12,14 @@
 // Event payload for stacked decoders (TMC8100): type "transfer", fields mosi, miso
 // (uint64, bits wide, or Null for an unbound line), bits (int); errors short_frame,
 // glitch.
-#include <array>
-#include <vector>
 
 #include "core/bit_word.h"
 #include "core/decoder.h"
+#include "spi_info.h"
 
 namespace busdecode {
 
-class SpiDecoder : public Decoder {
+class SpiDecoder : public BlockDecoder<SpiDecoder> {
 public:
     explicit SpiDecoder(const Options& options);
 
@@ -32,19 +31,21 @@ public:
 
 private:
     // Applies every edge seen at group_tick_ at once (see the header comment).
-    void settle();
+    [[gnu::always_inline]] inline void settle();
     void sampleBit(Tick t);
     void emitWord(Tick end, bool short_frame);
     void resetWord();
-    bool csActive(int level) const { return level >= 0 && (level == 1) == cs_active_high_; }
+    static constexpr unsigned bit(int role) { return 1u << role; }
+    bool csActive(unsigned levels) const { return bool(levels & bit(kSpiCs)) == cs_active_high_; }
 
     int cpol_, cpha_, bits_;
     bool lsb_first_, cs_active_high_;
     bool sample_on_rising_;
 
-    std::array<bool, 4> bound_{};
-    std::array<int, 4> level_{};    // levels including edges of the open tick group
-    std::array<int, 4> settled_{};  // levels after the last settled group
+    // One bit per role (bit(role)): a mask compares and copies the four lines at once.
+    unsigned bound_ = 0;    // roles bound to a line
+    unsigned level_ = 0;    // levels including edges of the open tick group
+    unsigned settled_ = 0;  // levels after the last settled group
     bool group_open_ = false;
     Tick group_tick_ = 0;
 

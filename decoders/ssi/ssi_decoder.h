@@ -17,7 +17,7 @@
 
 namespace busdecode {
 
-class SsiDecoder : public Decoder {
+class SsiDecoder : public BlockDecoder<SsiDecoder> {
 public:
     explicit SsiDecoder(const Options& o);
     explicit SsiDecoder(SsiConfig cfg);

@@ -28,7 +28,7 @@ DecoderInfo tmc8100Info();
 
 enum Tmc8100Role : int { kTmcCs = 0, kTmcSclk, kTmcMosi, kTmcMiso, kTmcAvail, kTmcRoleCount };
 
-class Tmc8100Decoder : public Decoder {
+class Tmc8100Decoder : public BlockDecoder<Tmc8100Decoder> {
 public:
     explicit Tmc8100Decoder(const Options& options);
 

@@ -20,7 +20,7 @@ namespace busdecode {
 
 class DecoderFactory;
 
-class TmclDecoder : public Decoder {
+class TmclDecoder : public BlockDecoder<TmclDecoder> {
 public:
     explicit TmclDecoder(const Options& options);
     ~TmclDecoder() override;

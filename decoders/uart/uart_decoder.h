@@ -20,7 +20,7 @@ namespace busdecode {
 
 class DecoderFactory;
 
-class UartDecoder : public Decoder {
+class UartDecoder : public BlockDecoder<UartDecoder> {
 public:
     explicit UartDecoder(const Options& options);
 

@@ -495,7 +495,9 @@ TEST(BisscFrames, NoiseNeverBreaksTheDecoder) {
         ASSERT_FALSE(events.empty());
         for (std::size_t i = 0; i < events.size(); ++i) {
             EXPECT_LE(events[i].start, events[i].end);
-            if (i > 0) EXPECT_LE(events[i - 1].start, events[i].start);
+            if (i > 0) {
+                EXPECT_LE(events[i - 1].start, events[i].start);
+            }
         }
         const Event last = ofType(events, "frame").back();
         EXPECT_EQ(intField(last, "position"), 0x155AA55) << run;

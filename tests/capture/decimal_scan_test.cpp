@@ -37,7 +37,9 @@ void expectSame(const std::string& s) {
     ASSERT_EQ(std::size_t(got.end - s.data()), want.digits) << s;
     ASSERT_EQ(std::size_t(got.digits), want.digits) << s;
     ASSERT_EQ(got.overflow, want.overflow) << s;
-    if (!want.overflow) ASSERT_EQ(got.value, want.value) << s;
+    if (!want.overflow) {
+        ASSERT_EQ(got.value, want.value) << s;
+    }
 }
 
 }  // namespace

@@ -7,7 +7,7 @@
 
 #include <fmt/format.h>
 
-#include "core/hex_text.h"
+#include "core/number_text.h"
 #include "sinks/event_format.h"
 
 using namespace busdecode;
@@ -79,6 +79,33 @@ TEST(EventFormat, AddAppendsSetReplaces) {
     ASSERT_EQ(e.fields.size(), 2u);
     EXPECT_EQ(std::get<std::int64_t>(*e.get("a")), 3);
     EXPECT_EQ(std::get<std::int64_t>(*e.get("b")), 2);
+}
+
+TEST(EventFormat, AddKeepsTheValueType) {
+    Event e;
+    const Value v = std::int64_t(-4);
+    e.add("u", std::uint64_t(7)).add("b", true).add("d", 2.5).add("n", Null{}).add("v", v);
+    e.add(std::string("s"), std::string("text"));
+    EXPECT_EQ(std::get<std::uint64_t>(*e.get("u")), 7u);
+    EXPECT_EQ(std::get<bool>(*e.get("b")), true);
+    EXPECT_EQ(std::get<double>(*e.get("d")), 2.5);
+    EXPECT_TRUE(isNull(*e.get("n")));
+    EXPECT_EQ(std::get<std::int64_t>(*e.get("v")), -4);
+    EXPECT_EQ(std::get<std::string>(*e.get("s")), "text");
+    EXPECT_EQ(e.fields[5].key, "s");
+}
+
+TEST(NumberText, DecimalAsTheFormatStringHad) {
+    std::mt19937_64 rng(5);
+    for (int i = 0; i < 20000; ++i) {
+        const std::uint64_t u = rng() >> (rng() % 64);
+        const auto s = std::int64_t(rng()) >> (rng() % 64);
+        std::string got = "x";
+        appendDecimal(got, u);
+        appendDecimal(got, s);
+        appendDecimal(got, int(s));
+        ASSERT_EQ(got, "x" + fmt::format("{}{}{}", u, s, int(s)));
+    }
 }
 
 TEST(HexText, AsTheFormatStringHad) {

@@ -75,6 +75,36 @@ struct RegisterRise {
     }
 } register_rise;
 
+// Records every edge it is given. A BlockDecoder: as the only decoder it gets whole
+// blocks through the inlined loop; beside another decoder, one edge() call per edge.
+class TraceDecoder : public BlockDecoder<TraceDecoder> {
+public:
+    struct Seen {
+        Tick t;
+        int role;
+        bool level;
+        bool operator==(const Seen&) const = default;
+    };
+    explicit TraceDecoder(const Options&) {}
+    void edge(Tick t, int role, bool level) override { trace.push_back({t, role, level}); }
+    void finish(Tick) override {}
+    static std::vector<Seen> trace;
+};
+std::vector<TraceDecoder::Seen> TraceDecoder::trace;
+
+DecoderInfo traceInfo() {
+    DecoderInfo d;
+    d.id = "trace";
+    d.roles = {{"p", false, {}, ""}, {"q", false, {}, ""}};
+    return d;
+}
+
+struct RegisterTrace {
+    RegisterTrace() {
+        Registry::instance().add(std::make_shared<SimpleFactory<TraceDecoder>>(traceInfo()));
+    }
+} register_trace;
+
 Waveform twoLines() {
     WaveBuilder b(Timebase{1, 1'000'000'000}, {"top.a", "top.input"}, {1, 1});
     b.set(0, 100, false);
@@ -164,4 +194,20 @@ TEST(Session, BadOptionNamesDecoderAndValidValues) {
     } catch (const InputError& e) {
         EXPECT_STREQ(e.what(), "decoder rise: option correlate=maybe: expected 0 or 1");
     }
+}
+
+TEST(Session, BlockPathDeliversWhatThePerEdgePathDoes) {
+    auto w = twoLines();
+    // A repeated level (line 0 is already low at 120) is not an edge on either path.
+    w.edges.insert(w.edges.begin() + 1, Edge{120, 0, 0});
+    const std::vector<TraceDecoder::Seen> want = {{100, 1, false}, {150, 0, false}, {200, 1, true},
+                                                  {250, 0, true},  {300, 0, false}, {303, 0, true},
+                                                  {400, 1, false}, {500, 1, true}};
+    const DecoderRequest trace{"trace", {{"p", "input"}, {"q", "a"}}, {}};
+    TraceDecoder::trace.clear();
+    decodeWaveform(w, {trace});  // the only decoder: whole blocks
+    EXPECT_EQ(TraceDecoder::trace, want);
+    TraceDecoder::trace.clear();
+    decodeWaveform(w, {trace, {"rise", {{"in", "a"}}, {}}});  // two decoders: edge by edge
+    EXPECT_EQ(TraceDecoder::trace, want);
 }
