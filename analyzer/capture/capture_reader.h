@@ -44,6 +44,9 @@ public:
     // Bytes consumed so far and total (0 if unknown), for progress and throughput.
     virtual std::uint64_t bytesRead() const { return 0; }
     virtual std::uint64_t bytesTotal() const { return 0; }
+    // True if every edge changes its line's level (the reader drops repeated values
+    // itself): the session then skips its own check.
+    virtual bool changesOnly() const { return false; }
 };
 
 struct OpenOptions {

@@ -199,6 +199,7 @@ public:
     Tick endTick() const override { return cur_; }
     std::uint64_t bytesRead() const override { return src_->bytesRead(); }
     std::uint64_t bytesTotal() const override { return src_->bytesTotal(); }
+    bool changesOnly() const override { return true; }  // row() compares with level_
 
 private:
     [[noreturn]] void fail(const std::string& what) const {

@@ -54,6 +54,7 @@ public:
     Tick endTick() const override { return in_->endTick(); }
     std::uint64_t bytesRead() const override { return bytes_read_.load(std::memory_order_relaxed); }
     std::uint64_t bytesTotal() const override { return in_->bytesTotal(); }
+    bool changesOnly() const override { return in_->changesOnly(); }
 
 private:
     void produce() {

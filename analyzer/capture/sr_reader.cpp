@@ -144,6 +144,7 @@ public:
     Tick endTick() const override { return sample_ > 0 ? Tick(sample_) - 1 : 0; }
     std::uint64_t bytesRead() const override { return consumed_ + pos_; }
     std::uint64_t bytesTotal() const override { return total_bytes_; }
+    bool changesOnly() const override { return true; }  // edges only where a bit changes
 
 private:
     struct Sel {

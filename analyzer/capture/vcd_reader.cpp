@@ -136,6 +136,7 @@ public:
     Tick endTick() const override { return end_; }
     std::uint64_t bytesRead() const override { return src_->bytesRead(); }
     std::uint64_t bytesTotal() const override { return src_->bytesTotal(); }
+    bool changesOnly() const override { return true; }  // see set()
 
 private:
     struct Code {

@@ -2,7 +2,9 @@
 // Numbers appended to a string without a format-string interpreter, for summaries and
 // lines written once per word or frame (fmt's parser costs more than the digits).
 #include <cstdint>
+#include <cstring>
 #include <string>
+#include <string_view>
 
 #include <fmt/format.h>
 
@@ -28,5 +30,48 @@ void appendDecimal(std::string& out, Int v) {
     const fmt::format_int text(v);
     out.append(text.data(), text.size());
 }
+
+// A short line built in a stack buffer, piece by piece without a capacity check and a
+// call per piece (literal pieces become plain stores), then handed over at once: for the
+// summary of every frame. Pieces that would overflow the buffer are dropped; callers'
+// lines are bounded well below kCapacity.
+class ShortLine {
+public:
+    static constexpr std::size_t kCapacity = 256;
+
+    ShortLine& text(std::string_view s) {
+        if (s.size() <= kCapacity - n_) {
+            std::memcpy(buf_ + n_, s.data(), s.size());
+            n_ += s.size();
+        }
+        return *this;
+    }
+    ShortLine& dec(std::int64_t v) {
+        const fmt::format_int digits(v);
+        return text(std::string_view(digits.data(), digits.size()));
+    }
+    ShortLine& dec(std::uint64_t v) {
+        const fmt::format_int digits(v);
+        return text(std::string_view(digits.data(), digits.size()));
+    }
+    ShortLine& dec(int v) { return dec(std::int64_t(v)); }
+    // As appendHex.
+    ShortLine& hex(std::uint64_t v, int min_digits) {
+        char digits[32];
+        int n = 0;
+        do {
+            digits[31 - n++] = "0123456789ABCDEF"[v & 0xF];
+            v >>= 4;
+        } while (v != 0 && n < 16);
+        for (; n < min_digits && n < 32; ++n)
+            digits[31 - n] = '0';
+        return text(std::string_view(digits + 32 - n, std::size_t(n)));
+    }
+    std::string_view view() const { return {buf_, n_}; }
+
+private:
+    char buf_[kCapacity];
+    std::size_t n_ = 0;
+};
 
 }  // namespace busdecode

@@ -358,16 +358,21 @@ void Session::run() {
 
     EdgeBlock block;
     block.edges.reserve(kEdgeBlockSize);
+    const bool changes_only = reader.changesOnly();
     std::uint64_t edges = 0;
     while (!im.stopped() && reader.next(block)) {
         if (im.block_path) {
-            // Repeated values dropped in place, then the block in one call.
+            // Repeated values dropped in place (unless the reader did), then the block in
+            // one call.
             Edge* kept = block.edges.data();
-            std::size_t n = 0;
-            for (const Edge& e : block.edges) {
-                if (im.levels[e.line] == e.level) continue;  // repeated value, not an edge
-                im.levels[e.line] = e.level;
-                kept[n++] = e;
+            std::size_t n = block.edges.size();
+            if (!changes_only) {
+                n = 0;
+                for (const Edge& e : block.edges) {
+                    if (im.levels[e.line] == e.level) continue;  // repeated value, not an edge
+                    im.levels[e.line] = e.level;
+                    kept[n++] = e;
+                }
             }
             edges += n;
             im.emitting = 0;

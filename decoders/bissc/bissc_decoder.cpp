@@ -155,9 +155,11 @@ void BisscDecoder::beginFrame(Tick start, bool from_hold) {
 }
 
 void BisscDecoder::onMa(Tick t, bool level) {
-    scheduleUpTo(double(t));
-    sampler_.advanceTo(t);
-    drainSamples();
+    if (!takeDueSamples(t)) {
+        scheduleUpTo(double(t));
+        sampler_.advanceTo(t);
+        drainSamples();
+    }
     checkQuiet(t);
     if ((state_ == State::WaitAck || state_ == State::Data) && !f_.rises.empty() &&
         last_ma_edge_ != kNoTick) {
@@ -175,27 +177,27 @@ void BisscDecoder::onMa(Tick t, bool level) {
                 beginFrame(t, false);
             } else {
                 beginFrame(t, true);  // MA rising from low: maybe LAT (see resolveHoldStart)
-                f_.rises.push_back(t);
+                addRise(t);
             }
             break;
         case State::WaitAck:
             if (level)
-                f_.rises.push_back(t);
+                addRise(t);
             else if (f_.from_hold && f_.rises.size() == 1)
                 f_.hold_fall = t;
             break;
         case State::Data:
-            if (level) f_.rises.push_back(t);  // its sample is scheduled when due
+            if (level) addRise(t);  // its sample is scheduled when due
             break;
         case State::Timeout:
-            if (level) f_.rises.push_back(t);  // clocks past the stop bit
+            if (level) addRise(t);  // clocks past the stop bit
             break;
         case State::TimeoutEnded:
             // Still clocking (checkQuiet above closed the frame otherwise): the slave's
             // timeout ended early; these clocks still belong to the master's frame, and
             // the slave may take them for a new request (ACK: SL low again).
             f_.retriggered = true;
-            if (level) f_.rises.push_back(t);
+            if (level) addRise(t);
             break;
     }
 }
@@ -273,6 +275,25 @@ double BisscDecoder::sampleTime(std::size_t k) const {
     // r_{k+1} + d: sample its middle. T is the frame's mean period, which smooths the
     // quantisation of a capture sampled at only a few samples per bit.
     return double(f_.rises[k]) + f_.delay + meanPeriod() / 2.0;
+}
+
+bool BisscDecoder::takeDueSamples(Tick t) {
+    // What scheduleUpTo + advanceTo + drainSamples do at an MA edge when the sampler is
+    // empty: every sample due before t resolves to SL's level now (the sampler gives a
+    // newly scheduled sample the line's present level), and is taken at once, in order.
+    // Not at an SL edge: there the samples are taken after SL's new level is recorded.
+    if (state_ != State::Data || sampler_.ready() || sampler_.pending() != 0) return false;
+    const double now = double(t);
+    while (state_ == State::Data && f_.scheduled < f_.rises.size()) {
+        double at = sampleTime(f_.scheduled);
+        if (at >= now) break;
+        at = std::max(at, f_.last_sample_t);
+        if (at >= now) return false;  // pushed to t or later: it waits in the sampler
+        f_.last_sample_t = at;
+        const std::size_t k = f_.scheduled++;
+        takeSample(int(k), sampler_.level(), at);
+    }
+    return true;
 }
 
 void BisscDecoder::scheduleUpTo(double t) {
@@ -425,7 +446,7 @@ void BisscDecoder::closeFrame(Tick end, Tick timeout_end, const char* error, boo
 
     // Fields in place, Null where the frame did not get that far (one frame every few
     // microseconds of capture: no temporaries).
-    auto add = [&e](const char* key, bool known, auto v) {
+    auto add = [&e](std::string_view key, bool known, auto v) {
         if (known)
             e.add(key, v);
         else
@@ -456,39 +477,22 @@ void BisscDecoder::closeFrame(Tick end, Tick timeout_end, const char* error, boo
     e.add("retriggered", f_.retriggered);
 
     // "pos={} (0x{:X}) nE={} nW={} crc=0x{:02X} {} cds={} cdm={} delay={}ns busy={}",
-    // appended piece by piece.
-    std::string& text = e.summary;
-    text.reserve(96);  // one allocation: the summary is 50 to 90 characters
+    // at most about 180 characters.
+    ShortLine text;
     if (complete) {
-        text += "pos=";
-        appendDecimal(text, pos);
-        text += " (0x";
-        appendHex(text, pos, 1);
-        text += ") nE=";
-        appendDecimal(text, f_.ne);
-        text += " nW=";
-        appendDecimal(text, f_.nw);
-        text += " crc=0x";
-        appendHex(text, f_.crc_rx, 2);
-        text += crc_good ? " ok cds=" : " bad cds=";
-        appendDecimal(text, f_.cds);
-        text += " cdm=";
+        text.text("pos=").dec(pos).text(" (0x").hex(pos, 1).text(") nE=").dec(f_.ne);
+        text.text(" nW=").dec(f_.nw).text(" crc=0x").hex(f_.crc_rx, 2);
+        text.text(crc_good ? " ok cds=" : " bad cds=").dec(f_.cds).text(" cdm=");
         if (cdm < 0)
-            text += '?';
+            text.text("?");
         else
-            appendDecimal(text, cdm);
+            text.dec(cdm);
     } else {
-        text = "incomplete frame";
+        text.text("incomplete frame");
     }
-    if (acked) {
-        text += " delay=";
-        appendDecimal(text, delay_ns);
-        text += "ns";
-    }
-    if (f_.proc_cycles > 0) {
-        text += " busy=";
-        appendDecimal(text, f_.proc_cycles);
-    }
+    if (acked) text.text(" delay=").dec(delay_ns).text("ns");
+    if (f_.proc_cycles > 0) text.text(" busy=").dec(f_.proc_cycles);
+    e.summary.assign(text.view());
 
     ControlBits bits;
     bits.start = e.start;

@@ -85,6 +85,9 @@ private:
     // Per-edge helpers, inlined into onMa/onSl (defined in bissc_decoder.cpp only).
     [[gnu::always_inline]] inline double sampleTime(std::size_t k) const;
     [[gnu::always_inline]] inline void scheduleUpTo(double t);
+    // The usual MA edge's samples without the sampler's buffer; false: use the general
+    // path (scheduleUpTo, LineSampler::advanceTo, drainSamples).
+    [[gnu::always_inline]] inline bool takeDueSamples(Tick t);
     void startDelayEstimate(double ack_delay);
     void refineDelay(Tick t);
     [[gnu::always_inline]] inline void drainSamples();
@@ -99,6 +102,13 @@ private:
             f_.period_rises = r.size();
         }
         return f_.period;
+    }
+    // A rising MA edge of the frame. The mean period is worked out here, not when it is
+    // next asked for: that is at the following edge, where the division's latency would
+    // hold up the sample-time comparison right after it.
+    void addRise(Tick t) {
+        f_.rises.push_back(t);
+        meanPeriod();
     }
     double quietLimit() const;  // MA silence (ticks) that ends a frame in progress
     // Emits the frame in progress. timeout_end = the SL rising edge ending the slave's
