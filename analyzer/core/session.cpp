@@ -361,30 +361,25 @@ void Session::run() {
     const bool changes_only = reader.changesOnly();
     std::uint64_t edges = 0;
     while (!im.stopped() && reader.next(block)) {
-        if (im.block_path) {
-            // Repeated values dropped in place (unless the reader did), then the block in
-            // one call.
-            Edge* kept = block.edges.data();
-            std::size_t n = block.edges.size();
-            if (!changes_only) {
-                n = 0;
-                for (const Edge& e : block.edges) {
-                    if (im.levels[e.line] == e.level) continue;  // repeated value, not an edge
-                    im.levels[e.line] = e.level;
-                    kept[n++] = e;
-                }
+        // Repeated values (not edges) dropped in place, unless the reader did.
+        Edge* kept = block.edges.data();
+        std::size_t n = block.edges.size();
+        if (!changes_only) {
+            n = 0;
+            for (const Edge& e : block.edges) {
+                if (im.levels[e.line] == e.level) continue;
+                im.levels[e.line] = e.level;
+                kept[n++] = e;
             }
-            edges += n;
+        }
+        edges += n;
+        if (im.block_path) {  // the whole block in one call
             im.emitting = 0;
             im.slots[0].decoder->edges(kept, kept + n, im.role_of_line.data());
         } else {
-            for (const Edge& e : block.edges) {
-                if (im.levels[e.line] == e.level) continue;  // repeated value, not an edge
-                im.levels[e.line] = e.level;
-                ++edges;
-                for (const auto& tg : im.targets[e.line])
-                    im.deliver(tg, e.t, e.level);
-            }
+            for (std::size_t i = 0; i < n; ++i)
+                for (const auto& tg : im.targets[kept[i].line])
+                    im.deliver(tg, kept[i].t, kept[i].level);
         }
         facts_.edges = edges;
         if (!block.edges.empty()) im.now = std::max(im.now, block.edges.back().t);
