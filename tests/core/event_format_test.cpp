@@ -108,6 +108,25 @@ TEST(NumberText, DecimalAsTheFormatStringHad) {
     }
 }
 
+TEST(NumberText, ShortLineAsTheFormatStringHad) {
+    std::mt19937_64 rng(7);
+    for (int i = 0; i < 20000; ++i) {
+        const std::uint64_t u = rng() >> (rng() % 64);
+        const auto s = std::int64_t(rng()) >> (rng() % 64);
+        const int width = int(rng() % 20);
+        ShortLine line;
+        line.text("pos=").dec(u).text(" (0x").hex(u, width).text(") d=").dec(s).dec(int(s));
+        ASSERT_EQ(line.view(), fmt::format("pos={} (0x{:0{}X}) d={}{}", u, u, width, s, int(s)));
+    }
+}
+
+TEST(NumberText, ShortLineDropsWhatWouldOverflow) {
+    ShortLine line;
+    const std::string piece(100, 'a');
+    line.text(piece).text(piece).text(piece).text("end");
+    EXPECT_EQ(line.view(), piece + piece + "end");  // the third piece did not fit
+}
+
 TEST(HexText, AsTheFormatStringHad) {
     std::mt19937_64 rng(3);
     for (int i = 0; i < 20000; ++i) {
