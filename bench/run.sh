@@ -40,6 +40,9 @@ gen() {
     local out
     out="$("$make" "$1" "$2" "$3" "$tmp/$4")"
     cat "$tmp/$4" >/dev/null  # into the page cache: every tool reads a cached file
+    # Written back now, not by kernel threads competing with the timed runs for the two
+    # cores (the first tool timed would pay for it).
+    sync
     echo "$out"
 }
 field() { echo "$1" | cut -f"$2"; }
@@ -53,6 +56,26 @@ median() {
     [ "$n" = 1 ] && warm=0  # sigrok-cli: the file is cached already, one run is minutes
     hyperfine -N --style none --warmup "$warm" --runs "$n" --export-json "$tmp/h.json" "$*" >/dev/null 2>&1
     jq -r '.results[0] | "\(.median) \(.user + .system)"' "$tmp/h.json"
+}
+# The same for decode and wc -l timed around sigrok-cli's run of the same file: N runs
+# before it and N after, median and mean over all 2N. The machine's speed drifts (this
+# VM: up to 40 % within minutes); sigrok-cli's one run spans a minute or more, so the
+# fast tools are sampled across that same stretch, not in one moment of it.
+around() {
+    local n="$1" f="$2" sargs="$3" args="$4"
+    local i
+    for i in 1 2; do
+        # shellcheck disable=SC2086
+        hyperfine -N --style none --warmup 1 --runs "$n" --export-json "$tmp/dec$i.json" \
+            "$decode $f $args" >/dev/null 2>&1
+        hyperfine -N --style none --warmup 1 --runs "$n" --export-json "$tmp/wc$i.json" \
+            "wc -l $f" >/dev/null 2>&1
+        # shellcheck disable=SC2086
+        [ $i = 1 ] && read -r t_sig c_sig < <(median 1 sigrok-cli -I vcd -i "$f" $sargs)
+    done
+    local q='[.[].results[0]] | [(map(.times[]) | sort | if length % 2 == 1 then .[length / 2 | floor] else (.[length / 2 - 1] + .[length / 2]) / 2 end), (map(.user + .system) | add / length)] | "\(.[0]) \(.[1])"'
+    read -r t_dec c_dec < <(jq -rs "$q" "$tmp/dec1.json" "$tmp/dec2.json")
+    read -r t_wc c_wc < <(jq -rs "$q" "$tmp/wc1.json" "$tmp/wc2.json")
 }
 peak_mb() {  # peak resident set of a command, MB
     /usr/bin/time -v "$@" >/dev/null 2>"$tmp/time.txt" || true
@@ -80,11 +103,7 @@ for bus in spi bissc; do
     f="$tmp/$bus.vcd"
     if [ $bus = spi ]; then args="$spi_args"; sargs="$spi_sigrok"; else args="$biss_args"; sargs="$biss_sigrok"; fi
     echo "timing $bus.vcd ..." >&2
-    # shellcheck disable=SC2086
-    read -r t_dec c_dec < <(median $runs "$decode" "$f" $args)
-    read -r t_wc c_wc < <(median $runs wc -l "$f")
-    # shellcheck disable=SC2086
-    read -r t_sig c_sig < <(median 1 sigrok-cli -I vcd -i "$f" $sargs)
+    around "$runs" "$f" "$sargs" "$args"
     size_mb="$(mb "$f")"
     r_sig="$(ratio "$t_sig" "$t_dec")"
     r_wc="$(ratio "$t_wc" "$t_dec")"
@@ -170,7 +189,7 @@ rm -f "${vfiles[@]}"
 
 echo
 echo "Machine: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'), $(nproc) cores, $(free -g | awk '/Mem:/ {print $2}') GB RAM; load average at the start: $load_start, at the end: $(cut -d' ' -f1-3 /proc/loadavg)"
-echo "Wall times are medians of $runs runs (sigrok-cli: 1 run); CPU = user + system, mean. On a loaded machine wall times mostly measure waiting for a core: compare CPU times then."
+echo "Wall times are medians: decode and wc -l of $((2 * runs)) runs, $runs before and $runs after sigrok-cli's 1 run of the same file (other rows: $runs runs); CPU = user + system, mean. On a loaded machine wall times mostly measure waiting for a core: compare CPU times then."
 echo "decode: $decode ($(grep -m1 CMAKE_BUILD_TYPE "$build/CMakeCache.txt" | cut -d= -f2)); $(sigrok-cli --version | head -1); $(wc --version | head -1)"
 echo
 echo "| measurement | file | busdecode | compared with | target | met |"
