@@ -103,9 +103,8 @@ private:
         }
         return f_.period;
     }
-    // A rising MA edge of the frame. The mean period is worked out here, not when it is
-    // next asked for: that is at the following edge, where the division's latency would
-    // hold up the sample-time comparison right after it.
+    // A rising MA edge of the frame; the mean period is brought up to date with it, so
+    // the next edge's sample-time comparison finds it cached.
     void addRise(Tick t) {
         f_.rises.push_back(t);
         meanPeriod();
