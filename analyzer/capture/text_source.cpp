@@ -164,34 +164,29 @@ TextSource::Status TextSource::slowNextLine(std::string_view& line) {
             return Status::Line;
         }
         std::string_view rest;
-        switch (noNewline(rest)) {
-            case Tail::Refilled:
-                continue;
-            case Tail::NoData:
-                return Status::NoData;
-            case Tail::Eof:
-                return Status::Eof;
-            case Tail::LastLine:
-                line = trimCr(rest.data(), rest.data() + rest.size());
-                ++line_no_;
-                return Status::Line;
+        const auto st = noNewline(rest);
+        if (!st) continue;  // refilled
+        if (*st == Status::Line) {
+            line = trimCr(rest.data(), rest.data() + rest.size());
+            ++line_no_;
         }
+        return *st;
     }
 }
 
-TextSource::Tail TextSource::noNewline(std::string_view& rest) {
+std::optional<TextSource::Status> TextSource::noNewline(std::string_view& rest) {
     if (!mapped_ && !eof_ && !stopRequested()) {
-        if (fill() > 0) return Tail::Refilled;
-        if (!eof_) return Tail::NoData;
+        if (fill() > 0) return std::nullopt;
+        if (!eof_) return Status::NoData;
     }
     // The end: a last line without a newline still counts (not when a followed capture
     // is stopped: that line may be half written).
     if (pos_ < end_ && (mapped_ || eof_)) {
         rest = std::string_view(pos_, std::size_t(end_ - pos_));
         pos_ = end_;
-        return Tail::LastLine;
+        return Status::Line;
     }
-    return Tail::Eof;
+    return Status::Eof;
 }
 
 TextSource::Status TextSource::nextLines(std::string_view& text, std::uint64_t first_line) {
@@ -208,16 +203,7 @@ TextSource::Status TextSource::nextLines(std::string_view& text, std::uint64_t f
         }
         if (std::size_t(end_ - pos_) > kMaxLine)
             throw InputError(at(first_line, "line longer than 1 MiB (not a text capture?)"));
-        switch (noNewline(text)) {
-            case Tail::Refilled:
-                continue;
-            case Tail::NoData:
-                return Status::NoData;
-            case Tail::Eof:
-                return Status::Eof;
-            case Tail::LastLine:
-                return Status::Line;
-        }
+        if (const auto st = noNewline(text)) return *st;  // else refilled: scan again
     }
 }
 

@@ -5,6 +5,7 @@
 // behind the cursor are released, and the buffer only grows to the longest line.
 #include <cstdint>
 #include <cstring>
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -76,10 +77,10 @@ private:
         return std::string_view(b, std::size_t(e - b));
     }
     Status slowNextLine(std::string_view& line);
-    // No newline in what is buffered: read more (Refilled, or NoData on live input for
-    // now), or hand out the input's last line, which has no newline (LastLine), or Eof.
-    enum class Tail { Refilled, NoData, LastLine, Eof };
-    Tail noNewline(std::string_view& rest);
+    // No newline in what is buffered: read more (nullopt: refilled, scan again; NoData
+    // on live input for now), or hand out the input's last line, which has no newline
+    // (Line, in `rest`), or Eof.
+    std::optional<Status> noNewline(std::string_view& rest);
     // Reads more into the buffer; returns bytes added (0 = nothing now or at the end).
     std::size_t fill();
     bool stopRequested() const;

@@ -10,18 +10,26 @@
 
 namespace busdecode {
 
+namespace detail {
+// The upper-case hex digits of v, unpadded, written backwards so they end at `end` (16
+// bytes at most); returns where they start.
+inline char* hexDigits(char* end, std::uint64_t v) {
+    char* p = end;
+    do {
+        *--p = "0123456789ABCDEF"[v & 0xF];
+        v >>= 4;
+    } while (v != 0);
+    return p;
+}
+}  // namespace detail
+
 // Upper-case hexadecimal digits, zero-padded to a minimum width: "{:0{}X}".
 inline void appendHex(std::string& out, std::uint64_t v, int min_digits) {
     char buf[16];
-    int n = 0;
-    do {
-        buf[n++] = "0123456789ABCDEF"[v & 0xF];
-        v >>= 4;
-    } while (v != 0 && n < 16);
-    for (int pad = min_digits - n; pad > 0; --pad)
-        out += '0';
-    while (n > 0)
-        out += buf[--n];
+    const char* digits = detail::hexDigits(buf + 16, v);
+    const int n = int(buf + 16 - digits);
+    if (min_digits > n) out.append(std::size_t(min_digits - n), '0');
+    out.append(digits, std::size_t(n));
 }
 
 // Decimal digits: "{}".
@@ -57,15 +65,14 @@ public:
     ShortLine& dec(int v) { return dec(std::int64_t(v)); }
     // As appendHex.
     ShortLine& hex(std::uint64_t v, int min_digits) {
-        char digits[32];
-        int n = 0;
-        do {
-            digits[31 - n++] = "0123456789ABCDEF"[v & 0xF];
-            v >>= 4;
-        } while (v != 0 && n < 16);
-        for (; n < min_digits && n < 32; ++n)
-            digits[31 - n] = '0';
-        return text(std::string_view(digits + 32 - n, std::size_t(n)));
+        char buf[16];
+        const char* digits = detail::hexDigits(buf + 16, v);
+        const std::size_t n = std::size_t(buf + 16 - digits);
+        if (min_digits > int(n) && std::size_t(min_digits) - n <= kCapacity - n_) {
+            std::memset(buf_ + n_, '0', std::size_t(min_digits) - n);
+            n_ += std::size_t(min_digits) - n;
+        }
+        return text(std::string_view(digits, n));
     }
     std::string_view view() const { return {buf_, n_}; }
 

@@ -163,6 +163,17 @@ struct Session::Impl : EventSink {
         }
     }
 
+    // What a glitch filter lets through, handed to its decoder: pulses it removed as
+    // glitch(), the rest as edge().
+    static auto filtered(Decoder& d) {
+        return [&d](const GlitchFilter::Out& o) {
+            if (o.is_glitch)
+                d.glitch(o.t, o.role);
+            else
+                d.edge(o.t, o.role, o.level);
+        };
+    }
+
     void deliver(const Target& tg, Tick t, bool level) {
         emitting = tg.slot;
         if (!tg.glitch)
@@ -172,25 +183,14 @@ struct Session::Impl : EventSink {
     }
     // Kept out of the per-edge loop: the filter's code would crowd the common path.
     [[gnu::noinline]] void deliverFiltered(const Target& tg, Tick t, bool level) {
-        tg.glitch->push(t, tg.role, level, [&](const GlitchFilter::Out& o) {
-            if (o.is_glitch)
-                tg.decoder->glitch(o.t, o.role);
-            else
-                tg.decoder->edge(o.t, o.role, o.level);
-        });
+        tg.glitch->push(t, tg.role, level, filtered(*tg.decoder));
     }
 
     void advanceAll(Tick t) {
         for (int i = 0; i < int(slots.size()); ++i) {
             Slot& s = slots[i];
             emitting = i;
-            if (s.glitch)
-                s.glitch->release(t, [&](const GlitchFilter::Out& o) {
-                    if (o.is_glitch)
-                        s.decoder->glitch(o.t, o.role);
-                    else
-                        s.decoder->edge(o.t, o.role, o.level);
-                });
+            if (s.glitch) s.glitch->release(t, filtered(*s.decoder));
             // Edges the filter still holds lie before t: the decoder may only be told
             // that time has passed up to the oldest of them.
             Tick upto = t;
@@ -396,13 +396,7 @@ void Session::run() {
     for (int s = 0; s < int(im.slots.size()); ++s) {
         auto& slot = im.slots[s];
         im.emitting = s;
-        if (slot.glitch)
-            slot.glitch->flush([&](const GlitchFilter::Out& o) {
-                if (o.is_glitch)
-                    slot.decoder->glitch(o.t, o.role);
-                else
-                    slot.decoder->edge(o.t, o.role, o.level);
-            });
+        if (slot.glitch) slot.glitch->flush(Impl::filtered(*slot.decoder));
         slot.decoder->advance(facts_.end);
         slot.decoder->finish(facts_.end);
     }
