@@ -10,6 +10,12 @@
 namespace busdecode {
 
 struct Edge {
+    // Left uninitialised by default: a reader sizes a block to kEdgeBlockSize and fills
+    // it through a pointer, without first zeroing 256 KiB per block.
+    Edge() noexcept {}  // NOLINT: deliberately not `= default` (that would zero on resize)
+    constexpr Edge(Tick t_, std::uint32_t line_, std::uint8_t level_) noexcept
+        : t(t_), line(line_), level(level_) {}
+
     Tick t;
     std::uint32_t line;  // index into the reader's selected-line list
     std::uint8_t level;  // 0 or 1, the level *after* the edge

@@ -2,8 +2,6 @@
 
 #include <limits>
 
-#include <fmt/format.h>
-
 #include "core/number_text.h"
 #include "spi_info.h"
 
@@ -107,7 +105,8 @@ void SpiDecoder::emitWord(Tick end, bool short_frame) {
     e.end = std::max(end, word_start_);
     const int n = count_;
     const int digits = (n + 3) / 4;
-    std::string text;
+    ShortLine text;  // at most 64 bits: "MOSI 0x" + 16 digits, twice, and the short note
+    bool first = true;
     auto put = [&](const char* key, const char* label, const BitWord& w, bool bound) {
         if (!bound) {
             e.add(key, Null{});
@@ -116,20 +115,19 @@ void SpiDecoder::emitWord(Tick end, bool short_frame) {
         // MSB-first words keep the newest 64 bits; LSB-first words the first 64.
         std::uint64_t v = lowBits(w.value(), n);
         e.add(key, v);
-        if (!text.empty()) text += ' ';
-        text += label;
-        text += " 0x";
-        appendHex(text, v, digits);
+        if (!first) text.text(" ");
+        first = false;
+        text.text(label).text(" 0x").hex(v, digits);
     };
     put("mosi", "MOSI", mosi_, bound_ & bit(kSpiMosi));
     put("miso", "MISO", miso_, bound_ & bit(kSpiMiso));
     e.add("bits", std::int64_t(n));
     if (short_frame) {
         e.error("short_frame");
-        text += fmt::format(" ({} of {} bits)", n, bits_);
+        text.text(" (").dec(n).text(" of ").dec(bits_).text(" bits)");
     }
     if (word_glitch_) e.error("glitch");
-    e.summary = std::move(text);
+    e.summary.assign(text.view());
     emit(std::move(e));
 }
 
