@@ -40,13 +40,37 @@ inline std::uint64_t digitsValue(std::uint64_t w, int n) {
     return v & 0xFFFFFFFFULL;
 }
 
+inline constexpr std::uint64_t kPow10[9] = {1,      10,      100,      1000,     10000,
+                                            100000, 1000000, 10000000, 100000000};
+
 }  // namespace detail
+
+// The common case in two loads: up to 15 digits at p, reading exactly the 16 bytes at p
+// (the caller guarantees they are readable; no bounds check). digits == 16 means 16 or
+// more: value and end are then meaningless, use scanDecimal.
+inline DecimalScan scanDecimal16(const char* p) {
+    static_assert(std::endian::native == std::endian::little, "SWAR digit scan is little-endian");
+    DecimalScan r;
+    std::uint64_t w;
+    std::memcpy(&w, p, 8);
+    int n = detail::leadingDigits(w);
+    std::uint64_t t = n > 0 ? detail::digitsValue(w, n) : 0;
+    if (n == 8) {
+        std::memcpy(&w, p + 8, 8);
+        const int n2 = detail::leadingDigits(w);
+        if (n2 > 0) t = t * detail::kPow10[n2] + detail::digitsValue(w, n2);
+        n += n2;
+    }
+    r.value = t;  // below 10^15 < 2^62 when digits < 16
+    r.digits = n;
+    r.end = p + n;
+    return r;
+}
 
 // Reads the decimal digits starting at p (none is fine), never reading at or past e.
 inline DecimalScan scanDecimal(const char* p, const char* e) {
     static_assert(std::endian::native == std::endian::little, "SWAR digit scan is little-endian");
-    static constexpr std::uint64_t kPow10[9] = {1,      10,      100,      1000,     10000,
-                                                100000, 1000000, 10000000, 100000000};
+    using detail::kPow10;
     const char* const start = p;
     DecimalScan r;
     std::uint64_t t = 0;

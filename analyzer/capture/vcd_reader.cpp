@@ -418,25 +418,11 @@ private:
                     } else if (tt > cur_) {
                         cur_ = tt;
                         if (!block) return Stop::FirstDone;
-                        // The rest of a sigrok-style line, `#120 1! 0"`: one-character
-                        // scalars right here, one edge at most each (the general loop
-                        // takes over at anything else, and at a full block).
-                        while (e_ - p_ >= 4 && p_[0] == ' ' && (p_[1] == '0' || p_[1] == '1') &&
-                               static_cast<unsigned char>(p_[3]) <= ' ' &&
-                               block->edges.size() < kEdgeBlockSize && quickScalar(p_ + 1, block))
-                            p_ += 3;
                     }
                     break;
                 }
-                case '0':
+                case '0':  // the bulk of these go through fastRun()
                 case '1':
-                    // The bulk of a capture: `0!` / `1"`.
-                    if (e_ - p_ >= 3 && static_cast<unsigned char>(p_[2]) <= ' ' &&
-                        quickScalar(p_, block)) {
-                        p_ += 2;
-                        break;
-                    }
-                    [[fallthrough]];
                 case 'x':
                 case 'X':
                 case 'z':
@@ -523,7 +509,8 @@ private:
     // full block, and 32 bytes before the end of the run (its loads read ahead up to 17
     // bytes, and the run may end at the end of the mapping). Behaviour is pump()'s, token
     // for token; only the dispatch and the block bookkeeping per token are gone (the
-    // reading thread's instructions per line of a 10 MB SPI capture, by callgrind: 167 -> 99).
+    // reading thread's instructions per line of a 10 MB SPI capture, by callgrind: 167 -> 103;
+    // bench/README.md has the command).
     void fastRun(EdgeBlock& block) {
         const char* p = p_;
         if (e_ - p < 32 || max_targets_ >= kEdgeBlockSize) return;
@@ -545,25 +532,15 @@ private:
             // Each token is taken only if a separator follows it, so that pump() sees
             // any faulty token whole and words its error as it always has.
             if (c == '#') {
-                std::uint64_t w;
-                std::memcpy(&w, p + 1, 8);
-                const int n1 = detail::leadingDigits(w);
-                if (n1 == 0) break;
-                std::uint64_t t = detail::digitsValue(w, n1);
-                int n = n1;
-                if (n1 == 8) {
-                    std::memcpy(&w, p + 9, 8);
-                    const int n2 = detail::leadingDigits(w);
-                    if (n2 == 8) break;  // 16 digits or more: pump() checks the range
-                    if (n2 > 0) t = t * kPow10[n2] + detail::digitsValue(w, n2);
-                    n += n2;
-                }
-                const std::uint8_t k = kSeparator[static_cast<unsigned char>(p[1 + n])];
-                const Tick tt = Tick(t);    // below 10^16 < 2^62
+                const DecimalScan num = scanDecimal16(p + 1);
+                // No digits, or 16 or more: pump() reports it, or checks the range.
+                if (num.digits == 0 || num.digits >= 16) break;
+                const std::uint8_t k = kSeparator[static_cast<unsigned char>(*num.end)];
+                const Tick tt = Tick(num.value);
                 if (!k || tt < cur) break;  // pump() reports a time going backwards
                 cur = tt;
                 line += k >> 1;
-                p += 2 + n;
+                p = num.end + 1;
             } else if (unsigned(c - '0') < 2) {
                 const unsigned i = static_cast<unsigned char>(p[1]) - 33u;
                 std::uint8_t k = kSeparator[static_cast<unsigned char>(p[2])];
@@ -601,18 +578,6 @@ private:
         line_ = line;
         cur_ = cur;
     }
-    static constexpr std::uint64_t kPow10[9] = {1,      10,      100,      1000,     10000,
-                                                100000, 1000000, 10000000, 100000000};
-
-    // `0!` / `1"` at v: a 0/1 value and a one-character identifier (the caller checked
-    // that the token ends after it). Applied through scalar1_ when that identifier is a
-    // plain scalar (or unselected); false sends it to the general path.
-    [[gnu::always_inline]] bool quickScalar(const char* v, EdgeBlock* block) {
-        const unsigned i = static_cast<unsigned char>(v[1]) - 33u;
-        if (i >= 94 || scalar1_[i] == kNotScalar) return false;
-        if (scalar1_[i] >= 0) set(std::uint32_t(scalar1_[i]), std::uint8_t(v[0] - '0'), block);
-        return true;
-    }
 
     // Hot path: a lookup; the message is built out of line.
     [[gnu::always_inline]] const Code& codeFor(const char* id, const char* q) const {
@@ -635,13 +600,12 @@ private:
     std::vector<Target> targets_;
     std::size_t max_targets_ = 1;
     std::vector<int> short1_, short2_;
-    // Per one-character identifier: its selected line, kUnselected, or kNotScalar (not
-    // declared, or several targets / a vector bit: the general path handles it).
+    // For fastRun(), per one-character identifier (indexed like short1_) and per
+    // two-character one (like short2_: sigrok past 94 channels, many simulators): its
+    // selected line, kUnselected, or kNotScalar (not declared, or several targets / a
+    // vector bit: the general path in pump() handles it).
     static constexpr std::int32_t kNotScalar = -1, kUnselected = -2;
-    std::vector<std::int32_t> scalar1_;
-    // The same per two-character identifier (sigrok past 94 channels, many simulators),
-    // indexed like short2_; only fastRun() uses it.
-    std::vector<std::int32_t> scalar2_;
+    std::vector<std::int32_t> scalar1_, scalar2_;
     std::unordered_map<std::string, int, StringHash, std::equal_to<>> long_;
     std::vector<std::uint8_t> level_;
 

@@ -1,5 +1,6 @@
-// The SWAR decimal scan must agree with a plain digit loop on every length, every
-// terminator, buffer ends at every offset, and the 2^62 limit the VCD reader enforces.
+// The SWAR decimal scans (scanDecimal, and scanDecimal16 for the VCD reader's tight loop)
+// must agree with a plain digit loop on every length, every terminator, buffer ends at
+// every offset, and the 2^62 limit the VCD reader enforces.
 #include <gtest/gtest.h>
 
 #include <cstdint>
@@ -31,7 +32,23 @@ Reference reference(const std::string& s) {
     return r;
 }
 
+// scanDecimal16 on s, padded so its 16-byte read stays inside the string: the same
+// digits as the plain loop up to 15, or digits == 16 for 16 or more.
+void expectSame16(const std::string& s) {
+    const Reference want = reference(s);
+    const std::string padded = s + std::string(16, '\n');
+    const DecimalScan got = scanDecimal16(padded.data());
+    if (want.digits >= 16) {
+        ASSERT_EQ(got.digits, 16) << s;
+        return;
+    }
+    ASSERT_EQ(std::size_t(got.digits), want.digits) << s;
+    ASSERT_EQ(std::size_t(got.end - padded.data()), want.digits) << s;
+    ASSERT_EQ(got.value, want.value) << s;
+}
+
 void expectSame(const std::string& s) {
+    expectSame16(s);
     const Reference want = reference(s);
     const DecimalScan got = scanDecimal(s.data(), s.data() + s.size());
     ASSERT_EQ(std::size_t(got.end - s.data()), want.digits) << s;
