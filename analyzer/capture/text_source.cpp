@@ -8,7 +8,6 @@
 
 #include <fcntl.h>
 #include <poll.h>
-#include <sys/mman.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -19,7 +18,10 @@
 namespace busdecode {
 
 namespace {
-constexpr std::size_t kInitialBuffer = 1 << 20;
+// Regular files too are read, not mapped: a chunk this size stays in the core's L2 cache
+// from the kernel's copy to the tokeniser, and read() costs less than the page faults
+// and releases of a mapping (bench/README.md).
+constexpr std::size_t kInitialBuffer = 256 << 10;
 }  // namespace
 
 TextSource::TextSource(const std::string& path, const OpenOptions& opts) : opts_(opts) {
@@ -38,20 +40,8 @@ TextSource::TextSource(const std::string& path, const OpenOptions& opts) : opts_
     if (S_ISDIR(st.st_mode))
         throw InputError(fmt::format("{}: is a directory, not a capture", name_));
     pipe_ = !S_ISREG(st.st_mode);
-    if (!pipe_ && !opts_.follow && st.st_size > 0) {
-        void* m = mmap(nullptr, std::size_t(st.st_size), PROT_READ, MAP_PRIVATE, fd_, 0);
-        if (m != MAP_FAILED) {
-            madvise(m, std::size_t(st.st_size), MADV_SEQUENTIAL);
-            mapped_ = true;
-            map_ = static_cast<const char*>(m);
-            map_len_ = std::size_t(st.st_size);
-            base_ = pos_ = released_ = map_;
-            end_ = map_ + map_len_;
-            total_ = map_len_;
-            return;
-        }
-    }
     if (!pipe_) total_ = std::uint64_t(st.st_size);
+    if (!pipe_ && !opts_.follow) posix_fadvise(fd_, 0, 0, POSIX_FADV_SEQUENTIAL);
     cap_ = kInitialBuffer;
     buf_ = static_cast<char*>(std::malloc(cap_));
     if (!buf_) throw std::bad_alloc();
@@ -59,7 +49,6 @@ TextSource::TextSource(const std::string& path, const OpenOptions& opts) : opts_
 }
 
 TextSource::~TextSource() {
-    if (mapped_) munmap(const_cast<char*>(map_), map_len_);
     std::free(buf_);
     if (fd_ > 0) ::close(fd_);
 }
@@ -74,18 +63,6 @@ std::string TextSource::at(std::uint64_t line, const std::string& what) const {
 
 bool TextSource::stopRequested() const {
     return opts_.stop && opts_.stop->load(std::memory_order_relaxed);
-}
-
-void TextSource::releaseMapped() {
-    // Give back whole pages behind the cursor; they are re-read from the file if needed.
-    const std::uintptr_t page = std::uintptr_t(sysconf(_SC_PAGESIZE));
-    constexpr std::uintptr_t kMargin = 4 << 20;  // beyond any fault-around or folio
-    if (std::uintptr_t(pos_) < std::uintptr_t(map_) + kMargin) return;
-    auto upto = (std::uintptr_t(pos_) - kMargin) & ~(page - 1);
-    if (upto > std::uintptr_t(released_)) {
-        madvise(const_cast<char*>(released_), upto - std::uintptr_t(released_), MADV_DONTNEED);
-        released_ = reinterpret_cast<const char*>(upto);
-    }
 }
 
 std::size_t TextSource::fill() {
@@ -138,7 +115,7 @@ std::size_t TextSource::fill() {
 }
 
 void TextSource::waitForData(int ms) {
-    if (mapped_ || eof_) return;
+    if (eof_) return;
     if (pipe_) {
         pollfd p{fd_, POLLIN, 0};
         // Short slices so a stop request is noticed quickly.
@@ -157,7 +134,6 @@ TextSource::Status TextSource::slowNextLine(std::string_view& line) {
         if (len > kMaxLine)
             throw InputError(at(line_no_ + 1, "line longer than 1 MiB (not a text capture?)"));
         if (nl) {
-            if (mapped_ && std::size_t(pos_ - released_) > kReleaseStep) releaseMapped();
             line = trimCr(pos_, nl);
             pos_ = nl + 1;
             ++line_no_;
@@ -175,13 +151,13 @@ TextSource::Status TextSource::slowNextLine(std::string_view& line) {
 }
 
 std::optional<TextSource::Status> TextSource::noNewline(std::string_view& rest) {
-    if (!mapped_ && !eof_ && !stopRequested()) {
+    if (!eof_ && !stopRequested()) {
         if (fill() > 0) return std::nullopt;
         if (!eof_) return Status::NoData;
     }
     // The end: a last line without a newline still counts (not when a followed capture
     // is stopped: that line may be half written).
-    if (pos_ < end_ && (mapped_ || eof_)) {
+    if (pos_ < end_ && eof_) {
         rest = std::string_view(pos_, std::size_t(end_ - pos_));
         pos_ = end_;
         return Status::Line;
@@ -196,7 +172,6 @@ TextSource::Status TextSource::nextLines(std::string_view& text, std::uint64_t f
         const std::size_t window = std::min(std::size_t(end_ - pos_), kMaxLine + 1);
         const char* nl = static_cast<const char*>(memrchr(pos_, '\n', window));
         if (nl) {
-            if (mapped_ && std::size_t(pos_ - released_) > kReleaseStep) releaseMapped();
             text = std::string_view(pos_, std::size_t(nl + 1 - pos_));
             pos_ = nl + 1;
             return Status::Line;
@@ -210,7 +185,7 @@ TextSource::Status TextSource::nextLines(std::string_view& text, std::uint64_t f
 void TextSource::skipByteOrderMark() {
     // Windows tools start UTF-8 text with EF BB BF; it is not part of the first line.
     if (line_no_ != 0 || bytesRead() != 0) return;
-    while (!mapped_ && !eof_ && std::size_t(end_ - pos_) < 3 && fill() > 0) {
+    while (!eof_ && std::size_t(end_ - pos_) < 3 && fill() > 0) {
     }
     if (std::size_t(end_ - pos_) >= 3 && std::memcmp(pos_, "\xef\xbb\xbf", 3) == 0) pos_ += 3;
 }
@@ -230,14 +205,13 @@ void TextSource::drainTo(int out_fd) {
     for (;;) {
         writeAll(pos_, std::size_t(end_ - pos_));
         pos_ = end_;
-        if (mapped_ || eof_ || stopRequested()) return;
+        if (eof_ || stopRequested()) return;
         if (fill() == 0 && !eof_) waitForData(50);
     }
 }
 
 std::string_view TextSource::peek(std::size_t n) {
     skipByteOrderMark();
-    if (mapped_) return std::string_view(pos_, std::min(n, std::size_t(end_ - pos_)));
     const std::size_t want = std::min<std::size_t>(n, 64);
     while (std::size_t(end_ - pos_) < n && !eof_ && !stopRequested()) {
         if (fill() > 0) continue;

@@ -1,8 +1,7 @@
 #pragma once
-// Complete lines of a text capture without copying them: a regular file is mapped
-// (mmap) and scanned with memchr; standard input, pipes and followed files are read
-// into one reusable buffer. Memory stays flat whatever the file size: mapped pages
-// behind the cursor are released, and the buffer only grows to the longest line.
+// Complete lines of a text capture, scanned in place with memchr: files, standard input
+// and pipes are read into one reusable buffer. Memory stays flat whatever the file
+// size: the buffer only grows to the longest line.
 #include <cstdint>
 #include <cstring>
 #include <optional>
@@ -17,9 +16,6 @@ class TextSource {
 public:
     // Longest line accepted: a longer one is not a text capture (or is broken).
     static constexpr std::size_t kMaxLine = 1 << 20;
-    // Mapped pages already parsed are handed back every this many bytes, so the resident
-    // size of a 1 GB capture stays small.
-    static constexpr std::size_t kReleaseStep = 16 << 20;
 
     // Opens `path` ("-" = standard input). Throws InputError naming the file.
     TextSource(const std::string& path, const OpenOptions& opts);
@@ -37,7 +33,6 @@ public:
         const char* nl =
             static_cast<const char*>(std::memchr(pos_, '\n', std::size_t(end_ - pos_)));
         if (nl && std::size_t(nl - pos_) <= kMaxLine) {
-            if (mapped_ && std::size_t(pos_ - released_) > kReleaseStep) releaseMapped();
             line = trimCr(pos_, nl);
             pos_ = nl + 1;
             ++line_no_;
@@ -65,7 +60,6 @@ public:
 
     std::uint64_t bytesRead() const { return consumed_base_ + std::uint64_t(pos_ - base_); }
     std::uint64_t bytesTotal() const { return total_; }
-    bool isStream() const { return !mapped_; }
 
     // A message "NAME:LINE: what" for the line last returned.
     std::string at(const std::string& what) const;
@@ -85,19 +79,12 @@ private:
     std::size_t fill();
     bool stopRequested() const;
     void skipByteOrderMark();
-    // Gives back mapped pages well behind the cursor (never one still in use: touching a
-    // released page again would map it back together with its neighbours).
-    void releaseMapped();
 
     std::string name_;
     OpenOptions opts_;
     int fd_ = -1;
-    bool mapped_ = false;
     bool eof_ = false;   // the stream ended (not for followed files)
     bool pipe_ = false;  // not a regular file
-    const char* map_ = nullptr;
-    std::size_t map_len_ = 0;
-    const char* released_ = nullptr;  // mapped pages before this were given back
     char* buf_ = nullptr;
     std::size_t cap_ = 0;
     const char* base_ = nullptr;  // start of the valid data

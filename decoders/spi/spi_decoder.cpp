@@ -20,61 +20,61 @@ SpiDecoder::SpiDecoder(const Options& o)
 
 void SpiDecoder::start(const DecoderContext& ctx) {
     Decoder::start(ctx);
-    bound_ = level_ = settled_ = 0;
+    bound_ = 0;
+    lines_ = Lines{};
     for (int r = 0; r < kSpiRoleCount; ++r) {
         int lv = r < int(ctx.initial_levels.size()) ? ctx.initial_levels[r] : -1;
         if (lv >= 0) bound_ |= bit(r);
-        if (lv == 1) level_ |= bit(r);
+        if (lv == 1) lines_.level |= bit(r);
     }
-    settled_ = level_;
-    group_open_ = false;
+    lines_.settled = lines_.level;
     resetWord();
 }
 
-// Inlined whole into the block loop (BlockDecoder::edges calls it for every edge; left
-// to itself GCC inlines only the role check, 10 % slower by bench_micro decode/spi).
-// GCC's -Wattributes note that an always_inline virtual "might not be inlinable" is
-// about virtual calls, which use the out-of-line copy.
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wattributes"
-#endif
-[[gnu::always_inline]] void SpiDecoder::edge(Tick t, int role, bool level) {
+void SpiDecoder::step(Lines& s, Tick t, int role, bool level) {
     if (unsigned(role) >= unsigned(kSpiRoleCount)) return;
-    if (group_open_ && t > group_tick_) settle();
-    level_ = (level_ & ~bit(role)) | (unsigned(level) << role);
-    group_tick_ = t;
-    group_open_ = true;
-    busyFrom(t);
+    if (s.open && t > s.tick) settle(s);
+    s.level = (s.level & ~bit(role)) | (unsigned(level) << role);
+    s.tick = t;
+    s.open = true;
 }
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC diagnostic pop
-#endif
+
+void SpiDecoder::edge(Tick t, int role, bool level) {
+    step(lines_, t, role, level);
+}
+
+void SpiDecoder::edges(const Edge* first, const Edge* last, const int* role_of_line) {
+    Lines s = lines_;
+    for (; first != last; ++first)
+        step(s, first->t, role_of_line[first->line], first->level != 0);
+    lines_ = s;
+}
+
+Tick SpiDecoder::watermark(Tick now) const {
+    if (count_ > 0) return word_start_;
+    return lines_.open ? lines_.tick : now;
+}
 
 void SpiDecoder::advance(Tick now) {
-    if (group_open_ && now > group_tick_) settle();
+    if (lines_.open && now > lines_.tick) settle(lines_);
 }
 
-void SpiDecoder::settle() {
-    group_open_ = false;
-    const Tick t = group_tick_;
-    const unsigned changed = level_ ^ settled_;
+void SpiDecoder::settle(Lines& s) {
+    s.open = false;
+    const Tick t = s.tick;
+    const unsigned changed = s.level ^ s.settled;
     if (changed & bound_ & bit(kSpiCs)) {
         // Any cs change ends the word in progress (sigrok resets its state likewise).
-        if (count_ > 0 && csActive(settled_)) emitWord(t, true);
+        if (count_ > 0 && csActive(s.settled)) emitWord(t, true);
         resetWord();
     }
     const bool sampling =
-        (changed & bit(kSpiSclk)) && bool(level_ & bit(kSpiSclk)) == sample_on_rising_;
-    settled_ = level_;
-    if (sampling && (!(bound_ & bit(kSpiCs)) || csActive(level_))) sampleBit(t);
-    if (count_ > 0)
-        setBusyFrom(word_start_);
-    else
-        idle();
+        (changed & bit(kSpiSclk)) && bool(s.level & bit(kSpiSclk)) == sample_on_rising_;
+    s.settled = s.level;
+    if (sampling && (!(bound_ & bit(kSpiCs)) || csActive(s.level))) sampleBit(t, s.level);
 }
 
-void SpiDecoder::sampleBit(Tick t) {
+void SpiDecoder::sampleBit(Tick t, unsigned level) {
     if (count_ == 0) {
         word_start_ = t;
         prev_sample_ = t;
@@ -82,19 +82,20 @@ void SpiDecoder::sampleBit(Tick t) {
         prev_sample_ = last_sample_;
     }
     last_sample_ = t;
-    if (bound_ & bit(kSpiMosi)) mosi_.push(level_ & bit(kSpiMosi));
-    if (bound_ & bit(kSpiMiso)) miso_.push(level_ & bit(kSpiMiso));
-    ++count_;
-    if (count_ == bits_) {
-        // sigrok's end estimate: one bit period (the last sample interval) after the last bit.
-        // Saturated: an absurd gap before the last bit must not overflow (fuzz finding;
-        // period >= 0 as edges come in time order, so max - period cannot overflow).
-        const Tick period = t - prev_sample_;
-        emitWord(t > std::numeric_limits<Tick>::max() - period ? std::numeric_limits<Tick>::max()
-                                                               : t + period,
-                 false);
-        resetWord();
-    }
+    if (bound_ & bit(kSpiMosi)) mosi_.push(level & bit(kSpiMosi));
+    if (bound_ & bit(kSpiMiso)) miso_.push(level & bit(kSpiMiso));
+    if (++count_ == bits_) wordDone(t);
+}
+
+void SpiDecoder::wordDone(Tick t) {
+    // sigrok's end estimate: one bit period (the last sample interval) after the last bit.
+    // Saturated: an absurd gap before the last bit must not overflow (fuzz finding;
+    // period >= 0 as edges come in time order, so max - period cannot overflow).
+    const Tick period = t - prev_sample_;
+    emitWord(t > std::numeric_limits<Tick>::max() - period ? std::numeric_limits<Tick>::max()
+                                                           : t + period,
+             false);
+    resetWord();
 }
 
 void SpiDecoder::emitWord(Tick end, bool short_frame) {
@@ -146,10 +147,9 @@ void SpiDecoder::glitch(Tick t, int role) {
 }
 
 void SpiDecoder::finish(Tick end) {
-    if (group_open_) settle();
+    if (lines_.open) settle(lines_);
     if (count_ > 0) emitWord(end, true);
     resetWord();
-    idle();
 }
 
 }  // namespace busdecode

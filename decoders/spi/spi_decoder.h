@@ -19,20 +19,35 @@
 
 namespace busdecode {
 
-class SpiDecoder : public BlockDecoder<SpiDecoder> {
+class SpiDecoder : public Decoder {
 public:
     explicit SpiDecoder(const Options& options);
 
     void start(const DecoderContext& ctx) override;
     void edge(Tick t, int role, bool level) override;
+    // The block loop keeps the line state in registers (a member copy would be stored
+    // and reloaded around every edge: Edge::t and the state's ticks may alias).
+    void edges(const Edge* first, const Edge* last, const int* role_of_line) override;
     void advance(Tick now) override;
     void finish(Tick end) override;
     void glitch(Tick t, int role) override;
+    // The word in progress, else the open tick group, holds back the output.
+    Tick watermark(Tick now) const override;
 
 private:
-    // Applies every edge seen at group_tick_ at once (see the header comment).
-    [[gnu::always_inline]] inline void settle();
-    void sampleBit(Tick t);
+    // The four lines, one bit per role (bit(role)): a mask compares and copies them at once.
+    struct Lines {
+        unsigned level = 0;    // levels including edges of the open tick group
+        unsigned settled = 0;  // levels after the last settled group
+        Tick tick = 0;         // the open group's tick
+        bool open = false;
+    };
+    // One edge: a later tick first settles the group before it.
+    [[gnu::always_inline]] inline void step(Lines& s, Tick t, int role, bool level);
+    // Applies every edge seen at s.tick at once (see the header comment).
+    [[gnu::always_inline]] inline void settle(Lines& s);
+    [[gnu::always_inline]] inline void sampleBit(Tick t, unsigned level);
+    void wordDone(Tick t);
     void emitWord(Tick end, bool short_frame);
     void resetWord();
     static constexpr unsigned bit(int role) { return 1u << role; }
@@ -42,12 +57,8 @@ private:
     bool lsb_first_, cs_active_high_;
     bool sample_on_rising_;
 
-    // One bit per role (bit(role)): a mask compares and copies the four lines at once.
-    unsigned bound_ = 0;    // roles bound to a line
-    unsigned level_ = 0;    // levels including edges of the open tick group
-    unsigned settled_ = 0;  // levels after the last settled group
-    bool group_open_ = false;
-    Tick group_tick_ = 0;
+    unsigned bound_ = 0;  // roles bound to a line, one bit per role
+    Lines lines_;
 
     BitWord mosi_, miso_;
     int count_ = 0;
