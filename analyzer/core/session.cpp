@@ -117,7 +117,13 @@ struct Session::Impl : EventSink {
 
     void onEvent(Event&& e) override {
         e.instance = slots[emitting].instance;
-        // Insert keeping start order (events mostly arrive in order: search from the back).
+        if (pending.empty() || pending.back().start <= e.start) {  // the rule: in order
+            pending.push_back(std::move(e));
+            pending_slot.push_back(emitting);
+            return;
+        }
+        // Insert keeping start order (out-of-order events are late by a few: search from
+        // the back).
         std::size_t at = pending.size();
         while (at > 0 && pending[at - 1].start > e.start)
             --at;
