@@ -28,6 +28,7 @@ BisscDecoder::BisscDecoder(const Options& options)
 void BisscDecoder::start(const DecoderContext& ctx) {
     Decoder::start(ctx);
     min_quiet_ = tb().fromNs(kMinQuietNs);
+    setDelay(0);
     ma_ = ctx.initial_levels.size() > kMa ? ctx.initial_levels[kMa] != 0 : true;
     sl_ = ctx.initial_levels.size() > kSl ? ctx.initial_levels[kSl] != 0 : true;
     sampler_.reset(sl_);
@@ -128,7 +129,7 @@ void BisscDecoder::resolveHoldStart(Tick ack) {
     }
     if (!idle_return) return;
     f_.rises.erase(f_.rises.begin());
-    f_.period_rises = 0;  // the first rise changed: the cached mean period is stale
+    f_.period_rises = kNoRises;  // the first rise changed: the cached mean period is stale
     f_.start = f_.hold_fall;
     f_.from_hold = false;
     setBusyFrom(f_.start);
@@ -143,6 +144,7 @@ void BisscDecoder::beginFrame(Tick start, bool from_hold) {
     f_ = Frame{};
     f_.rises = std::move(rises);
     f_.errors = std::move(errors);
+    setDelay(0);
     f_.start = start;
     f_.from_hold = from_hold;
     sampler_.reset(sl_);
@@ -323,8 +325,19 @@ void BisscDecoder::startDelayEstimate(double ack_delay) {
         f_.delay_sum += kPriorWeight * last_delay_;
         f_.delay_edges += kPriorWeight;
     }
-    f_.delay = f_.delay_sum / f_.delay_edges;
+    setDelay(f_.delay_sum / f_.delay_edges);
     f_.ack_delay = ack_delay;
+}
+
+void BisscDecoder::setDelay(double delay) {
+    f_.delay = delay;
+    // floor() by truncation and one correction (std::floor is a library call without
+    // SSE4.1); clamped, so that a delay measured across an absurd gap cannot overflow.
+    constexpr double kMaxTick = 9.0e18;
+    const double limit = std::clamp(min_quiet_ + delay, -kMaxTick, kMaxTick);
+    Tick q = Tick(limit);
+    if (double(q) > limit) --q;
+    quiet_ticks_ = q;
 }
 
 void BisscDecoder::refineDelay(Tick t) {
@@ -339,7 +352,7 @@ void BisscDecoder::refineDelay(Tick t) {
     if (std::fabs(offset - f_.delay) >= period / 2) return;
     f_.delay_sum += offset;
     ++f_.delay_edges;
-    f_.delay = f_.delay_sum / f_.delay_edges;
+    setDelay(f_.delay_sum / f_.delay_edges);
 }
 
 void BisscDecoder::drainSamples() {

@@ -45,6 +45,7 @@ private:
     };
     // Where the slot parser is within the frame.
     enum class Slot { Ack, Busy, Cds, Data, NE, NW, Crc, Stop, Done };
+    static constexpr std::size_t kNoRises = ~std::size_t(0);  // meanPeriod() not cached
 
     struct Frame {
         Tick start = 0;
@@ -74,8 +75,8 @@ private:
         // took the remaining clocks for a new request (the MB5U with a RESOLUTE does this).
         bool retriggered = false;
         Tick max_high = 0, max_low = 0;  // longest MA clock phases seen in the frame (ticks)
-        mutable double period = 0;       // meanPeriod() cache, valid for period_rises
-        mutable std::size_t period_rises = 0;
+        mutable double period = 0;       // meanPeriod() cache, valid for period_rises rises
+        mutable std::size_t period_rises = kNoRises;
         std::vector<std::string> errors;
     };
 
@@ -95,12 +96,11 @@ private:
     // Ticks, over the frame's rising edges so far. Asked several times per edge: it
     // divides once per new rising edge.
     double meanPeriod() const {
+        if (f_.period_rises == f_.rises.size()) return f_.period;  // the usual case
         const auto& r = f_.rises;
-        if (r.size() < 2) return last_period_;
-        if (f_.period_rises != r.size()) {
-            f_.period = double(r.back() - r.front()) / double(r.size() - 1);
-            f_.period_rises = r.size();
-        }
+        if (r.size() < 2) return last_period_;  // not cached: last_period_ may change
+        f_.period = double(r.back() - r.front()) / double(r.size() - 1);
+        f_.period_rises = r.size();
         return f_.period;
     }
     // A rising MA edge of the frame; the mean period is brought up to date with it, so
@@ -119,9 +119,11 @@ private:
     void checkQuiet(Tick now) {
         if (state_ == State::TimeoutEnded ||
             ((state_ == State::WaitAck || state_ == State::Data) && last_ma_edge_ != kNoTick &&
-             double(now - last_ma_edge_) > min_quiet_ + f_.delay))
+             now - last_ma_edge_ > quiet_ticks_))
             checkQuietSlow(now);
     }
+    // The frame's line delay changed: f_.delay and the quiet threshold that depends on it.
+    void setDelay(double delay);
     void checkQuietSlow(Tick now);
     void resolveHoldStart(Tick ack);
     // Could an MA phase of this length (ending with an edge to `level`) be a clock phase?
@@ -138,6 +140,9 @@ private:
     bool glitch_pending_ = false;
     double last_period_ = 0;  // mean clock period of the previous frame (ticks)
     double min_quiet_ = 0;    // kMinQuietNs in ticks
+    // floor(min_quiet_ + f_.delay): for whole ticks n, n > it exactly when
+    // double(n) > min_quiet_ + f_.delay, without a conversion per edge.
+    Tick quiet_ticks_ = 0;
 };
 
 std::shared_ptr<const DecoderFactory> makeBisscFactory();
