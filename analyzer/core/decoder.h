@@ -73,6 +73,8 @@ protected:
     void emit(Event&& e) {
         if (ctx_.sink) ctx_.sink->onEvent(std::move(e));
     }
+    // The event to fill for emit(): empty, with storage recycled by the sink if it can.
+    Event freshEvent() { return ctx_.sink ? ctx_.sink->freshEvent() : Event{}; }
     // Call when a frame (or anything that will become an event) starts / is done.
     void busyFrom(Tick t) {
         if (busy_since_ == kNoTick || t < busy_since_) busy_since_ = t;

@@ -25,6 +25,17 @@ Event& Event::error(std::string e) {
     return *this;
 }
 
+void Event::reset() {
+    proto.clear();
+    type.clear();
+    start = end = 0;
+    fields.clear();
+    errors.clear();
+    summary.clear();
+    instance.clear();
+    wants_correlation = false;
+}
+
 bool Event::hasError(std::string_view e) const {
     return std::find(errors.begin(), errors.end(), e) != errors.end();
 }

@@ -47,6 +47,9 @@ struct Event {
     bool has(std::string_view key) const { return get(key) != nullptr; }
     Event& error(std::string e);  // adds once
     bool hasError(std::string_view e) const;
+    // Back to a fresh Event's contents, keeping the storage of its strings and vectors
+    // (the session hands released events back to decoders: no allocation per event).
+    void reset();
 };
 
 // Where a decoder sends what it decodes.
@@ -54,6 +57,8 @@ class EventSink {
 public:
     virtual ~EventSink() = default;
     virtual void onEvent(Event&& e) = 0;
+    // An empty event to fill, possibly with storage left from one already output.
+    virtual Event freshEvent() { return Event{}; }
 };
 
 }  // namespace busdecode

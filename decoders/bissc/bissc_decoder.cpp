@@ -415,7 +415,7 @@ void BisscDecoder::takeSample(int index, bool level, double t) {
 }
 
 void BisscDecoder::closeFrame(Tick end, Tick timeout_end, const char* error, bool feed_control) {
-    Event e;
+    Event e = freshEvent();
     e.proto = "bissc";
     e.type = "frame";
     e.fields.reserve(20);  // the frame's fields, added below

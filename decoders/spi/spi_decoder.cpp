@@ -99,7 +99,7 @@ void SpiDecoder::wordDone(Tick t) {
 }
 
 void SpiDecoder::emitWord(Tick end, bool short_frame) {
-    Event e;
+    Event e = freshEvent();
     e.proto = "spi";
     e.type = "transfer";
     e.start = word_start_;

@@ -217,7 +217,7 @@ void SsiDecoder::close(bool capture_end) {
 
     const SsiWord w = assembleWord(samples, cfg_);
     const SsiFields f = w.short_frame ? SsiFields{} : splitFields(w.raw, cfg_);
-    Event e;
+    Event e = freshEvent();
     e.fields.reserve(20 + cfg_.status.size());
     e.proto = "ssi";
     e.type = "frame";
@@ -364,7 +364,7 @@ void SsiDecoder::emitFrame(std::optional<Tick> tm_end, bool deadline_passed) {
 }
 
 void SsiDecoder::emitSummary(Tick end) {
-    Event e;
+    Event e = freshEvent();
     e.proto = "ssi";
     e.type = "summary";
     e.start = end;

@@ -60,7 +60,7 @@ void Tmc8100Decoder::edge(Tick t, int role, bool level) {
         }
         if (!someone_waits && firmware_ == Firmware::App && miso_bound_) {
             // The firmware raises SPI_DATA_AVAILABLE when it queues replies; nothing asked.
-            Event e;
+            Event e = freshEvent();
             e.proto = "tmc8100";
             e.type = "avail";
             e.start = e.end = t;
@@ -129,7 +129,7 @@ void Tmc8100Decoder::onTransfer(Event&& spi) {
         acc_bits_ = 0;
         acc_mosi_ = acc_miso_ = 0;
         // Not a datagram: report what was on MOSI without giving it a meaning.
-        Event e;
+        Event e = freshEvent();
         e.proto = "tmc8100";
         e.type = "command";
         e.start = spi.start;
@@ -150,7 +150,7 @@ void Tmc8100Decoder::onTransfer(Event&& spi) {
 
 void Tmc8100Decoder::emitReply(ReplyKind kind, std::uint32_t word, const Event& spi,
                                const Waiting* w, std::vector<std::string> errors) {
-    Event e;
+    Event e = freshEvent();
     e.proto = "tmc8100";
     e.type = "reply";
     e.start = spi.start;
@@ -279,7 +279,7 @@ void Tmc8100Decoder::onMosi(std::uint32_t word, const Event& spi) {
 
     const bool boot = firmware_ == Firmware::Bootloader;
     Command c = boot ? bootloaderCommand(word) : appCommand(word, protocol_);
-    Event e;
+    Event e = freshEvent();
     e.proto = "tmc8100";
     e.type = "command";
     e.start = spi.start;
@@ -330,7 +330,7 @@ void Tmc8100Decoder::finishFront(bool incomplete) {
 
 void Tmc8100Decoder::complete(Waiting& w, bool incomplete) {
     if (w.cmd.name != "read_encoder") return;
-    Event e;
+    Event e = freshEvent();
     e.proto = "tmc8100";
     e.type = "encoder_read";
     e.start = w.start;

@@ -142,7 +142,7 @@ void TmclDecoder::flushShort(Stream stream) {
     auto& p = partial_[stream];
     if (p.empty()) return;
     const bool reply = stream == kModule || (stream == kBus && pending_.awaiting);
-    Event e;
+    Event e = freshEvent();
     e.proto = "tmcl";
     e.type = reply ? "reply" : "command";
     e.start = p.front().start;
@@ -207,7 +207,7 @@ void TmclDecoder::onDatagram(Stream stream, const std::vector<ByteIn>& bytes) {
 
 void TmclDecoder::emitCommand(const Datagram& d, Tick start, Tick end, bool fault) {
     const Command c = parseCommand(d);
-    Event e;
+    Event e = freshEvent();
     e.proto = "tmcl";
     e.type = "command";
     e.start = start;
@@ -246,7 +246,7 @@ void TmclDecoder::pairWithCommand(Event& e, Tick start, Tick end) {
 
 void TmclDecoder::emitReply(const Datagram& d, Tick start, Tick end, bool fault) {
     const Reply r = parseReply(d);
-    Event e;
+    Event e = freshEvent();
     e.proto = "tmcl";
     e.type = "reply";
     e.start = start;
@@ -277,7 +277,7 @@ void TmclDecoder::emitReply(const Datagram& d, Tick start, Tick end, bool fault)
 }
 
 void TmclDecoder::emitVersionReply(const Datagram& d, Tick start, Tick end, bool fault) {
-    Event e;
+    Event e = freshEvent();
     e.proto = "tmcl";
     e.type = "reply";
     e.start = start;

@@ -66,7 +66,7 @@ void UartDecoder::decideBaud() {
     fmt_.baud = std::clamp(fmt_.baud, 1.0, 1e9);
     bit_ticks_ = tb().fromSeconds(1.0 / fmt_.baud);
     if (measured && !held_.empty()) {
-        Event e;
+        Event e = freshEvent();
         e.proto = "uart";
         e.type = "baud";
         e.start = e.end = held_.front().t;
@@ -202,7 +202,7 @@ void UartDecoder::endFrame(Line& l, bool cut_short) {
     l.in_frame = false;
     ++l.generation;
     l.sampler.cancelAll();
-    Event e;
+    Event e = freshEvent();
     e.proto = "uart";
     e.type = "byte";
     e.start = l.frame_start;
@@ -236,7 +236,7 @@ void UartDecoder::endFrame(Line& l, bool cut_short) {
 
 void UartDecoder::emitBreak(Line& l, Tick end) {
     l.in_break = false;
-    Event e;
+    Event e = freshEvent();
     e.proto = "uart";
     e.type = "break";
     e.start = l.break_start;

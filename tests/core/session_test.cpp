@@ -105,6 +105,46 @@ struct RegisterTrace {
     }
 } register_trace;
 
+// Fills the events it emits from freshEvent(), alternately with and without a field,
+// an error and a summary: the session recycles output events, and nothing of an odd
+// event may reach the even one filled in its storage.
+class AlternateDecoder : public Decoder {
+public:
+    explicit AlternateDecoder(const Options&) {}
+    void edge(Tick t, int, bool level) override {
+        if (!level) return;
+        Event e = freshEvent();
+        e.proto = "alternate";
+        e.type = "rise";
+        e.start = e.end = t;
+        if (++count_ % 2 == 1) {
+            e.add("odd", std::int64_t(count_));
+            e.error("odd");
+            e.summary = "an odd one, with a summary longer than a short string";
+            e.instance = "kept?";
+        }
+        emit(std::move(e));
+    }
+    void finish(Tick) override {}
+
+private:
+    int count_ = 0;
+};
+
+DecoderInfo alternateInfo() {
+    DecoderInfo d;
+    d.id = "alternate";
+    d.roles = {{"in", true, {}, ""}};
+    return d;
+}
+
+struct RegisterAlternate {
+    RegisterAlternate() {
+        Registry::instance().add(
+            std::make_shared<SimpleFactory<AlternateDecoder>>(alternateInfo()));
+    }
+} register_alternate;
+
 Waveform twoLines() {
     WaveBuilder b(Timebase{1, 1'000'000'000}, {"top.a", "top.input"}, {1, 1});
     b.set(0, 100, false);
@@ -210,4 +250,60 @@ TEST(Session, BlockPathDeliversWhatThePerEdgePathDoes) {
     TraceDecoder::trace.clear();
     decodeWaveform(w, {trace, {"rise", {{"in", "a"}}, {}}});  // two decoders: edge by edge
     EXPECT_EQ(TraceDecoder::trace, want);
+}
+
+TEST(Session, RecycledEventsCarryNothingOfTheirLastUse) {
+    // Events are output between edge blocks: enough pulses for several blocks, so that
+    // later events are filled in the storage of output ones.
+    constexpr int kPulses = 3 * int(kEdgeBlockSize) / 2;
+    WaveBuilder b(Timebase{1, 1'000'000'000}, {"top.in"}, {0});
+    for (int i = 0; i < kPulses; ++i) {
+        b.set(0, 10 * i + 2, true);
+        b.set(0, 10 * i + 7, false);
+    }
+    const auto ev = decodeWaveform(b.build(10 * kPulses + 10), {{"alternate", {{"in", "in"}}, {}}});
+    ASSERT_EQ(ev.size(), std::size_t(kPulses));
+    for (std::size_t i = 0; i < ev.size(); ++i) {
+        const Event& e = ev[i];
+        EXPECT_EQ(e.proto, "alternate");
+        EXPECT_EQ(e.instance, "alternate") << i;  // set by the session every time
+        EXPECT_EQ(e.start, Tick(10 * i + 2));
+        if (i % 2 == 0) {
+            ASSERT_EQ(e.fields.size(), 1u) << i;
+            EXPECT_EQ(e.errors, std::vector<std::string>{"odd"}) << i;
+            EXPECT_FALSE(e.summary.empty()) << i;
+        } else {
+            EXPECT_TRUE(e.fields.empty()) << i;
+            EXPECT_TRUE(e.errors.empty()) << i;
+            EXPECT_TRUE(e.summary.empty()) << i;
+        }
+    }
+}
+
+TEST(Event, ResetLeavesAFreshEventKeepingStorage) {
+    Event e;
+    e.proto = "proto";
+    e.type = "type";
+    e.start = 5;
+    e.end = 9;
+    e.add("a", std::int64_t(1)).add("b", std::string("a string value too long for SSO"));
+    e.error("crc");
+    e.summary = "a summary longer than the short string buffer";
+    e.instance = "proto#2";
+    e.wants_correlation = true;
+    const auto field_capacity = e.fields.capacity();
+    e.reset();
+    const Event fresh;
+    EXPECT_EQ(e.proto, fresh.proto);
+    EXPECT_EQ(e.type, fresh.type);
+    EXPECT_EQ(e.start, fresh.start);
+    EXPECT_EQ(e.end, fresh.end);
+    EXPECT_TRUE(e.fields.empty());
+    EXPECT_TRUE(e.errors.empty());
+    EXPECT_EQ(e.summary, fresh.summary);
+    EXPECT_EQ(e.instance, fresh.instance);
+    EXPECT_EQ(e.wants_correlation, fresh.wants_correlation);
+    EXPECT_EQ(e.fields.capacity(), field_capacity);
+    // A member added to Event changes its size: reset() must then clear it too.
+    EXPECT_EQ(sizeof(Event), 200u) << "Event changed: update Event::reset() and this test";
 }
