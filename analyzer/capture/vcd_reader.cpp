@@ -507,7 +507,7 @@ private:
     // one- and two-character scalars, separated by single blanks or newlines. It stops at anything
     // else (the general loop in pump() handles it, errors included, and calls back), at a
     // full block, and 32 bytes before the end of the run (its loads read ahead up to 17
-    // bytes, and the run may end at the end of the mapping). Behaviour is pump()'s, token
+    // bytes, and the run may end at the end of the read buffer). Behaviour is pump()'s, token
     // for token; only the dispatch and the block bookkeeping per token are gone (the
     // reading thread's instructions per line of a 10 MB SPI capture, by callgrind: 167 -> 103;
     // bench/README.md has the command).
