@@ -43,13 +43,6 @@ Tick BisscDecoder::watermark(Tick now) const {
     return w;
 }
 
-void BisscDecoder::edge(Tick t, int role, bool level) {
-    if (role == kSl)
-        onSl(t, level);
-    else if (role == kMa)
-        onMa(t, level);
-}
-
 void BisscDecoder::advance(Tick now) {
     scheduleUpTo(double(now));
     sampler_.advanceTo(now);
@@ -162,6 +155,10 @@ void BisscDecoder::onMa(Tick t, bool level) {
         sampler_.advanceTo(t);
         drainSamples();
     }
+    onMaAfterSamples(t, level);
+}
+
+void BisscDecoder::onMaAfterSamples(Tick t, bool level) {
     checkQuiet(t);
     if ((state_ == State::WaitAck || state_ == State::Data) && !f_.rises.empty() &&
         last_ma_edge_ != kNoTick) {
@@ -270,32 +267,6 @@ void BisscDecoder::onSl(Tick t, bool level) {
             }
             break;
     }
-}
-
-double BisscDecoder::sampleTime(std::size_t k) const {
-    // Slot k (k >= 1; 1 = ACK) is driven after rising edge k and valid from r_k + d to
-    // r_{k+1} + d: sample its middle. T is the frame's mean period, which smooths the
-    // quantisation of a capture sampled at only a few samples per bit.
-    return double(f_.rises[k]) + f_.delay + meanPeriod() / 2.0;
-}
-
-bool BisscDecoder::takeDueSamples(Tick t) {
-    // What scheduleUpTo + advanceTo + drainSamples do at an MA edge when the sampler is
-    // empty: every sample due before t resolves to SL's level now (the sampler gives a
-    // newly scheduled sample the line's present level), and is taken at once, in order.
-    // Not at an SL edge: there the samples are taken after SL's new level is recorded.
-    if (state_ != State::Data || sampler_.ready() || sampler_.pending() != 0) return false;
-    const double now = double(t);
-    while (state_ == State::Data && f_.scheduled < f_.rises.size()) {
-        double at = sampleTime(f_.scheduled);
-        if (at >= now) break;
-        at = std::max(at, f_.last_sample_t);
-        if (at >= now) return false;  // pushed to t or later: it waits in the sampler
-        f_.last_sample_t = at;
-        const std::size_t k = f_.scheduled++;
-        takeSample(int(k), sampler_.level(), at);
-    }
-    return true;
 }
 
 void BisscDecoder::scheduleUpTo(double t) {

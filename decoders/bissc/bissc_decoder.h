@@ -8,6 +8,7 @@
 // The line delay d is measured per frame from the 2nd rising MA edge to the falling SL
 // edge, and every bit is sampled at its MA rising edge + d + T/2: SL is read where the
 // slave's answer really is, however long the cable (d may span many bit times).
+#include <algorithm>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -28,7 +29,9 @@ public:
     explicit BisscDecoder(const Options& options);
 
     void start(const DecoderContext& ctx) override;
-    void edge(Tick t, int role, bool level) override;
+    // Inline, with its fast path, so that BlockDecoder's loop takes the usual MA edge
+    // without a call (defined below the class).
+    [[gnu::always_inline]] inline void edge(Tick t, int role, bool level) override;
     void advance(Tick now) override;
     void finish(Tick end) override;
     void glitch(Tick t, int role) override;
@@ -81,9 +84,15 @@ private:
     };
 
     void onMa(Tick t, bool level);
+    // The usual MA edge: inside a frame's data, clock running, the samples due before it
+    // taken at once. Does all of onMa()'s work for it and returns true; false for every
+    // other edge, and onMa() handles it (from the first sample not taken yet).
+    [[gnu::always_inline]] inline bool onMaInFrame(Tick t, bool level);
+    void onMaAfterSamples(Tick t, bool level);  // onMa() once the due samples are taken
     void onSl(Tick t, bool level);
     void beginFrame(Tick start, bool from_hold);
-    // Per-edge helpers, inlined into onMa/onSl (defined in bissc_decoder.cpp only).
+    // Per-edge helpers, inlined into edge/onMa/onSl (sampleTime and takeDueSamples are
+    // defined below the class, scheduleUpTo and drainSamples in bissc_decoder.cpp).
     [[gnu::always_inline]] inline double sampleTime(std::size_t k) const;
     [[gnu::always_inline]] inline void scheduleUpTo(double t);
     // The usual MA edge's samples without the sampler's buffer; false: use the general
@@ -144,6 +153,64 @@ private:
     // double(n) > min_quiet_ + f_.delay, without a conversion per edge.
     Tick quiet_ticks_ = 0;
 };
+
+void BisscDecoder::edge(Tick t, int role, bool level) {
+    if (role == kMa) {
+        if (!onMaInFrame(t, level)) onMa(t, level);
+    } else if (role == kSl) {
+        onSl(t, level);
+    }
+}
+
+bool BisscDecoder::onMaInFrame(Tick t, bool level) {
+    // onMa() for an edge that finds the frame's data being clocked and no quiet gap
+    // before it: once takeDueSamples() has taken the samples due, checkQuiet() has
+    // nothing to do, and only the phase length, the level and a rise are left to record.
+    if (state_ != State::Data || t - last_ma_edge_ > quiet_ticks_ || !takeDueSamples(t))
+        return false;
+    if (state_ != State::Data) {  // the stop bit ended the data: onMa() goes on
+        onMaAfterSamples(t, level);
+        return true;
+    }
+    Tick& longest = level ? f_.max_low : f_.max_high;
+    longest = std::max(longest, t - last_ma_edge_);
+    last_ma_edge_ = t;
+    ma_ = level;
+    if (level) addRise(t);  // its sample is scheduled when due
+    return true;
+}
+
+bool BisscDecoder::takeDueSamples(Tick t) {
+    // What scheduleUpTo + advanceTo + drainSamples do at an MA edge when the sampler is
+    // empty: every sample due before t resolves to SL's level now (the sampler gives a
+    // newly scheduled sample the line's present level), and is taken at once, in order.
+    // Not at an SL edge: there the samples are taken after SL's new level is recorded.
+    if (state_ != State::Data || sampler_.ready() || sampler_.pending() != 0) return false;
+    const double now = double(t);
+    while (state_ == State::Data && f_.scheduled < f_.rises.size()) {
+        double at = sampleTime(f_.scheduled);
+        if (at >= now) break;
+        at = std::max(at, f_.last_sample_t);
+        if (at >= now) return false;  // pushed to t or later: it waits in the sampler
+        f_.last_sample_t = at;
+        const std::size_t k = f_.scheduled++;
+        if (f_.slot == Slot::Data && f_.data_count + 1 < s_.bits) {
+            // A position bit but the last, as takeSample() would take it, without a call.
+            f_.data = (f_.data << 1) | std::uint64_t(sampler_.level());
+            ++f_.data_count;
+        } else {
+            takeSample(int(k), sampler_.level(), at);
+        }
+    }
+    return true;
+}
+
+double BisscDecoder::sampleTime(std::size_t k) const {
+    // Slot k (k >= 1; 1 = ACK) is driven after rising edge k and valid from r_k + d to
+    // r_{k+1} + d: sample its middle. T is the frame's mean period, which smooths the
+    // quantisation of a capture sampled at only a few samples per bit.
+    return double(f_.rises[k]) + f_.delay + meanPeriod() / 2.0;
+}
 
 std::shared_ptr<const DecoderFactory> makeBisscFactory();
 

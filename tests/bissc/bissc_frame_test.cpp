@@ -414,6 +414,46 @@ TEST(BisscFrames, SlaveReadyWhileMasterClocksPastTheStopBit) {
     }
 }
 
+TEST(BisscFrames, ClocksPastTheStopBitAreJudgedByTheDataClock) {
+    // Whether MA still clocks after the slave's timeout ended early is judged against the
+    // longest clock phases of the frame, the data's included (the decoder's fast path
+    // for data edges records them too). Here the master's first three phases (start,
+    // LAT, the fall before the 2nd rise) are squeezed to 0.4 of the 500 ns data phases;
+    // the clocks past the stop bit run at the data's pace, and must still count as
+    // clocks: the frame keeps them and is retriggered.
+    BisscGenConfig cfg;
+    cfg.bits = 32;
+    cfg.clock_hz = 1e6;
+    cfg.ready_after_stop_ns = 1500;
+    BisscGenerator gen(cfg);
+    BisscFrameSpec f;
+    f.data = 0xB19DB5F6u;
+    f.proc_cycles = 15;
+    f.extra_clocks = 5;
+    gen.addFrame(f);
+    Waveform w = gen.build();
+    std::vector<Edge*> ma;
+    for (auto& e : w.edges)
+        if (e.line == 0 && ma.size() < 4) ma.push_back(&e);
+    ASSERT_EQ(ma.size(), 4u);
+    ASSERT_FALSE(ma[0]->level);  // start, LAT, fall, 2nd rise
+    const Tick phase = ma[3]->t - ma[2]->t;
+    for (int i = 0; i < 3; ++i)
+        ma[i]->t = ma[3]->t - (3 - i) * phase * 2 / 5;
+    for (std::size_t i = 1; i < w.edges.size(); ++i)
+        ASSERT_LE(w.edges[i - 1].t, w.edges[i].t);
+
+    auto frames = ofType(decodeBissc(w, {{"bits", "32"}}), "frame");
+    ASSERT_EQ(frames.size(), 1u);
+    const auto& t = gen.frames()[0];
+    ASSERT_TRUE(t.retriggered);
+    EXPECT_EQ(std::get<std::uint64_t>(*frames[0].get("position")), f.data);
+    EXPECT_EQ(intField(frames[0], "clocks"), t.rises);
+    EXPECT_EQ(intField(frames[0], "extra_clocks"), f.extra_clocks);
+    EXPECT_TRUE(std::get<bool>(*frames[0].get("retriggered")));
+    EXPECT_TRUE(frames[0].errors.empty());
+}
+
 TEST(BisscFrames, RandomConfigurationsDecodeExactly) {
     // 40 seeded random set-ups across the BiSS range: 80 kHz..10 MHz, 8..48 bits,
     // 0..1.5 us line delay, 0..8 busy clocks, jitter, 1 ns ticks or >= 10 samples per bit.
