@@ -155,7 +155,9 @@ struct Session::Impl : EventSink {
         return w;
     }
 
-    void output(Event&& e, int slot) {
+    // Outputs e (the front of `pending`, in place, or taken out of it to be correlated),
+    // then keeps it for reuse or in the correlation window; e is left moved from.
+    void output(Event& e, int slot) {
         if (e.wants_correlation) {
             window.setPending(&pending);
             slots[slot].decoder->correlate(e, window);
@@ -181,11 +183,17 @@ struct Session::Impl : EventSink {
                 if (next.start >= w) break;
                 if (next.wants_correlation && next.end >= w) break;
             }
-            Event out = std::move(pending.front());
             const int slot = pending_slot.front();
-            pending.pop_front();
-            pending_slot.pop_front();
-            output(std::move(out), slot);
+            if (next.wants_correlation) {  // out of `pending` first: the window shows pending
+                Event out = std::move(pending.front());
+                pending.pop_front();
+                pending_slot.pop_front();
+                output(out, slot);
+            } else {  // in place, one move fewer
+                output(pending.front(), slot);
+                pending.pop_front();
+                pending_slot.pop_front();
+            }
         }
     }
 

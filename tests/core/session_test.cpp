@@ -42,6 +42,13 @@ public:
             return true;
         });
         e.set("peers", std::int64_t(n));
+        // The window holds the other events, not the one being correlated.
+        int self = 0;
+        w.forEach(e.proto, e.type, e.start, e.start, [&](const Event& o) {
+            self += o.end == e.end;
+            return true;
+        });
+        e.set("self_seen", std::int64_t(self));
     }
     bool correlates() const override { return correlate_; }
     static std::vector<Tick> glitches;
@@ -215,6 +222,7 @@ TEST(Session, CorrelationSeesOtherDecodersEventsByTime) {
     for (const auto& e : ev) {
         if (e.type != "edge") continue;
         ASSERT_TRUE(e.has("peers"));
+        EXPECT_EQ(asInt(*e.get("self_seen")), 0);
         ++checked;
     }
     EXPECT_EQ(checked, 2);
