@@ -528,7 +528,7 @@ private:
         const std::int32_t* const scalar2 = scalar2_.data();
         std::uint8_t* const level = level_.data();
         while (p < stop && out <= full) {
-            const char c = *p;
+            char c = *p;
             // Each token is taken only if a separator follows it, so that pump() sees
             // any faulty token whole and words its error as it always has.
             if (c == '#') {
@@ -541,7 +541,12 @@ private:
                 cur = tt;
                 line += k >> 1;
                 p = num.end + 1;
-            } else if (unsigned(c - '0') < 2) {
+                // A value change follows nearly every time: the token after the time is
+                // taken below without the loop's tests (nothing was written, and p is at
+                // most 17 bytes past stop, well inside the 32 its 4-byte read may use).
+                c = *p;
+            }
+            if (unsigned(c - '0') < 2) {
                 const unsigned i = static_cast<unsigned char>(p[1]) - 33u;
                 std::uint8_t k = kSeparator[static_cast<unsigned char>(p[2])];
                 std::int32_t sel;
