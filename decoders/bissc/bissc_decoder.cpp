@@ -122,7 +122,7 @@ void BisscDecoder::resolveHoldStart(Tick ack) {
     }
     if (!idle_return) return;
     f_.rises.erase(f_.rises.begin());
-    f_.period_rises = kNoRises;  // the first rise changed: the cached mean period is stale
+    updatePeriod();  // the first rise changed
     f_.start = f_.hold_fall;
     f_.from_hold = false;
     setBusyFrom(f_.start);
@@ -137,6 +137,7 @@ void BisscDecoder::beginFrame(Tick start, bool from_hold) {
     f_ = Frame{};
     f_.rises = std::move(rises);
     f_.errors = std::move(errors);
+    updatePeriod();  // no rises yet: the previous frame's period
     setDelay(0);
     f_.start = start;
     f_.from_hold = from_hold;

@@ -48,7 +48,6 @@ private:
     };
     // Where the slot parser is within the frame.
     enum class Slot { Ack, Busy, Cds, Data, NE, NW, Crc, Stop, Done };
-    static constexpr std::size_t kNoRises = ~std::size_t(0);  // meanPeriod() not cached
 
     struct Frame {
         Tick start = 0;
@@ -78,8 +77,9 @@ private:
         // took the remaining clocks for a new request (the MB5U with a RESOLUTE does this).
         bool retriggered = false;
         Tick max_high = 0, max_low = 0;  // longest MA clock phases seen in the frame (ticks)
-        mutable double period = 0;       // meanPeriod() cache, valid for period_rises rises
-        mutable std::size_t period_rises = kNoRises;
+        // Mean clock period (ticks) over `rises`; the previous frame's until there are
+        // two. Kept up to date wherever `rises` changes (updatePeriod()).
+        double period = 0;
         std::vector<std::string> errors;
     };
 
@@ -102,21 +102,18 @@ private:
     void refineDelay(Tick t);
     [[gnu::always_inline]] inline void drainSamples();
     void takeSample(int index, bool level, double t);
-    // Ticks, over the frame's rising edges so far. Asked several times per edge: it
-    // divides once per new rising edge.
-    double meanPeriod() const {
-        if (f_.period_rises == f_.rises.size()) return f_.period;  // the usual case
+    // Ticks, over the frame's rising edges so far. Asked several times per edge, worked
+    // out once per rising edge.
+    double meanPeriod() const { return f_.period; }
+    void updatePeriod() {
         const auto& r = f_.rises;
-        if (r.size() < 2) return last_period_;  // not cached: last_period_ may change
-        f_.period = double(r.back() - r.front()) / double(r.size() - 1);
-        f_.period_rises = r.size();
-        return f_.period;
+        f_.period =
+            r.size() < 2 ? last_period_ : double(r.back() - r.front()) / double(r.size() - 1);
     }
-    // A rising MA edge of the frame; the mean period is brought up to date with it, so
-    // the next edge's sample-time comparison finds it cached.
+    // A rising MA edge of the frame.
     void addRise(Tick t) {
         f_.rises.push_back(t);
-        meanPeriod();
+        updatePeriod();
     }
     double quietLimit() const;  // MA silence (ticks) that ends a frame in progress
     // Emits the frame in progress. timeout_end = the SL rising edge ending the slave's

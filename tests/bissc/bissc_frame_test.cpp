@@ -2,6 +2,7 @@
 // then generated captures across clock rates, widths, line delays and processing times.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -277,6 +278,39 @@ TEST(BisscFrames, CdmOneWithoutHoldReturnsToIdle) {
         EXPECT_FALSE(std::get<bool>(*frames[i].get("hold_cdm")));
         EXPECT_EQ(frames[i].start, gen.frames()[i].start);
     }
+}
+
+TEST(BisscFrames, ReturnToIdleFrameMeasuresItsOwnDelay) {
+    // After a CDM = 1 frame the master returns MA to idle with a rise, and the next
+    // frame's first rise is only found at its ACK, when that idle rise is dropped from
+    // the frame's rises (and from its mean period). The ACK delay is then compared with
+    // the previous frame's delay within a quarter of that period: here the cable's delay
+    // changes by half a bit between the frames, so the previous delay must not be
+    // mixed in, and the second frame reports its own.
+    BisscGenConfig cfg;
+    cfg.line_delay_ns = 200;
+    BisscGenerator gen(cfg);
+    for (int i = 0; i < 2; ++i) {
+        BisscFrameSpec f;
+        f.data = 200 + i;
+        f.cdm = 1;
+        gen.addFrame(f);
+    }
+    Waveform w = gen.build();
+    const Tick shift = 500;  // ns = ticks: half of the 1 MHz clock's period
+    const auto& second = gen.frames()[1];
+    for (auto& e : w.edges)
+        if (e.line == 1 && e.t > second.start && e.t <= second.end) e.t += shift;
+    std::stable_sort(w.edges.begin(), w.edges.end(),
+                     [](const Edge& a, const Edge& b) { return a.t < b.t; });
+    w.end += shift;
+
+    auto frames = ofType(decodeBissc(w, {}), "frame");
+    ASSERT_EQ(frames.size(), 2u);
+    EXPECT_EQ(intField(frames[0], "line_delay_ns"), 200);
+    EXPECT_EQ(intField(frames[1], "line_delay_ns"), 700);
+    EXPECT_EQ(intField(frames[1], "position"), 201);
+    EXPECT_TRUE(frames[1].errors.empty());
 }
 
 TEST(BisscFrames, TruncatedFrameIsShortAndTheNextDecodes) {
