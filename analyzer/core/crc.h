@@ -11,7 +11,9 @@ public:
     // width 1..32; poly without the top bit (CRC6 x^6+x+1 -> 0x03); init and xorout
     // applied as in the CRC catalogue (refin = refout = false).
     BitCrc(int width, std::uint32_t poly, std::uint32_t init = 0, std::uint32_t xorout = 0)
-        : width_(width), poly_(poly), init_(init), xorout_(xorout), reg_(init) {}
+        : width_(width), poly_(poly), init_(init), xorout_(xorout), reg_(init) {
+        buildNibbleTable();
+    }
 
     void reset() { reg_ = init_; }
     void push(bool bit) {
@@ -19,10 +21,22 @@ public:
         reg_ = (reg_ << 1) & mask();
         if (top ^ (bit ? 1u : 0u)) reg_ ^= poly_;
     }
-    // Pushes the low `n` bits of `bits`, most significant first.
+    // Pushes the low `n` bits of `bits`, most significant first: four at a time through
+    // a table when the CRC is that wide (a BiSS-C position takes a quarter of the steps).
     void pushBits(std::uint64_t bits, int n) {
-        for (int i = n - 1; i >= 0; --i)
-            push((bits >> i) & 1u);
+        int i = n;
+        if (width_ >= 4) {
+            for (; i % 4 != 0; --i)  // the leading bits, so that whole nibbles are left
+                push((bits >> (i - 1)) & 1u);
+            for (; i > 0; i -= 4) {
+                // Only the register's top four bits and the four data bits decide what is
+                // fed back in four steps; the CRC is linear, so the table holds it.
+                const std::uint32_t top = (reg_ >> (width_ - 4)) ^ std::uint32_t(bits >> (i - 4));
+                reg_ = ((reg_ << 4) & mask()) ^ nibble_[top & 0xF];
+            }
+        }
+        for (; i > 0; --i)
+            push((bits >> (i - 1)) & 1u);
     }
     std::uint32_t value() const { return (reg_ ^ xorout_) & mask(); }
     int width() const { return width_; }
@@ -34,8 +48,26 @@ public:
 
 private:
     std::uint32_t mask() const { return width_ >= 32 ? 0xFFFFFFFFu : ((1u << width_) - 1u); }
+    // nibble_[t]: the register after four zero bits pushed from t in its top four bits.
+    void buildNibbleTable() {
+        if (width_ < 4) return;
+        for (std::uint32_t t = 0; t < 16; ++t) {
+            BitCrc step(*this, t << (width_ - 4));
+            for (int k = 0; k < 4; ++k)
+                step.push(false);
+            nibble_[t] = step.reg_;
+        }
+    }
+    // A copy of `from`'s polynomial with register `reg`, without a table (for the above).
+    BitCrc(const BitCrc& from, std::uint32_t reg)
+        : width_(from.width_),
+          poly_(from.poly_),
+          init_(from.init_),
+          xorout_(from.xorout_),
+          reg_(reg) {}
     int width_;
     std::uint32_t poly_, init_, xorout_, reg_;
+    std::uint32_t nibble_[16] = {};
 };
 
 // One-shot helper over the low n bits of `bits` (MSB first).

@@ -23,7 +23,9 @@ constexpr double kMinQuietNs = 20000.0;
 }  // namespace
 
 BisscDecoder::BisscDecoder(const Options& options)
-    : s_(BisscSettings::from(options)), control_([this](Event&& e) { emit(std::move(e)); }) {}
+    : s_(BisscSettings::from(options)),
+      crc_(BitCrc::fromFullPoly(s_.crc_poly, s_.crc_init, s_.crc_inverted)),
+      control_([this](Event&& e) { emit(std::move(e)); }) {}
 
 void BisscDecoder::start(const DecoderContext& ctx) {
     Decoder::start(ctx);
@@ -404,11 +406,11 @@ void BisscDecoder::closeFrame(Tick end, Tick timeout_end, const char* error, boo
     if (complete) {
         pos = lowBits(f_.data, pos_bits);
         if (s_.crc_bits > 0) {
-            BitCrc crc = BitCrc::fromFullPoly(s_.crc_poly, s_.crc_init, s_.crc_inverted);
-            crc.pushBits(f_.data, s_.bits);
-            crc.push(f_.ne);
-            crc.push(f_.nw);
-            crc_good = crc.value() == f_.crc_rx;
+            crc_.reset();
+            crc_.pushBits(f_.data, s_.bits);
+            crc_.push(f_.ne);
+            crc_.push(f_.nw);
+            crc_good = crc_.value() == f_.crc_rx;
             if (!crc_good) e.error("crc");
         }
         if (f_.ne == 0) e.error("error_bit");

@@ -16,6 +16,7 @@
 
 #include "bissc_control.h"
 #include "bissc_options.h"
+#include "core/crc.h"
 #include "core/decoder.h"
 #include "core/line_sampler.h"
 #include "core/registry.h"
@@ -136,6 +137,7 @@ private:
     bool isClockPhase(double length, bool level) const;
 
     BisscSettings s_;
+    BitCrc crc_;  // the frame CRC's polynomial and table, reset for every frame
     BisscControlReassembler control_;
     LineSampler sampler_;
     State state_ = State::Idle;
