@@ -67,7 +67,9 @@ void BisscDecoder::addError(const std::string& e) {
 }
 
 double BisscDecoder::quietLimit() const {
-    return std::max(min_quiet_, 3.0 * meanPeriod()) + f_.delay;
+    // Or the slave's timeout as seen before: a clock paused that long has reset the slave
+    // (its next clocks are a new request, even if the pause was short of kMinQuietNs).
+    return std::min(std::max(min_quiet_, 3.0 * meanPeriod()) + f_.delay, slave_timeout_);
 }
 
 void BisscDecoder::checkQuietSlow(Tick now) {
@@ -308,7 +310,8 @@ void BisscDecoder::setDelay(double delay) {
     // floor() by truncation and one correction (std::floor is a library call without
     // SSE4.1); clamped, so that a delay measured across an absurd gap cannot overflow.
     constexpr double kMaxTick = 9.0e18;
-    const double limit = std::clamp(min_quiet_ + delay, -kMaxTick, kMaxTick);
+    const double limit =
+        std::clamp(std::min(min_quiet_ + delay, slave_timeout_), -kMaxTick, kMaxTick);
     Tick q = Tick(limit);
     if (double(q) > limit) --q;
     quiet_ticks_ = q;
@@ -423,6 +426,12 @@ void BisscDecoder::closeFrame(Tick end, Tick timeout_end, const char* error, boo
         timeout_ns = tb().toNs(timeout_end - f_.rises.back());
         if (s_.timeout_min_ns > 0 && double(timeout_ns) < s_.timeout_min_ns)
             e.error("timeout_short");
+        // The slave's timeout (with the line delay), learnt from a frame that ran to it,
+        // bounds the clock pauses later frames can have (quietLimit()); never below two
+        // clock periods, so that a pulse on SL during the timeout cannot make clock
+        // phases look like pauses.
+        if (timeout_end > f_.rises.back())
+            slave_timeout_ = std::max(double(timeout_end - f_.rises.back()), 2.0 * meanPeriod());
     }
     const double period = meanPeriod();
     const bool clocked = f_.rises.size() >= 2 && period > 0;

@@ -10,6 +10,7 @@
 // slave's answer really is, however long the cable (d may span many bit times).
 #include <algorithm>
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -91,6 +92,10 @@ private:
     [[gnu::always_inline]] inline bool onMaInFrame(Tick t, bool level);
     void onMaAfterSamples(Tick t, bool level);  // onMa() once the due samples are taken
     void onSl(Tick t, bool level);
+    // The usual SL edge: inside a frame's data, clock running, the sampler empty and the
+    // next sample still to come. Does all of onSl()'s work for it (refining the line
+    // delay) and returns true; false, having changed nothing, for every other edge.
+    [[gnu::always_inline]] inline bool onSlInFrame(Tick t, bool level);
     void beginFrame(Tick start, bool from_hold);
     // Per-edge helpers, inlined into edge/onMa/onSl (sampleTime and takeDueSamples are
     // defined below the class, scheduleUpTo and drainSamples in bissc_decoder.cpp).
@@ -148,8 +153,11 @@ private:
     bool glitch_pending_ = false;
     double last_period_ = 0;  // mean clock period of the previous frame (ticks)
     double min_quiet_ = 0;    // kMinQuietNs in ticks
-    // floor(min_quiet_ + f_.delay): for whole ticks n, n > it exactly when
-    // double(n) > min_quiet_ + f_.delay, without a conversion per edge.
+    // The slave's timeout (ticks, last rising MA edge to SL rising, as seen at the master)
+    // measured on the last frame that ran into it; infinite until then.
+    double slave_timeout_ = std::numeric_limits<double>::infinity();
+    // floor(min(min_quiet_ + f_.delay, slave_timeout_)): for whole ticks n, n > it exactly
+    // when double(n) is above that, without a conversion per edge.
     Tick quiet_ticks_ = 0;
 };
 
@@ -157,7 +165,7 @@ void BisscDecoder::edge(Tick t, int role, bool level) {
     if (role == kMa) {
         if (!onMaInFrame(t, level)) onMa(t, level);
     } else if (role == kSl) {
-        onSl(t, level);
+        if (!onSlInFrame(t, level)) onSl(t, level);
     }
 }
 
@@ -201,6 +209,21 @@ bool BisscDecoder::takeDueSamples(Tick t) {
             takeSample(int(k), sampler_.level(), at);
         }
     }
+    return true;
+}
+
+bool BisscDecoder::onSlInFrame(Tick t, bool level) {
+    // Then scheduleUpTo(), lineEdge() and drainSamples() have nothing to resolve or take,
+    // and checkQuiet() nothing to close.
+    if (state_ != State::Data || t - last_ma_edge_ > quiet_ticks_ || sampler_.ready() ||
+        sampler_.pending() != 0)
+        return false;
+    // The usual SL edge answers a rise whose sample is still to come: with every sample
+    // taken, the edge may be the slave giving up (onSl() checks).
+    if (f_.scheduled >= f_.rises.size() || sampleTime(f_.scheduled) < double(t)) return false;
+    sampler_.lineEdge(t, level);  // nothing to resolve: only the level
+    sl_ = level;
+    refineDelay(t);  // (the slot is never Done in State::Data)
     return true;
 }
 

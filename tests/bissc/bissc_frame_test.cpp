@@ -314,30 +314,39 @@ TEST(BisscFrames, ReturnToIdleFrameMeasuresItsOwnDelay) {
 }
 
 TEST(BisscFrames, TruncatedFrameIsShortAndTheNextDecodes) {
-    BisscGenConfig cfg;
-    cfg.line_delay_ns = 200;
-    BisscGenerator gen(cfg);
-    BisscFrameSpec f;
-    f.data = 0x2AAAAAA;
-    for (int cut : {12, 3, 1, 30}) {  // mid data, start bit only, LAT only, in the CRC
-        f.truncate_after = cut;
-        gen.addFrame(f);
-        f.truncate_after = -1;
-        gen.addFrame(f);
+    // With the slave's usual 20 us timeout and a short 5 us one. The master pauses about
+    // 15 us between a cut frame and the next: less than the 20 us that end a frame when
+    // nothing else tells, but three times a 5 us slave's timeout (learnt from the frames
+    // before, or seen as SL rising long after the last slot), so the next clocks are a
+    // new request, not the cut frame going on.
+    for (double timeout : {20000.0, 5000.0}) {
+        SCOPED_TRACE(timeout);
+        BisscGenConfig cfg;
+        cfg.line_delay_ns = 200;
+        cfg.timeout_ns = timeout;
+        BisscGenerator gen(cfg);
+        BisscFrameSpec f;
+        f.data = 0x2AAAAAA;
+        for (int cut : {12, 3, 1, 30}) {  // mid data, start bit only, LAT only, in the CRC
+            f.truncate_after = cut;
+            gen.addFrame(f);
+            f.truncate_after = -1;
+            gen.addFrame(f);
+        }
+        auto frames = ofType(decodeBissc(gen.build(), {}), "frame");
+        ASSERT_EQ(frames.size(), 8u);
+        for (int i = 0; i < 8; i += 2) {
+            SCOPED_TRACE(i);
+            EXPECT_FALSE(frames[i].errors.empty());
+            EXPECT_TRUE(nullField(frames[i], "position"));
+            EXPECT_EQ(intField(frames[i + 1], "position"), 0x2AAAAAA);
+            EXPECT_TRUE(frames[i + 1].errors.empty());
+        }
+        EXPECT_TRUE(frames[0].hasError("short_frame"));
+        EXPECT_TRUE(frames[2].hasError("short_frame"));  // start bit sent, then nothing
+        EXPECT_TRUE(frames[4].hasError("no_ack"));
+        EXPECT_TRUE(frames[6].hasError("short_frame"));
     }
-    auto frames = ofType(decodeBissc(gen.build(), {}), "frame");
-    ASSERT_EQ(frames.size(), 8u);
-    for (int i = 0; i < 8; i += 2) {
-        SCOPED_TRACE(i);
-        EXPECT_FALSE(frames[i].errors.empty());
-        EXPECT_TRUE(nullField(frames[i], "position"));
-        EXPECT_EQ(intField(frames[i + 1], "position"), 0x2AAAAAA);
-        EXPECT_TRUE(frames[i + 1].errors.empty());
-    }
-    EXPECT_TRUE(frames[0].hasError("short_frame"));
-    EXPECT_TRUE(frames[2].hasError("short_frame"));  // start bit sent, then nothing
-    EXPECT_TRUE(frames[4].hasError("no_ack"));
-    EXPECT_TRUE(frames[6].hasError("short_frame"));
 }
 
 TEST(BisscFrames, CaptureEndingMidFrameIsShort) {
@@ -383,6 +392,31 @@ TEST(BisscFrames, GlitchesAreFilteredAndFlagged) {
         EXPECT_EQ(intField(frames[i], "position"), 0x1555555);
         EXPECT_TRUE(std::get<bool>(*frames[i].get("crc_ok")));
         EXPECT_EQ(frames[i].hasError("glitch"), i > 0) << i;
+    }
+}
+
+TEST(BisscFrames, PulseOnSlDuringTheTimeoutDoesNotShortenLaterFrames) {
+    // A 100 ns pulse on SL just after the first frame's stop bit was sampled ends that
+    // frame's timeout early as far as the decoder can tell (700 ns after the last rise).
+    // The slave's timeout it learns from it, for the clock pauses of later frames, must
+    // not drop below the clock's own phases (500 ns +- 150 ns of jitter at each edge).
+    BisscGenConfig cfg;
+    cfg.line_delay_ns = 100;
+    cfg.jitter_ns = 150;
+    BisscGenerator gen(cfg);
+    for (int i = 0; i < 3; ++i) {
+        BisscFrameSpec f;
+        f.data = 300 + unsigned(i);
+        gen.addFrame(f);
+    }
+    const double stop_ns = double(gen.frames()[0].end) - cfg.timeout_ns;  // ticks are ns
+    gen.addGlitch(1, stop_ns + 600, 100);  // the stop bit is sampled 500 ns in
+    auto frames = ofType(decodeBissc(gen.build(), {}), "frame");
+    ASSERT_EQ(frames.size(), 3u);
+    for (int i = 1; i < 3; ++i) {
+        SCOPED_TRACE(i);
+        EXPECT_EQ(intField(frames[std::size_t(i)], "position"), 300 + i);
+        EXPECT_TRUE(frames[std::size_t(i)].errors.empty());
     }
 }
 
