@@ -118,8 +118,8 @@ struct Session::Impl : EventSink {
     // summaries keep their storage (two allocations and frees per event otherwise,
     // a quarter of an SPI word's cost by callgrind). Events are released once per edge
     // block, so the pool must hold a block's worth to serve the next one: 10 MHz BiSS-C
-    // makes about 165 frames per block (100 edges each) (with 64, two
-    // thirds of BiSS-C's frames were built in new storage). At most about 2 MB.
+    // makes about 165 frames per block, of 100 edges each; with 64, two thirds of its
+    // frames were built in new storage. At most about 2 MB.
     std::vector<Event> spare;
     static constexpr std::size_t kMaxSpare = 1024;
 

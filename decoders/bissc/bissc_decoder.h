@@ -31,8 +31,8 @@ public:
     explicit BisscDecoder(const Options& options);
 
     void start(const DecoderContext& ctx) override;
-    // Inline, with its fast path, so that BlockDecoder's loop takes the usual MA edge
-    // without a call (defined below the class).
+    // Inline, with its fast paths, so that BlockDecoder's loop takes the usual MA and SL
+    // edges without a call (defined below the class).
     [[gnu::always_inline]] inline void edge(Tick t, int role, bool level) override;
     void advance(Tick now) override;
     void finish(Tick end) override;
