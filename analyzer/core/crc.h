@@ -48,23 +48,18 @@ public:
 
 private:
     std::uint32_t mask() const { return width_ >= 32 ? 0xFFFFFFFFu : ((1u << width_) - 1u); }
-    // nibble_[t]: the register after four zero bits pushed from t in its top four bits.
+    // nibble_[t]: the register after four zero bits pushed from t in its top four bits
+    // (worked out with push() itself, from the constructor, before reg_ is used).
     void buildNibbleTable() {
         if (width_ < 4) return;
         for (std::uint32_t t = 0; t < 16; ++t) {
-            BitCrc step(*this, t << (width_ - 4));
+            reg_ = t << (width_ - 4);
             for (int k = 0; k < 4; ++k)
-                step.push(false);
-            nibble_[t] = step.reg_;
+                push(false);
+            nibble_[t] = reg_;
         }
+        reg_ = init_;
     }
-    // A copy of `from`'s polynomial with register `reg`, without a table (for the above).
-    BitCrc(const BitCrc& from, std::uint32_t reg)
-        : width_(from.width_),
-          poly_(from.poly_),
-          init_(from.init_),
-          xorout_(from.xorout_),
-          reg_(reg) {}
     int width_;
     std::uint32_t poly_, init_, xorout_, reg_;
     std::uint32_t nibble_[16] = {};

@@ -81,8 +81,8 @@ void appendSeconds(std::string& out, std::int64_t ns) {
         fmt::format_to(std::back_inserter(out), FMT_COMPILE("{:>14.9f}"), double(ns) / 1e9);
         return;
     }
-    // "{:>14}" of "{}{}.{:09}": built in a buffer, pieces copied, one append (fmt's
-    // compiled format cost four times as much, once per output line).
+    // "{:>14}" of "{}{}.{:09}": built in a buffer, pieces copied, one append (about 140
+    // instructions fewer per output line than fmt's compiled format, by callgrind).
     const std::int64_t mag = ns < 0 ? -ns : ns;
     const fmt::format_int whole(mag / 1'000'000'000), frac(mag % 1'000'000'000);
     char line[32];
