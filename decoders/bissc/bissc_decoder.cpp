@@ -165,13 +165,9 @@ void BisscDecoder::onMa(Tick t, bool level) {
 
 void BisscDecoder::onMaAfterSamples(Tick t, bool level) {
     checkQuiet(t);
-    if ((state_ == State::WaitAck || state_ == State::Data) && !f_.rises.empty() &&
-        last_ma_edge_ != kNoTick) {
-        Tick& longest = level ? f_.max_low : f_.max_high;
-        longest = std::max(longest, t - last_ma_edge_);
-    }
-    last_ma_edge_ = t;
-    ma_ = level;
+    recordMaEdge(t, level,
+                 (state_ == State::WaitAck || state_ == State::Data) && !f_.rises.empty() &&
+                     last_ma_edge_ != kNoTick);
 
     switch (state_) {
         case State::WaitSlaveIdle:

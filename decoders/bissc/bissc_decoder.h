@@ -91,6 +91,16 @@ private:
     // other edge, and onMa() handles it (from the first sample not taken yet).
     [[gnu::always_inline]] inline bool onMaInFrame(Tick t, bool level);
     void onMaAfterSamples(Tick t, bool level);  // onMa() once the due samples are taken
+    // MA at `level` from tick t on; in_frame: the phase it ends was a clock phase of the
+    // frame, and counts towards its longest (isClockPhase()).
+    void recordMaEdge(Tick t, bool level, bool in_frame) {
+        if (in_frame) {
+            Tick& longest = level ? f_.max_low : f_.max_high;
+            longest = std::max(longest, t - last_ma_edge_);
+        }
+        last_ma_edge_ = t;
+        ma_ = level;
+    }
     void onSl(Tick t, bool level);
     // The usual SL edge: inside a frame's data, clock running, the sampler empty and the
     // next sample still to come. Does all of onSl()'s work for it (refining the line
@@ -179,10 +189,7 @@ bool BisscDecoder::onMaInFrame(Tick t, bool level) {
         onMaAfterSamples(t, level);
         return true;
     }
-    Tick& longest = level ? f_.max_low : f_.max_high;
-    longest = std::max(longest, t - last_ma_edge_);
-    last_ma_edge_ = t;
-    ma_ = level;
+    recordMaEdge(t, level, true);
     if (level) addRise(t);  // its sample is scheduled when due
     return true;
 }
