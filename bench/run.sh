@@ -28,7 +28,8 @@ big=$((size * 2))
 huge=$((size * 10))
 decode="$build/bin/decode"
 make="$build/bin/make_capture"
-for x in "$decode" "$make"; do
+reader="$build/bin/read_capture"
+for x in "$decode" "$make" "$reader"; do
     [ -x "$x" ] || { echo "missing $x (build with: cmake --build $build)" >&2; exit 2; }
 done
 tmp="$(mktemp -d "${TMPDIR:-/tmp}/busdecode-bench.XXXXXX")"
@@ -116,6 +117,13 @@ for bus in spi bissc; do
     row "$bus.vcd: decode vs wc -l" "$size_mb MB" "as above" \
         "wc -l $(fmt_s "$t_wc") s wall, $(fmt_s "$c_wc") s CPU: decode at **$r_wc** (wall), **$rc_wc** (CPU) of its speed" \
         ">= 0.25" "$(verdict "$r_wc >= 0.25") (wall), $(verdict "$rc_wc >= 0.25") (CPU)"
+    # The tokeniser alone (every signal read, nothing decoded or printed): what decode
+    # could reach with a decoder that cost nothing.
+    read -r t_rd c_rd < <(median "$runs" "$reader" "$f")
+    row "$bus.vcd: reading alone (read_capture) vs wc -l" "$size_mb MB" \
+        "$(fmt_s "$t_rd") s wall, $(fmt_s "$c_rd") s CPU" \
+        "wc -l as above: reading alone at **$(ratio "$t_wc" "$t_rd")** (wall) of its speed" \
+        "(a bound on the row above)" "-"
 done
 
 # 2. Dense CSV throughput
