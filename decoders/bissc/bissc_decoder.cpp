@@ -354,8 +354,7 @@ void BisscDecoder::takeSample(int index, bool level, double t) {
             f_.slot = s_.bits > 0 ? Slot::Data : Slot::NE;
             break;
         case Slot::Data:
-            f_.data = (f_.data << 1) | std::uint64_t(level);
-            if (++f_.data_count == s_.bits) f_.slot = Slot::NE;
+            takeDataBit(level);
             break;
         case Slot::NE:
             f_.ne = level;

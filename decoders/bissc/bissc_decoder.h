@@ -118,6 +118,11 @@ private:
     void refineDelay(Tick t);
     [[gnu::always_inline]] inline void drainSamples();
     void takeSample(int index, bool level, double t);
+    // A position bit (Slot::Data), the bulk of a frame's samples.
+    void takeDataBit(bool level) {
+        f_.data = (f_.data << 1) | std::uint64_t(level);
+        if (++f_.data_count == s_.bits) f_.slot = Slot::NE;
+    }
     // Ticks, over the frame's rising edges so far. Asked several times per edge, worked
     // out once per rising edge.
     double meanPeriod() const { return f_.period; }
@@ -208,13 +213,10 @@ bool BisscDecoder::takeDueSamples(Tick t) {
         if (at >= now) return false;  // pushed to t or later: it waits in the sampler
         f_.last_sample_t = at;
         const std::size_t k = f_.scheduled++;
-        if (f_.slot == Slot::Data && f_.data_count + 1 < s_.bits) {
-            // A position bit but the last, as takeSample() would take it, without a call.
-            f_.data = (f_.data << 1) | std::uint64_t(sampler_.level());
-            ++f_.data_count;
-        } else {
+        if (f_.slot == Slot::Data)
+            takeDataBit(sampler_.level());  // what takeSample() does with it, without a call
+        else
             takeSample(int(k), sampler_.level(), at);
-        }
     }
     return true;
 }
