@@ -6,7 +6,7 @@
 #include <cstdio>
 #include <exception>
 
-#include "capture/capture_reader.h"
+#include "read_edges.h"
 
 int main(int argc, char** argv) {
     using namespace busdecode;
@@ -15,16 +15,7 @@ int main(int argc, char** argv) {
         return 2;
     }
     try {
-        auto reader = openCapture(argv[1], {});
-        std::vector<LineRef> lines;
-        for (int i = 0; i < int(reader->signals().size()); ++i)
-            lines.push_back({i, -1});
-        reader->select(lines);
-        (void)reader->initialLevels();
-        EdgeBlock block;
-        unsigned long long edges = 0;
-        while (reader->next(block))
-            edges += block.edges.size();
+        const unsigned long long edges = bench::readEdges(argv[1]);
         std::printf("%llu edges\n", edges);
     } catch (const std::exception& e) {
         std::fprintf(stderr, "read_capture: %s\n", e.what());

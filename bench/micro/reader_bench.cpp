@@ -7,8 +7,8 @@
 #include <map>
 
 #include "bench_captures.h"
-#include "capture/capture_reader.h"
 #include "capture/capture_writer.h"
+#include "read_edges.h"
 
 namespace busdecode::bench {
 namespace {
@@ -59,18 +59,8 @@ void readFile(benchmark::State& state, const std::string& format, bool all_lines
     const std::string& path = benchFile(format);
     std::uint64_t bytes = 0, edges = 0;
     for (auto _ : state) {
-        auto reader = openCapture(path, {});
-        std::vector<LineRef> lines;
-        if (all_lines)
-            for (int i = 0; i < int(reader->signals().size()); ++i)
-                lines.push_back({i, -1});
-        else
-            lines.push_back({1, -1});  // sclk only: the other columns must be skipped cheaply
-        reader->select(lines);
-        benchmark::DoNotOptimize(reader->initialLevels());
-        EdgeBlock block;
-        while (reader->next(block))
-            edges += block.edges.size();
+        // All lines, or sclk only: the other columns must be skipped cheaply.
+        edges += readEdges(path, all_lines ? -1 : 1);
         bytes += fs::file_size(path);
     }
     state.SetBytesProcessed(std::int64_t(bytes));
