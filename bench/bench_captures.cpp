@@ -38,8 +38,12 @@ const Timebase kTb = Timebase::fromSampleRate(kSampleRateHz);
 
 #ifdef BENCH_HAVE_SPI
 // SPI at 10 MHz, back to back: eight 32-bit words per chip select, 100 ns between
-// transfers; the data lines return low at the end so chunks join seamlessly.
-BenchBus spiBus(int transfers, std::mt19937& rng) {
+// transfers; the data lines return low at the end so chunks join seamlessly. Random
+// words, or with `periodic` the same two words every time (0xAAAAAAAA on MOSI, 0x55555555
+// on MISO): the same timing, a data line changing at every bit, and an edge sequence
+// that repeats exactly, so that every branch of the reader and the decoder can be
+// predicted (bench/README.md: what unpredictable data costs).
+BenchBus spiBus(int transfers, std::mt19937& rng, bool periodic) {
     SpiMode mode;  // CPOL=1, CPHA=1, MSB first: the contract defaults
     SpiTiming timing;
     timing.period_ns = 100;
@@ -53,14 +57,15 @@ BenchBus spiBus(int transfers, std::mt19937& rng) {
     for (int i = 0; i < transfers; ++i) {
         std::vector<SpiGenerator::Word> words(8);
         for (auto& w : words)
-            w = {word(rng), word(rng)};
+            w = periodic ? SpiGenerator::Word{0xAAAAAAAAu, 0x55555555u}
+                         : SpiGenerator::Word{word(rng), word(rng)};
         t = gen.transfer(t, words, 32);
         wb.setNs(2, t, false);
         wb.setNs(3, t, false);
         t += 100;
     }
     BenchBus b;
-    b.id = "spi";
+    b.id = periodic ? "spi-periodic" : "spi";
     b.chunk = wb.build(wb.ticksFromNs(t));
     b.requests = {{"spi", {}, {}}};
     b.decode_args = "--proto spi";
@@ -97,7 +102,8 @@ BenchBus uartBus(int chars, std::mt19937& rng) {
 
 #ifdef BENCH_HAVE_BISSC
 // BiSS-C at 10 MHz, 26 position bits, frames back to back (2 us timeout, 1 us idle).
-BenchBus bisscBus(int frames, std::mt19937& rng) {
+// Random positions, or with `periodic` 0x2AAAAAA in every frame (see spiBus).
+BenchBus bisscBus(int frames, std::mt19937& rng, bool periodic) {
     BisscGenConfig cfg;
     cfg.timebase = kTb;
     cfg.clock_hz = 10e6;
@@ -111,12 +117,12 @@ BenchBus bisscBus(int frames, std::mt19937& rng) {
     std::uniform_int_distribution<std::uint64_t> pos(0, (1u << 26) - 1);
     for (int i = 0; i < frames; ++i) {
         BisscFrameSpec f;
-        f.data = pos(rng);
+        f.data = periodic ? 0x2AAAAAAu : pos(rng);
         gen.addFrame(f);
     }
     gen.pause(1000);
     BenchBus b;
-    b.id = "bissc";
+    b.id = periodic ? "bissc-periodic" : "bissc";
     b.chunk = gen.build();
     b.requests = {{"bissc", {}, {}}};
     b.decode_args = "--proto bissc";
@@ -202,12 +208,14 @@ std::vector<std::string> availableBuses() {
     std::vector<std::string> out;
 #ifdef BENCH_HAVE_SPI
     out.push_back("spi");
+    out.push_back("spi-periodic");
 #endif
 #ifdef BENCH_HAVE_UART
     out.push_back("uart");
 #endif
 #ifdef BENCH_HAVE_BISSC
     out.push_back("bissc");
+    out.push_back("bissc-periodic");
 #endif
 #ifdef BENCH_HAVE_SSI
     out.push_back("ssi");
@@ -224,13 +232,13 @@ std::vector<std::string> availableBuses() {
 BenchBus makeBus(const std::string& id, int units, std::uint32_t seed) {
     std::mt19937 rng(seed);
 #ifdef BENCH_HAVE_SPI
-    if (id == "spi") return spiBus(units, rng);
+    if (id == "spi" || id == "spi-periodic") return spiBus(units, rng, id != "spi");
 #endif
 #ifdef BENCH_HAVE_UART
     if (id == "uart") return uartBus(units, rng);
 #endif
 #ifdef BENCH_HAVE_BISSC
-    if (id == "bissc") return bisscBus(units, rng);
+    if (id == "bissc" || id == "bissc-periodic") return bisscBus(units, rng, id != "bissc");
 #endif
 #ifdef BENCH_HAVE_SSI
     if (id == "ssi") return ssiBus(units, rng);

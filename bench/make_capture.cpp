@@ -1,6 +1,9 @@
 // make_capture: writes the large captures bench/run.sh times.
 //
-//   make_capture BUS FORMAT SIZE_MB OUT     (BUS: spi, bissc, ...; FORMAT: vcd or csv)
+//   make_capture BUS FORMAT SIZE_MB OUT     (FORMAT: vcd or csv)
+//
+// BUS: spi, bissc, uart, ... (bench_captures.cpp); spi-periodic and bissc-periodic are the
+// same traffic with the same data in every word or frame (what unpredictable data costs).
 //
 // One chunk of traffic is made with the decoder's own generator and written with the
 // project's writers (writeVcd, writeCsv: sigrok dense CSV) into a temporary file; the
@@ -147,7 +150,9 @@ int main(int argc, char** argv) {
         const std::string bus_id = argv[1], format = argv[2], out_path = argv[4];
         const std::uint64_t target = std::uint64_t(std::atof(argv[3]) * 1e6);
         // About 20 ms of traffic per chunk: a few MB, repeated as often as needed.
-        const int units = bus_id == "spi" ? 800 : bus_id == "bissc" ? 3000 : 2000;
+        const int units = bus_id.rfind("spi", 0) == 0     ? 800
+                          : bus_id.rfind("bissc", 0) == 0 ? 3000
+                                                          : 2000;
         const bench::BenchBus bus = bench::makeBus(bus_id, units);
         const std::string chunk_file = out_path + ".chunk";
         Output out(out_path);
