@@ -1,8 +1,12 @@
 #include "rule_checker.h"
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <map>
+#include <utility>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -76,6 +80,36 @@ private:
     Pred pred_;
     std::uint64_t count_ = 0;
     double first_ = 0, over_ = 0;
+};
+
+// max_faults: events with any error, and which errors they were, most frequent first
+// ("by kind: short_frame 126, crc 2"): a failed capture says what went wrong without a
+// second run of `decode`.
+class FaultCheck : public CountCheck {
+public:
+    FaultCheck(std::string proto, std::string rule, std::int64_t limit)
+        : CountCheck(std::move(proto), std::move(rule), limit, "event with errors",
+                     "events with errors", [](const Event& e) { return !e.errors.empty(); }) {}
+    void observe(const Event& e, const Timebase& tb) override {
+        CountCheck::observe(e, tb);
+        for (const auto& err : e.errors)
+            ++kinds_[err];
+    }
+    RuleOutcome finish(const CaptureFacts& facts) const override {
+        RuleOutcome o = CountCheck::finish(facts);
+        if (kinds_.empty()) return o;
+        std::vector<std::pair<std::string, std::uint64_t>> kinds(kinds_.begin(), kinds_.end());
+        std::stable_sort(kinds.begin(), kinds.end(),
+                         [](const auto& a, const auto& b) { return a.second > b.second; });
+        o.message += "; by kind:";
+        for (std::size_t i = 0; i < kinds.size(); ++i)
+            o.message += fmt::format("{} {} {}", i ? "," : "", kinds[i].first, kinds[i].second);
+        return o;
+    }
+
+private:
+    // Decoders name their errors from a small fixed set: the map stays small.
+    std::map<std::string, std::uint64_t> kinds_;
 };
 
 // Every value of `field` (times `scale`) must lie in [min, max].
@@ -281,9 +315,7 @@ void addChecks(const ProtoRules& r, std::vector<std::unique_ptr<RuleCheck>>& out
                     return e.hasError("repeat_mismatch") || fieldIsZero(e, "repeat_match");
                 }));
         else if (key == "max_faults")
-            out.push_back(std::make_unique<CountCheck>(
-                p, key, *r.max_faults, "event with errors", "events with errors",
-                [](const Event& e) { return !e.errors.empty(); }));
+            out.push_back(std::make_unique<FaultCheck>(p, key, *r.max_faults));
         else if (key == "min_frames")
             out.push_back(std::make_unique<MinCountCheck>(p, primaryEventType(p), *r.min_frames));
         else if (key == "clock_hz")

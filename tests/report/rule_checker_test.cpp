@@ -74,6 +74,24 @@ TEST(RuleChecker, CrcErrorFailsWithTheFirstTime) {
     EXPECT_TRUE(find(out, "bissc.max_errors").passed);
 }
 
+TEST(RuleChecker, FaultsAreCountedByKindMostFrequentFirst) {
+    auto ev = cleanBiss();
+    ev[37] = bisscFrame(37 * 100000, 1037, false);  // crc
+    for (int i : {40, 41, 42})
+        ev[i].error("short_frame");
+    ev[42].error("glitch");  // one event, two kinds: counted once as a fault, once per kind
+    const auto out = check(kBissRules, ev);
+    const auto& o = find(out, "bissc.max_faults");
+    EXPECT_FALSE(o.passed);
+    EXPECT_EQ(o.offending, 4u);
+    EXPECT_EQ(o.message,
+              "4 events with errors (limit 0), first at 3.700 ms; by kind: short_frame 3, crc 1, "
+              "glitch 1");
+    // Clean traffic names no kinds.
+    EXPECT_EQ(find(check(kBissRules, cleanBiss()), "bissc.max_faults").message,
+              "0 events with errors (limit 0)");
+}
+
 TEST(RuleChecker, WarningLimitAboveZeroReportsWhereItWasPassed) {
     auto ev = cleanBiss();
     for (int i : {10, 20, 30})
