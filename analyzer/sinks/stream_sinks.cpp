@@ -1,6 +1,8 @@
 #include "stream_sinks.h"
 
+#include <iterator>
 #include <map>
+#include <string>
 #include <vector>
 
 #include <fmt/format.h>
@@ -18,6 +20,18 @@ struct Tally {
     std::uint64_t faulty = 0;
 };
 
+// "100 MS/s", "1 GS/s" (a VCD in ns), "1 TS/s" (ps): the tick as a rate, with the SI
+// prefix that keeps the number below 1000.
+std::string rateText(double hz) {
+    static const char* const kPrefix[] = {"", "k", "M", "G", "T", "P", "E"};
+    std::size_t i = 0;
+    while (hz >= 1000 && i + 1 < std::size(kPrefix)) {
+        hz /= 1000;
+        ++i;
+    }
+    return fmt::format("{:.6g} {}S/s", hz, kPrefix[i]);
+}
+
 class TextSink : public OutputSink {
 public:
     explicit TextSink(std::FILE* out) : out_(out) {}
@@ -27,8 +41,8 @@ public:
         std::string binds;
         for (const auto& b : f.bindings)
             binds += fmt::format(" {}.{}={}", b.instance, b.role, b.signal);
-        fmt::print(out_, "# {} ({}, {:.6g} MS/s timebase){}\n", f.file, f.format,
-                   f.timebase.sampleRateHz() / 1e6, binds);
+        fmt::print(out_, "# {} ({}, {} timebase){}\n", f.file, f.format,
+                   rateText(f.timebase.sampleRateHz()), binds);
     }
     void onEvent(const Event& e, const CaptureFacts& f) override {
         line_.clear();

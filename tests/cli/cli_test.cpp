@@ -94,6 +94,21 @@ TEST(Cli, TextOutputHasOneLinePerEventAndASummary) {
     EXPECT_NE(r.out.find("uart"), std::string::npos);
 }
 
+TEST(Cli, TextHeaderGivesTheTickAsARateWithAnSIPrefix) {
+    // A VCD in ns ticks at 1 GS/s; a Saleae export with 12 decimals at 1 TS/s.
+    auto r = runDecode(
+        {writeTemp("header.vcd", mixedCapture()), "--proto", "uart", "--opt", "baud=115200"});
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(r.out.substr(0, r.out.find('\n')),
+              "# " + tempDir() + "/header.vcd (vcd, 1 GS/s timebase) uart.tx=top.tx")
+        << r.out;
+    const auto csv =
+        writeTemp("header.csv", "Time[s], MA, SLO\n0.000000000000, 1, 1\n0.000001000000, 0, 1\n");
+    r = runDecode({csv, "--proto", "bissc"});
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.out.find("(saleae-csv, 1 TS/s timebase)"), std::string::npos) << r.out;
+}
+
 TEST(Cli, StandardInputIsACapture) {
     const auto path = writeTemp("stdin.vcd", mixedCapture());
     auto r = runCommand(shellQuote(binDir() + "/decode") +
