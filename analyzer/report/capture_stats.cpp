@@ -111,7 +111,9 @@ void CaptureStats::add(const Event& e) {
     GroupStats& g = group(e);
     if (g.count == 0) {
         g.first_start = e.start;
-    } else {
+    } else if (e.start >= g.last_end) {
+        // Events that overlap the ones before (the register accesses one control frame
+        // sequence carries, spanning the same frames) have no pause between them.
         g.pause_ns.add(tb.toNsF(double(e.start - g.last_end)));
     }
     ++g.count;

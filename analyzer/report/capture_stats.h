@@ -53,7 +53,9 @@ struct GroupStats {
         std::uint64_t false_count = 0, true_count = 0;
     };
     std::vector<std::pair<std::string, FlagCount>> flags;
-    QuantileSketch pause_ns;  // from the end of one event to the start of the next
+    // From the end of the events so far to the start of the next, for events that start
+    // after that end (overlapping events have no pause between them).
+    QuantileSketch pause_ns;
     Tick first_start = 0, last_end = 0;
 
     QuantileSketch& timingField(const std::string& key);

@@ -86,7 +86,8 @@ void busSection(std::string& out, const CaptureStats& stats, const std::string& 
         if (!g->pause_ns.empty()) rows.emplace_back("pause_ns", &g->pause_ns);
         if (rows.empty()) continue;
         line(out, "");
-        line(out, fmt::format("  {} timing {:>20} {:>8} {:>13} {:>13} {:>13} {:>13}", g->type, "",
+        // The label column is as wide as the rows' (4 + 28), so the headings sit over them.
+        line(out, fmt::format("  {:<30} {:>8} {:>13} {:>13} {:>13} {:>13}", g->type + " timing",
                               "n", "min", "median", "p99", "max"));
         for (const auto& [k, s] : rows) {
             const std::string label = k == "pause_ns" ? "pause between" : k;

@@ -106,6 +106,20 @@ TEST(CaptureStats, MemoryStaysBoundedOnLongCaptures) {
     EXPECT_EQ(hi, 4999);
 }
 
+TEST(CaptureStats, OverlappingEventsHaveNoPauseBetweenThem) {
+    // Two register accesses carried by the same control frames span the same 2 ms; the
+    // third starts 1 ms after they end.
+    CaptureStats s;
+    s.begin(test::facts(10'000'000));
+    s.add(test::bisscRegister(0, 0x48, 0xA5));
+    s.add(test::bisscRegister(100'000, 0x49, 0x5A));  // ends at 2.1 ms
+    s.add(test::bisscRegister(3'100'000, 0x7E, 0x12));
+    const auto& g = *s.groupsOf("bissc")[0];
+    EXPECT_EQ(g.count, 3u);
+    ASSERT_EQ(g.pause_ns.count(), 1u);
+    EXPECT_DOUBLE_EQ(g.pause_ns.min(), 1'000'000);
+}
+
 TEST(CaptureStats, SeveralBusesKeepSeparateGroups) {
     CaptureStats s;
     auto f = test::facts(10'000'000);

@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <regex>
+#include <sstream>
 
 #include "core/atomic_file.h"
 #include "report/capture_stats.h"
@@ -53,6 +54,22 @@ TEST(TextReport, HasFactsCountsTimingPositionAndFaults) {
     EXPECT_NE(r.find("|#"), std::string::npos);  // a text histogram
     EXPECT_NE(r.find("Faults: 1 event with errors"), std::string::npos) << r;
     EXPECT_NE(r.find("0.012300000 s"), std::string::npos) << r;  // the faulty frame's time
+}
+
+TEST(TextReport, TimingHeadingsSitOverTheirColumns) {
+    const std::string r = renderTextReport(faultyBiss());
+    std::istringstream in(r);
+    std::string line, heading, row;
+    while (std::getline(in, line)) {
+        if (line.rfind("  frame timing", 0) == 0) heading = line;
+        if (line.rfind("    line_delay_ns", 0) == 0) row = line;
+    }
+    ASSERT_FALSE(heading.empty()) << r;
+    ASSERT_FALSE(row.empty()) << r;
+    // Right-aligned columns: each heading ends where the numbers under it end.
+    EXPECT_EQ(heading.size(), row.size()) << heading << "\n" << row;
+    const auto n_end = heading.find(" n ") + 2;
+    EXPECT_EQ(row.substr(n_end - 3, 3), "500") << heading << "\n" << row;
 }
 
 TEST(TextReport, CleanCaptureSaysNoFaults) {
