@@ -27,6 +27,9 @@ bool isActiveLowFlag(const std::string& key) {
 }  // namespace
 
 bool isTimingField(const std::string& key) {
+    // A moment ("request_start_ns": when the TMCL request began) is not a duration: its
+    // spread is only the capture's length.
+    if (endsWith(key, "start_ns") || endsWith(key, "end_ns")) return false;
     return endsWith(key, "_ns") || endsWith(key, "_us") || endsWith(key, "_hz") ||
            endsWith(key, "_cycles") || key == "repeats";
 }

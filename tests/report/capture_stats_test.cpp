@@ -120,6 +120,15 @@ TEST(CaptureStats, OverlappingEventsHaveNoPauseBetweenThem) {
     EXPECT_DOUBLE_EQ(g.pause_ns.min(), 1'000'000);
 }
 
+TEST(CaptureStats, MomentsAreNotTimingFields) {
+    EXPECT_TRUE(isTimingField("rtt_ns"));
+    EXPECT_TRUE(isTimingField("line_delay_ns"));
+    EXPECT_TRUE(isTimingField("clock_hz"));
+    EXPECT_FALSE(isTimingField("request_start_ns"));  // when, not how long
+    EXPECT_FALSE(isTimingField("end_ns"));
+    EXPECT_FALSE(isTimingField("position"));
+}
+
 TEST(CaptureStats, SeveralBusesKeepSeparateGroups) {
     CaptureStats s;
     auto f = test::facts(10'000'000);
