@@ -35,6 +35,7 @@ void QuantileSketch::add(double v) {
     }
     ++count_;
     sum_ += v;
+    linear_.add(v);
     if (v != std::floor(v)) all_integers_ = false;
     if (std::fabs(v) < kZero) {
         ++zeros_;
@@ -77,20 +78,16 @@ double QuantileSketch::quantile(double q) const {
             found = true;
         }
     });
+    // The linear bins' answer when they are finer here than a bucket (or still exact).
+    const double resolution = linear_.resolution();
+    if (resolution == 0 || resolution < std::fabs(result) * (kGamma - 1))
+        result = linear_.valueAtRank(rank);
     if (all_integers_) result = std::round(result);
     return std::clamp(result, min_, max_);
 }
 
 std::vector<std::uint64_t> QuantileSketch::histogram(int bins) const {
-    if (count_ == 0 || bins <= 0) return {};
-    std::vector<std::uint64_t> out(std::size_t(bins), 0);
-    const double width = (max_ - min_) / bins;
-    forEachBucket([&](double value, std::uint64_t n) {
-        value = std::clamp(value, min_, max_);
-        int b = width > 0 ? int((value - min_) / width) : 0;
-        out[std::size_t(std::clamp(b, 0, bins - 1))] += n;
-    });
-    return out;
+    return linear_.histogram(bins, min_, max_);
 }
 
 }  // namespace busdecode

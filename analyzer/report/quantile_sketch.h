@@ -5,9 +5,14 @@
 // the number of buckets grows with the logarithm of the value range, not with the count.
 // Minimum and maximum are kept exactly, and each bucket answers with the mean of the
 // values it holds (exact when they are all equal, as integer fields mostly are).
+// Beside the buckets, a LinearHistogram: exact while it has seen few values, and then
+// finer than 1 % wherever the values' spread is narrow (clock jitter). Quantiles come
+// from whichever of the two is finer at that value; histograms from the linear one.
 #include <cstdint>
 #include <map>
 #include <vector>
+
+#include "linear_histogram.h"
 
 namespace busdecode {
 
@@ -27,8 +32,9 @@ public:
     // q in [0, 1]; 0 and 1 give the exact min and max. NaN when empty.
     double quantile(double q) const;
     double median() const { return quantile(0.5); }
-    // Counts in `bins` equal-width bins between min() and max() (approximate: each bucket
-    // counts where its representative value falls). Empty when nothing was added.
+    // Counts in `bins` equal-width bins between min() and max() (exact for the first
+    // LinearHistogram::kBins values, then within one of its bins). Empty when nothing
+    // was added.
     std::vector<std::uint64_t> histogram(int bins) const;
 
 private:
@@ -42,6 +48,7 @@ private:
     void forEachBucket(F&& f) const;  // ascending value order: f(value, count)
 
     std::map<int, Bucket> positive_, negative_;  // bucket index -> values
+    LinearHistogram linear_;
     std::uint64_t zeros_ = 0;
     std::uint64_t count_ = 0;
     double sum_ = 0, min_ = 0, max_ = 0;
