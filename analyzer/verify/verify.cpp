@@ -44,8 +44,12 @@ int runVerify(const DecodeArgs& args) {
             any_error = any_error || v.input_error;
             any_fail = any_fail || !v.passed();
         }
+        // One line per unreadable capture, naming it once (most messages start with it).
         for (const auto& v : verdicts)
-            if (v.input_error) fmt::print(stderr, "decode verify: {}: {}\n", v.capture, v.error);
+            if (v.input_error) {
+                const bool named = v.error.rfind(v.capture + ":", 0) == 0;
+                fmt::print(stderr, "decode verify: {}{}\n", named ? "" : v.capture + ": ", v.error);
+            }
         return any_error ? 2 : any_fail ? 1 : 0;
     } catch (const InputError& e) {
         std::fflush(stdout);

@@ -227,6 +227,10 @@ TEST(VerifyCli, UnreadableCaptureIsAnErrorExitTwo) {
                                     rules, "--junit", dir() + "/err.xml"});
     EXPECT_EQ(r.status, 2) << r.out << r.err;
     EXPECT_NE(r.out.find("ERROR " + dir() + "/missing.vcd"), std::string::npos) << r.out;
+    // One line on stderr, naming the file once.
+    EXPECT_EQ(r.err, "decode verify: " + dir() +
+                         "/missing.vcd: cannot open: No such file or "
+                         "directory\n");
     const auto j = readJunit(test::readFile(dir() + "/err.xml"));
     EXPECT_EQ(j.error, "");
     EXPECT_EQ(j.errors, 1);
