@@ -48,6 +48,10 @@ void AtomicFile::commit() {
     }
 }
 
+void checkWritable(const std::string& path) {
+    AtomicFile probe(path);  // removed again without commit()
+}
+
 void writeFileAtomically(const std::string& path, std::string_view text) {
     AtomicFile out(path);
     out.put(text);

@@ -29,4 +29,9 @@ private:
 // The whole text at once (reports, JUnit).
 void writeFileAtomically(const std::string& path, std::string_view text);
 
+// Throws the InputError writing `path` would throw (no such directory, no permission),
+// having created and removed a temporary file beside it: an output written at the end of
+// a long run is checked before the run.
+void checkWritable(const std::string& path);
+
 }  // namespace busdecode

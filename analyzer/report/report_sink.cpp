@@ -24,7 +24,10 @@ bool wantsHtml(const std::string& path) {
 // Streams the events into CaptureStats; renders and writes the file at the end.
 class ReportSink : public OutputSink {
 public:
-    explicit ReportSink(std::string path) : path_(std::move(path)), html_(wantsHtml(path_)) {}
+    // The report is written once the capture is decoded: a bad path fails before that.
+    explicit ReportSink(std::string path) : path_(std::move(path)), html_(wantsHtml(path_)) {
+        checkWritable(path_);
+    }
     void begin(const CaptureFacts& facts) override { stats_.begin(facts); }
     void onEvent(const Event& e, const CaptureFacts&) override { stats_.add(e); }
     void end(const CaptureFacts& facts) override {

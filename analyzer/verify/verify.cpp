@@ -24,6 +24,7 @@ int runVerify(const DecodeArgs& args) {
         const DecodeChoice choice = combineDecodeChoice(rules, args.protos, args.maps, args.opts);
         const auto requests = buildRequests(choice.protos, choice.maps, choice.opts);
         if (args.captures.empty()) throw InputError("decode verify: no capture given");
+        if (!args.junit.empty()) checkWritable(args.junit);  // before a long batch, not after
 
         OpenOptions open;
         open.rate_hz = args.rate_hz > 0 ? args.rate_hz : rules.decode.rate_hz;

@@ -237,6 +237,31 @@ TEST(VerifyCli, UnreadableCaptureIsAnErrorExitTwo) {
     EXPECT_EQ(j.errors_attr, 1);
 }
 
+TEST(VerifyCli, UnwritableOutputsFailBeforeAnyCaptureIsDecoded) {
+    // A JUnit or report path in a directory that does not exist is found out at once,
+    // not after a long batch: nothing is decoded, nothing is left behind.
+    const auto caps = capturesOf("bissc");
+    const std::string rules = rulesFile("bissc.toml", test::kBisscRules);
+    const std::string nowhere = dir() + "/no/such/dir";
+    auto r =
+        test::runDecode({"verify", caps[0].path, "--rules", rules, "--junit", nowhere + "/j.xml"});
+    EXPECT_EQ(r.status, 2);
+    EXPECT_EQ(r.out, "");
+    EXPECT_EQ(r.err, "decode verify: " + nowhere +
+                         "/j.xml: cannot write: No such file or "
+                         "directory\n");
+    r = test::runDecode({caps[0].path, "--proto", "bissc", "--report", nowhere + "/r.html"});
+    EXPECT_EQ(r.status, 2);
+    EXPECT_EQ(r.out, "");
+    EXPECT_EQ(r.err, "decode: " + nowhere + "/r.html: cannot write: No such file or directory\n");
+    // A writable path keeps no probe file behind.
+    r = test::runDecode({caps[0].path, "--proto", "bissc", "--report", dir() + "/probe.txt"});
+    EXPECT_EQ(r.status, 0) << r.err;
+    for (const auto& entry : std::filesystem::directory_iterator(dir()))
+        EXPECT_EQ(entry.path().filename().string().find(".tmp-"), std::string::npos)
+            << entry.path();
+}
+
 TEST(VerifyCli, BadRulesExitTwoWithFileLineAndKey) {
     const auto caps = capturesOf("bissc");
     const std::string rules =
