@@ -22,9 +22,10 @@ public:
     // Counts in `bins` equal-width bins over [lo, hi] (each value, or each bin's mean,
     // clamped into the range). Empty when nothing was added or bins <= 0.
     std::vector<std::uint64_t> histogram(int bins, double lo, double hi) const;
-    // The value of 0-based rank `rank` in ascending order (the mean of its bin once the
-    // bins are laid), and how far from the true value it can be (0 while exact).
+    // The value of 0-based rank `rank` in ascending order: exact while the first values
+    // are kept, then the mean of the bin it falls in.
     double valueAtRank(std::uint64_t rank) const;
+    // How far valueAtRank() can be from the true value: a bin's width, 0 while exact.
     double resolution() const { return laid_ ? width_ : 0.0; }
 
 private:
