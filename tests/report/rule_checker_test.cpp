@@ -87,6 +87,12 @@ TEST(RuleChecker, FaultsAreCountedByKindMostFrequentFirst) {
     EXPECT_EQ(o.message,
               "4 events with errors (limit 0), first at 3.700 ms; by kind: short_frame 3, crc 1, "
               "glitch 1");
+    // Kinds beyond the 64th are counted together.
+    auto many = cleanBiss();
+    for (int i = 0; i < 70; ++i)
+        many[std::size_t(i)].error("kind" + std::to_string(100 + i));
+    const auto& m = find(check(kBissRules, many), "bissc.max_faults");
+    EXPECT_NE(m.message.find("kind163 1, others 6"), std::string::npos) << m.message;
     // Clean traffic names no kinds.
     EXPECT_EQ(find(check(kBissRules, cleanBiss()), "bissc.max_faults").message,
               "0 events with errors (limit 0)");
