@@ -3,6 +3,7 @@
 
 #include "bissc_decoder.h"
 #include "bissc_options.h"
+#include "bissc_width_finder.h"
 
 namespace busdecode {
 
@@ -20,7 +21,10 @@ DecoderInfo bisscInfo() {
         {"sl", true, {"slo", "data"}, "slave data SL (as seen at the master)"},
     };
     info.options = {
-        intOption("bits", "26", 0, 64, "data bits between CDS and nE (position, MT+ST)"),
+        intOption("bits", "26", 0, 64,
+                  "data bits between CDS and nE (position, MT+ST); auto: the width under which "
+                  "the first frames' CRCs are right",
+                  true),
         intOption("st_bits", "auto", 0, 64,
                   "single-turn field width, LSB aligned (auto: bits - mt_bits)", true),
         intOption("mt_bits", "0", 0, 64, "multi-turn field width, above the single-turn field"),
@@ -79,8 +83,25 @@ BisscSettings BisscSettings::from(const Options& o) {
     return s;
 }
 
+namespace {
+
+// A BisscDecoder, or with bits=auto the finder that picks its width first.
+class BisscFactory : public DecoderFactory {
+public:
+    const DecoderInfo& info() const override { return info_; }
+    std::unique_ptr<Decoder> create(const Options& o) const override {
+        if (o.isAuto("bits")) return std::make_unique<BisscWidthFinder>(o);
+        return std::make_unique<BisscDecoder>(o);
+    }
+
+private:
+    DecoderInfo info_ = bisscInfo();
+};
+
+}  // namespace
+
 std::shared_ptr<const DecoderFactory> makeBisscFactory() {
-    return std::make_shared<SimpleFactory<BisscDecoder>>(bisscInfo());
+    return std::make_shared<BisscFactory>();
 }
 
 }  // namespace busdecode

@@ -72,14 +72,14 @@ struct Collect : OutputSink {
     void onEvent(const Event& e, const CaptureFacts&) override { events.push_back(e); }
 };
 
-std::vector<Event> decodeFile(const std::string& path,
-                              std::map<std::string, std::string> map = {}) {
+std::vector<Event> decodeFile(const std::string& path, std::map<std::string, std::string> map = {},
+                              const std::string& bits = "32") {
     registerBissc();
     auto reader = openCapture(path, OpenOptions{});
     DecoderRequest r;
     r.proto = "bissc";
     r.map = std::move(map);
-    r.options = {{"bits", "32"}};
+    r.options = {{"bits", bits}};
     Session s({r}, *reader, path);
     Collect sink;
     s.addSink(&sink);
@@ -142,6 +142,26 @@ TEST(RenishawVcd, Mb5uVcdFilesMatchReference) {
         if (rate == "250khz") map = {{"ma", "D1"}, {"sl", "D3"}};  // unnamed probes there
         const auto frames = decodeFile(base() + "vcd/" + name, map);
         expectFrames(frames, referenceFor(name), 1.0);
+    }
+}
+
+TEST(RenishawAutoWidth, EveryFileFindsThirtyTwoBits) {
+    // bits=auto on the real captures (1 to 5 frames each, the MB5U clocking past the stop
+    // bit): the reference frames, as with bits=32.
+    for (const std::string rate : {"250kHz", "1MHz", "2MHz", "5MHz", "10MHz"}) {
+        SCOPED_TRACE(rate);
+        const std::string name = "renishaw_biss_" + rate;
+        const auto frames = decodeFile(base() + "sr/" + name + ".sr", {}, "auto");
+        expectFrames(frames, referenceFor(name + ".sr"), 1.0);
+        for (const auto& f : frames)
+            EXPECT_EQ(intField(f, "bits"), 32);
+    }
+    for (const std::string rate : {"250khz", "1mhz", "2mhz", "5mhz", "10mhz"}) {
+        SCOPED_TRACE(rate);
+        std::map<std::string, std::string> map;
+        if (rate == "250khz") map = {{"ma", "D1"}, {"sl", "D3"}};
+        const std::string name = "mb5u_" + rate + ".vcd";
+        expectFrames(decodeFile(base() + "vcd/" + name, map, "auto"), referenceFor(name), 1.0);
     }
 }
 

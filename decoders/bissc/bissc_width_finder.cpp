@@ -1,0 +1,155 @@
+#include "bissc_width_finder.h"
+
+#include <string>
+
+#include "bissc_decoder.h"
+#include "bissc_options.h"
+
+namespace busdecode {
+
+namespace {
+
+constexpr int kDefaultBits = 26;  // the contract's default, when nothing fits
+constexpr int kMaxBits = 64;
+
+// Counts a candidate width's clean frames; drops every event.
+class FrameScore : public EventSink {
+public:
+    void onEvent(Event&& e) override {
+        if (e.type != "frame") return;
+        const Value* crc = e.get("crc_ok");
+        if (!crc || isNull(*crc) || asInt(*crc) == 0) return;
+        for (const auto& err : e.errors)
+            if (err != "error_bit" && err != "warning_bit" && err != "timeout_short" &&
+                err != "glitch")
+                return;  // stop_bit, crc, short_frame, ...: this width does not fit
+        ++clean;
+    }
+    std::uint64_t clean = 0;
+};
+
+}  // namespace
+
+BisscWidthFinder::BisscWidthFinder(const Options& options) : options_(options) {
+    // Anything wrong besides the width is reported now, as with a fixed width: the check
+    // a BisscDecoder makes, for the widest frame.
+    Options widest = options_;
+    widest.setRaw("bits", std::to_string(kMaxBits));
+    (void)BisscSettings::from(widest);
+}
+
+BisscWidthFinder::~BisscWidthFinder() = default;
+
+std::unique_ptr<Decoder> BisscWidthFinder::makeDecoder(int bits) const {
+    Options o = options_;
+    o.setRaw("bits", std::to_string(bits));
+    try {
+        return std::make_unique<BisscDecoder>(o);
+    } catch (const InputError&) {
+        return nullptr;  // e.g. st_bits + mt_bits wider than this width
+    }
+}
+
+void BisscWidthFinder::start(const DecoderContext& ctx) {
+    Decoder::start(ctx);
+    held_.clear();
+    held_.reserve(kLearnEdges);
+    last_advance_ = kNoTick;
+    decoder_.reset();
+    width_ = 0;
+}
+
+void BisscWidthFinder::hold(const Held& h) {
+    held_.push_back(h);
+    const double span_s = double(h.t - held_.front().t) * tb().secondsPerTick();
+    if (held_.size() >= kLearnEdges || span_s >= kLearnSeconds) decide();
+}
+
+void BisscWidthFinder::edge(Tick t, int role, bool level) {
+    if (decoder_)
+        decoder_->edge(t, role, level);
+    else
+        hold({t, role, level, false});
+}
+
+void BisscWidthFinder::edges(const Edge* first, const Edge* last, const int* role_of_line) {
+    for (; first != last && !decoder_; ++first)
+        hold({first->t, role_of_line[first->line], first->level != 0, false});
+    if (first != last) decoder_->edges(first, last, role_of_line);  // the block loop
+}
+
+void BisscWidthFinder::glitch(Tick t, int role) {
+    if (decoder_)
+        decoder_->glitch(t, role);
+    else
+        hold({t, role, false, true});
+}
+
+void BisscWidthFinder::advance(Tick now) {
+    if (decoder_) {
+        decoder_->advance(now);
+        return;
+    }
+    last_advance_ = now;
+    // A live capture that goes quiet still gets its frames within kLearnSeconds.
+    if (!held_.empty() && double(now - held_.front().t) * tb().secondsPerTick() >= kLearnSeconds)
+        decide();
+}
+
+void BisscWidthFinder::finish(Tick end) {
+    if (!decoder_) decide(end);
+    decoder_->finish(end);
+}
+
+Tick BisscWidthFinder::watermark(Tick now) const {
+    if (decoder_) return decoder_->watermark(now);
+    // Every event still to come starts at a held edge or later.
+    return held_.empty() ? now : std::min(now, held_.front().t);
+}
+
+void BisscWidthFinder::replay(Decoder& d, const std::vector<Held>& held) {
+    for (const auto& h : held)
+        if (h.glitch)
+            d.glitch(h.t, h.role);
+        else
+            d.edge(h.t, h.role, h.level);
+}
+
+void BisscWidthFinder::decide(Tick end) {
+    int best = 0;
+    std::uint64_t best_clean = 0;
+    const Tick last = held_.empty() ? ctx_.capture_start : held_.back().t;
+    for (int bits = 1; bits <= kMaxBits; ++bits) {
+        auto candidate = makeDecoder(bits);
+        if (!candidate) continue;
+        FrameScore score;
+        DecoderContext ctx = ctx_;
+        ctx.sink = &score;
+        candidate->start(ctx);
+        replay(*candidate, held_);
+        // Mid-capture, only the frames that ended among the held edges count (the one in
+        // progress is not over yet); at the end, every frame the capture holds.
+        if (end != kNoTick)
+            candidate->finish(end);
+        else
+            candidate->advance(last);
+        if (score.clean >= best_clean && score.clean > 0) {  // ties: the larger width
+            best = bits;
+            best_clean = score.clean;
+        }
+    }
+    width_ = best ? best : kDefaultBits;
+    decoder_ = makeDecoder(width_);
+    if (!decoder_) {  // st_bits + mt_bits wider than the default: the widest frame
+        width_ = kMaxBits;
+        decoder_ = makeDecoder(width_);  // checked in the constructor
+    }
+    decoder_->start(ctx_);
+    replay(*decoder_, held_);
+    if (last_advance_ != kNoTick && (held_.empty() || last_advance_ > held_.back().t))
+        decoder_->advance(last_advance_);
+    held_.clear();
+    held_.shrink_to_fit();
+}
+
+}  // namespace busdecode

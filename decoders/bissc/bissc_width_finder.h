@@ -1,0 +1,65 @@
+#pragma once
+// `--opt bits=auto`: the position width found from the traffic, for an encoder whose data
+// length is not known (a RESOLUTE sends 32 bits, a 36-bit one 36; the default is 26).
+//
+// The first edges are held back (at most kLearnEdges of them, or kLearnSeconds of
+// capture); each width from 1 to 64 then decodes them, and the width under which the most
+// frames are clean wins: CRC right, a low stop bit, no fault but nE/nW (which the encoder
+// reports whatever the width). A wrong width passes a 6-bit CRC and the stop bit by chance
+// once in 128 frames (a longer one, whose stop bit falls in the timeout, once in 64), so
+// with a few frames the true width stands alone. Ties (one frame, or a standing encoder
+// whose frames repeat) go to the larger width: every width below the true one may pass by
+// chance, above it only the few the master clocks past the stop bit.
+// Then a BisscDecoder of that width decodes the held edges and everything after them, so
+// the events are those of `--opt bits=N`. Without a clean frame, the default 26 is used.
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "core/decoder.h"
+#include "core/options.h"
+
+namespace busdecode {
+
+class BisscWidthFinder : public Decoder {
+public:
+    static constexpr std::size_t kLearnEdges = 20000;  // about 200 frames of 26 bits
+    static constexpr double kLearnSeconds = 0.5;       // bounds --follow's wait
+
+    // `options` with bits=auto; the other options as given (checked here, for width 64).
+    explicit BisscWidthFinder(const Options& options);
+    ~BisscWidthFinder() override;
+
+    void start(const DecoderContext& ctx) override;
+    void edge(Tick t, int role, bool level) override;
+    void edges(const Edge* first, const Edge* last, const int* role_of_line) override;
+    void advance(Tick now) override;
+    void finish(Tick end) override;
+    void glitch(Tick t, int role) override;
+    Tick watermark(Tick now) const override;
+
+    // The width chosen (0 while still learning).
+    int width() const { return width_; }
+
+private:
+    struct Held {
+        Tick t;
+        int role;
+        bool level;
+        bool glitch;  // a removed pulse (Decoder::glitch), not an edge
+    };
+    void hold(const Held& h);
+    // Picks the width, starts the real decoder, hands it the held edges. At the end of
+    // the capture (`end` set) the candidates see it too, so that the last frames count.
+    void decide(Tick end = kNoTick);
+    static void replay(Decoder& d, const std::vector<Held>& held);
+    std::unique_ptr<Decoder> makeDecoder(int bits) const;  // nullptr: options don't fit
+
+    Options options_;
+    std::vector<Held> held_;
+    Tick last_advance_ = kNoTick;
+    std::unique_ptr<Decoder> decoder_;  // once the width is known
+    int width_ = 0;
+};
+
+}  // namespace busdecode

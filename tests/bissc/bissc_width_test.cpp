@@ -1,0 +1,168 @@
+// `--opt bits=auto`: the width found from the first frames' CRCs gives exactly the
+// events of `--opt bits=N`, for moving and standing encoders, short and long captures.
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "bissc_generator.h"
+#include "bissc_test_util.h"
+#include "bissc_width_finder.h"
+#include "core/registry.h"
+#include "sinks/event_format.h"
+
+using namespace busdecode;
+using namespace busdecode::test;
+
+namespace {
+
+std::string asJsonl(const std::vector<Event>& events, const Timebase& tb) {
+    std::string out;
+    for (const auto& e : events)
+        out += eventToJson(e, tb) + "\n";
+    return out;
+}
+
+// `frames` frames of `bits` bits at 2 MHz, positions from `position(i)`.
+template <class Position>
+Waveform capture(int bits, int frames, Position position, int extra_clocks = 0) {
+    BisscGenConfig cfg;
+    cfg.clock_hz = 2e6;
+    cfg.bits = bits;
+    cfg.line_delay_ns = 120;
+    cfg.timeout_ns = 15000;
+    cfg.seed = std::uint32_t(bits);
+    BisscGenerator gen(cfg);
+    for (int i = 0; i < frames; ++i) {
+        BisscFrameSpec f;
+        f.data = position(i);
+        f.ne = i % 7 != 3;  // nE active now and then: still a clean frame for the finder
+        f.extra_clocks = extra_clocks;
+        gen.addFrame(f);
+    }
+    return gen.build();
+}
+
+std::uint64_t mask(int bits) {
+    return bits >= 64 ? ~0ull : (1ull << bits) - 1;
+}
+
+void expectSameAsFixedWidth(const Waveform& w, int bits) {
+    const auto fixed = decodeBissc(w, {{"bits", std::to_string(bits)}});
+    const auto automatic = decodeBissc(w, {{"bits", "auto"}});
+    ASSERT_FALSE(ofType(fixed, "frame").empty());
+    ASSERT_FALSE(ofType(automatic, "frame").empty());
+    EXPECT_EQ(intField(ofType(automatic, "frame").front(), "bits"), bits);
+    EXPECT_EQ(asJsonl(automatic, w.timebase), asJsonl(fixed, w.timebase));
+}
+
+}  // namespace
+
+TEST(BisscWidth, AutoFindsEveryWidthOfAMovingEncoder) {
+    for (int bits : {1, 8, 13, 18, 26, 32, 36, 48, 64}) {
+        SCOPED_TRACE(bits);
+        std::mt19937_64 rng{std::uint64_t(bits)};
+        expectSameAsFixedWidth(capture(bits, 12, [&](int) { return rng() & mask(bits); }), bits);
+    }
+}
+
+TEST(BisscWidth, AutoFindsTheWidthOfAStandingEncoder) {
+    // Every frame the same: a wrong width that passes by chance passes in every frame, so
+    // the tie goes to the larger width, and below the true width nothing else fits.
+    for (std::uint64_t pos : {0x0ull, 0xFFFFFFFFull, 0x12345678ull, 0x80000001ull}) {
+        SCOPED_TRACE(pos);
+        expectSameAsFixedWidth(capture(32, 6, [&](int) { return pos; }), 32);
+    }
+}
+
+TEST(BisscWidth, AutoFromASingleFrame) {
+    // A capture of one frame (as the MB5U captures are): it ends in the slave's timeout,
+    // and still counts. In these frames a shorter width passes too (12 and 9 bits: CRC
+    // and stop bit right by chance); the tie goes to the longer one, the true width.
+    for (std::uint64_t pos : {0x9B05C2F1ull, 0x8B6EB381ull, 0x2F70115Aull}) {
+        SCOPED_TRACE(pos);
+        expectSameAsFixedWidth(capture(32, 1, [&](int) { return pos; }), 32);
+    }
+}
+
+TEST(BisscWidth, AutoWhenTheCaptureEndsInTheTimeout) {
+    // The capture stops while SL is still low after the stop bit: the frame is complete,
+    // closed only by the end of the capture, and counts for the width.
+    Waveform w = capture(32, 1, [](int) { return 0x8B6EB381ull; });
+    ASSERT_EQ(w.edges.back().line, 1u);  // SL rising at the end of the timeout
+    ASSERT_EQ(w.edges.back().level, 1);
+    w.end = w.edges.back().t - 1;
+    w.edges.pop_back();
+    expectSameAsFixedWidth(w, 32);
+}
+
+TEST(BisscWidth, AutoWithClocksPastTheStopBit) {
+    // The MB5U clocks four bits past the stop bit (the real RESOLUTE captures).
+    std::mt19937_64 rng(5);
+    expectSameAsFixedWidth(capture(
+                               32, 8, [&](int) { return rng() & mask(32); }, 4),
+                           32);
+}
+
+TEST(BisscWidth, LongCaptureDecidesEarlyAndHandsOverEveryEdge) {
+    // More edges than the finder holds: it decides mid-capture, and the events are those
+    // of the fixed width, the held ones and the later ones alike.
+    std::mt19937_64 rng(9);
+    const Waveform w = capture(26, 400, [&](int) { return rng() & mask(26); });
+    ASSERT_GT(w.edges.size(), BisscWidthFinder::kLearnEdges);
+    expectSameAsFixedWidth(w, 26);
+
+    registerBissc();
+    const auto* factory = Registry::instance().find("bissc");
+    ASSERT_NE(factory, nullptr);
+    std::map<std::string, std::string> given{{"bits", "auto"}};
+    auto decoder = factory->create(Options::resolve(factory->info(), given));
+    auto* finder = dynamic_cast<BisscWidthFinder*>(decoder.get());
+    ASSERT_NE(finder, nullptr);
+    struct Count : EventSink {
+        int frames = 0;
+        void onEvent(Event&& e) override { frames += e.type == "frame"; }
+    } sink;
+    DecoderContext ctx;
+    ctx.timebase = w.timebase;
+    ctx.initial_levels = {w.initial[0], w.initial[1]};
+    ctx.sink = &sink;
+    finder->start(ctx);
+    std::size_t fed = 0;
+    for (; fed < w.edges.size() && finder->width() == 0; ++fed)
+        finder->edge(w.edges[fed].t, int(w.edges[fed].line), w.edges[fed].level != 0);
+    EXPECT_EQ(fed, BisscWidthFinder::kLearnEdges);
+    EXPECT_EQ(finder->width(), 26);
+    EXPECT_GT(sink.frames, 100);  // the held frames are out before the capture ends
+}
+
+TEST(BisscWidth, WithoutACleanFrameTheDefaultWidth) {
+    // Frames the master cuts short after 10 clocks, too few for a CRC under any width
+    // (a wrong CRC would not do: some width passes it by chance): the default, 26.
+    BisscGenConfig cfg;
+    cfg.clock_hz = 1e6;
+    cfg.bits = 20;
+    BisscGenerator gen(cfg);
+    for (int i = 0; i < 3; ++i) {
+        BisscFrameSpec f;
+        f.data = 0x5A5A5u + std::uint64_t(i);
+        f.truncate_after = 10;
+        gen.addFrame(f);
+    }
+    const auto frames = ofType(decodeBissc(gen.build(), {{"bits", "auto"}}), "frame");
+    ASSERT_EQ(frames.size(), 3u);
+    for (const auto& f : frames) {
+        EXPECT_EQ(intField(f, "bits"), 26);
+        EXPECT_TRUE(f.hasError("short_frame"));
+    }
+}
+
+TEST(BisscWidth, OtherOptionsAreStillChecked) {
+    registerBissc();
+    const auto* factory = Registry::instance().find("bissc");
+    ASSERT_NE(factory, nullptr);
+    std::map<std::string, std::string> given{
+        {"bits", "auto"}, {"st_bits", "40"}, {"mt_bits", "30"}};
+    EXPECT_THROW(factory->create(Options::resolve(factory->info(), given)), InputError);
+    given = {{"bits", "auto"}, {"mt_bits", "12"}};  // st_bits auto: the rest of the width
+    EXPECT_NO_THROW(factory->create(Options::resolve(factory->info(), given)));
+}
