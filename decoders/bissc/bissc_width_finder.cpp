@@ -62,7 +62,15 @@ void BisscWidthFinder::start(const DecoderContext& ctx) {
 void BisscWidthFinder::hold(const Held& h) {
     held_.push_back(h);
     const double span_s = double(h.t - held_.front().t) * tb().secondsPerTick();
-    if (held_.size() >= kLearnEdges || span_s >= kLearnSeconds) decide();
+    if (held_.size() >= kLearnEdges || span_s >= kLearnSeconds) {
+        decide();
+    } else if (held_.size() % kTryEvery == 0) {
+        // Decided early when one width stands out (no other fits even a quarter as many
+        // frames: a wrong width fits one frame in 128 by chance), so that a short capture
+        // still being written (--follow) shows its frames before the learning span ends.
+        const Scores s = score(kNoTick);
+        if (s.best_clean >= kSureFrames && s.runner_up_clean * 4 <= s.best_clean) decide();
+    }
 }
 
 void BisscWidthFinder::edge(Tick t, int role, bool level) {
@@ -115,16 +123,15 @@ void BisscWidthFinder::replay(Decoder& d, const std::vector<Held>& held) {
             d.edge(h.t, h.role, h.level);
 }
 
-void BisscWidthFinder::decide(Tick end) {
-    int best = 0;
-    std::uint64_t best_clean = 0;
+BisscWidthFinder::Scores BisscWidthFinder::score(Tick end) const {
+    Scores out;
     const Tick last = held_.empty() ? ctx_.capture_start : held_.back().t;
     for (int bits = 1; bits <= kMaxBits; ++bits) {
         auto candidate = makeDecoder(bits);
         if (!candidate) continue;
-        FrameScore score;
+        FrameScore frames;
         DecoderContext ctx = ctx_;
-        ctx.sink = &score;
+        ctx.sink = &frames;
         candidate->start(ctx);
         replay(*candidate, held_);
         // Mid-capture, only the frames that ended among the held edges count (the one in
@@ -133,11 +140,19 @@ void BisscWidthFinder::decide(Tick end) {
             candidate->finish(end);
         else
             candidate->advance(last);
-        if (score.clean >= best_clean && score.clean > 0) {  // ties: the larger width
-            best = bits;
-            best_clean = score.clean;
+        if (frames.clean > 0 && frames.clean >= out.best_clean) {  // ties: the larger width
+            if (out.best) out.runner_up_clean = std::max(out.runner_up_clean, out.best_clean);
+            out.best = bits;
+            out.best_clean = frames.clean;
+        } else {
+            out.runner_up_clean = std::max(out.runner_up_clean, frames.clean);
         }
     }
+    return out;
+}
+
+void BisscWidthFinder::decide(Tick end) {
+    const int best = score(end).best;
     width_ = best ? best : kDefaultBits;
     decoder_ = makeDecoder(width_);
     if (!decoder_) {  // st_bits + mt_bits wider than the default: the widest frame

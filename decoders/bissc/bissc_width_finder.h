@@ -3,7 +3,8 @@
 // length is not known (a RESOLUTE sends 32 bits, a 36-bit one 36; the default is 26).
 //
 // The first edges are held back (at most kLearnEdges of them, or kLearnSeconds of
-// capture); each width from 1 to 64 then decodes them, and the width under which the most
+// capture, less when one width soon stands out: kTryEvery, kSureFrames); each width from
+// 1 to 64 then decodes them, and the width under which the most
 // frames are clean wins: CRC right, a low stop bit, no fault but nE/nW (which the encoder
 // reports whatever the width). A wrong width passes a 6-bit CRC and the stop bit by chance
 // once in 128 frames (a longer one, whose stop bit falls in the timeout, once in 64), so
@@ -25,6 +26,12 @@ class BisscWidthFinder : public Decoder {
 public:
     static constexpr std::size_t kLearnEdges = 20000;  // about 200 frames of 26 bits
     static constexpr double kLearnSeconds = 0.5;       // bounds --follow's wait
+    // Every kTryEvery held edges the widths are tried; kSureFrames clean frames under
+    // one width, and under no other a quarter as many, decide at once (a standing
+    // encoder, whose frames repeat, waits for the full span: a wrong width may fit them
+    // all).
+    static constexpr std::size_t kTryEvery = 2000;
+    static constexpr std::uint64_t kSureFrames = 8;
 
     // `options` with bits=auto; the other options as given (checked here, for width 64).
     explicit BisscWidthFinder(const Options& options);
@@ -48,7 +55,13 @@ private:
         bool level;
         bool glitch;  // a removed pulse (Decoder::glitch), not an edge
     };
+    struct Scores {
+        int best = 0;  // the width with the most clean frames (0: none has any)
+        std::uint64_t best_clean = 0, runner_up_clean = 0;
+    };
     void hold(const Held& h);
+    // Every width's clean frames among the held edges (at the capture's `end` if set).
+    Scores score(Tick end) const;
     // Picks the width, starts the real decoder, hands it the held edges. At the end of
     // the capture (`end` set) the candidates see it too, so that the last frames count.
     void decide(Tick end = kNoTick);

@@ -103,21 +103,20 @@ TEST(BisscWidth, AutoWithClocksPastTheStopBit) {
                            32);
 }
 
-TEST(BisscWidth, LongCaptureDecidesEarlyAndHandsOverEveryEdge) {
-    // More edges than the finder holds: it decides mid-capture, and the events are those
-    // of the fixed width, the held ones and the later ones alike.
-    std::mt19937_64 rng(9);
-    const Waveform w = capture(26, 400, [&](int) { return rng() & mask(26); });
-    ASSERT_GT(w.edges.size(), BisscWidthFinder::kLearnEdges);
-    expectSameAsFixedWidth(w, 26);
-
+// Feeds `w` edge by edge to a width finder until it has chosen; returns the edges fed
+// and the frames it had output by then.
+struct Fed {
+    std::size_t edges = 0;
+    int width = 0;
+    int frames = 0;
+};
+Fed feedUntilDecided(const Waveform& w) {
     registerBissc();
     const auto* factory = Registry::instance().find("bissc");
-    ASSERT_NE(factory, nullptr);
     std::map<std::string, std::string> given{{"bits", "auto"}};
     auto decoder = factory->create(Options::resolve(factory->info(), given));
     auto* finder = dynamic_cast<BisscWidthFinder*>(decoder.get());
-    ASSERT_NE(finder, nullptr);
+    if (!finder) return {};
     struct Count : EventSink {
         int frames = 0;
         void onEvent(Event&& e) override { frames += e.type == "frame"; }
@@ -127,12 +126,39 @@ TEST(BisscWidth, LongCaptureDecidesEarlyAndHandsOverEveryEdge) {
     ctx.initial_levels = {w.initial[0], w.initial[1]};
     ctx.sink = &sink;
     finder->start(ctx);
-    std::size_t fed = 0;
-    for (; fed < w.edges.size() && finder->width() == 0; ++fed)
-        finder->edge(w.edges[fed].t, int(w.edges[fed].line), w.edges[fed].level != 0);
-    EXPECT_EQ(fed, BisscWidthFinder::kLearnEdges);
-    EXPECT_EQ(finder->width(), 26);
-    EXPECT_GT(sink.frames, 100);  // the held frames are out before the capture ends
+    Fed out;
+    for (; out.edges < w.edges.size() && finder->width() == 0; ++out.edges) {
+        const Edge& e = w.edges[out.edges];
+        finder->edge(e.t, int(e.line), e.level != 0);
+    }
+    out.width = finder->width();
+    out.frames = sink.frames;
+    return out;
+}
+
+TEST(BisscWidth, MovingEncoderIsDecidedAfterAFewFrames) {
+    // One width stands alone after the first try: the held frames come out at once, and
+    // the events are those of the fixed width, the held ones and the later ones alike.
+    std::mt19937_64 rng(9);
+    const Waveform w = capture(26, 400, [&](int) { return rng() & mask(26); });
+    ASSERT_GT(w.edges.size(), BisscWidthFinder::kLearnEdges);
+    expectSameAsFixedWidth(w, 26);
+    const Fed fed = feedUntilDecided(w);
+    EXPECT_EQ(fed.edges, BisscWidthFinder::kTryEvery);
+    EXPECT_EQ(fed.width, 26);
+    EXPECT_GT(fed.frames, 10);  // out before the capture ends
+}
+
+TEST(BisscWidth, StandingEncoderWaitsForTheWholeSpan) {
+    // Every frame the same, and a shorter width (12) fits them too: no early decision;
+    // the full span is held, and the tie goes to the true width.
+    const Waveform w = capture(32, 400, [](int) { return 0x8B6EB381ull; });
+    ASSERT_GT(w.edges.size(), BisscWidthFinder::kLearnEdges);
+    expectSameAsFixedWidth(w, 32);
+    const Fed fed = feedUntilDecided(w);
+    EXPECT_EQ(fed.edges, BisscWidthFinder::kLearnEdges);
+    EXPECT_EQ(fed.width, 32);
+    EXPECT_GT(fed.frames, 100);
 }
 
 TEST(BisscWidth, WithoutACleanFrameTheDefaultWidth) {
