@@ -2,15 +2,15 @@
 // `--opt bits=auto`: the position width found from the traffic, for an encoder whose data
 // length is not known (a RESOLUTE sends 32 bits, a 36-bit one 36; the default is 26).
 //
-// The first edges are held back (at most kLearnEdges of them, or kLearnSeconds of
-// capture, less when one width soon stands out: kTryEvery, kSureFrames); each width from
-// 1 to 64 then decodes them, and the width under which the most
-// frames are clean wins: CRC right, a low stop bit, no fault but nE/nW (which the encoder
-// reports whatever the width). A wrong width passes a 6-bit CRC and the stop bit by chance
-// once in 128 frames (a longer one, whose stop bit falls in the timeout, once in 64), so
-// with a few frames the true width stands alone. Ties (one frame, or a standing encoder
-// whose frames repeat) go to the larger width: every width below the true one may pass by
-// chance, above it only the few the master clocks past the stop bit.
+// The first edges are held back (at most kLearnEdges of them or kLearnSeconds of capture,
+// fewer when one width soon stands out: kTryEvery, kSureFrames); each width from 1 to 64
+// decodes them, and the width under which the most frames are clean wins: CRC right, a
+// low stop bit, no fault but nE/nW (which the encoder reports whatever the width). A wrong
+// width passes a 6-bit CRC and the stop bit by chance once in 128 frames (a longer one,
+// whose stop bit falls in the timeout, once in 64), so with a few frames the true width
+// stands alone. Ties (one frame, or a standing encoder whose frames repeat) go to the
+// larger width: every width below the true one may pass by chance, above it only the few
+// the master clocks past the stop bit.
 // Then a BisscDecoder of that width decodes the held edges and everything after them, so
 // the events are those of `--opt bits=N`. Without a clean frame, the default 26 is used.
 #include <cstdint>
