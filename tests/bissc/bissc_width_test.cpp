@@ -66,8 +66,8 @@ TEST(BisscWidth, AutoFindsEveryWidthOfAMovingEncoder) {
 }
 
 TEST(BisscWidth, AutoFindsTheWidthOfAStandingEncoder) {
-    // Every frame the same: a wrong width that passes by chance passes in every frame, so
-    // the tie goes to the larger width, and below the true width nothing else fits.
+    // Every frame the same: a shorter width that passes by chance passes in every frame,
+    // and the tie goes to the longer width, the true one.
     for (std::uint64_t pos : {0x0ull, 0xFFFFFFFFull, 0x12345678ull, 0x80000001ull}) {
         SCOPED_TRACE(pos);
         expectSameAsFixedWidth(capture(32, 6, [&](int) { return pos; }), 32);
