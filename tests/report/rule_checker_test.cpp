@@ -91,7 +91,8 @@ TEST(RuleChecker, FaultsAreCountedByKindMostFrequentFirst) {
     auto many = cleanBiss();
     for (int i = 0; i < 70; ++i)
         many[std::size_t(i)].error("kind" + std::to_string(100 + i));
-    const auto& m = find(check(kBissRules, many), "bissc.max_faults");
+    const auto many_out = check(kBissRules, many);
+    const auto& m = find(many_out, "bissc.max_faults");
     EXPECT_NE(m.message.find("kind163 1, others 6"), std::string::npos) << m.message;
     // Clean traffic names no kinds.
     EXPECT_EQ(find(check(kBissRules, cleanBiss()), "bissc.max_faults").message,
