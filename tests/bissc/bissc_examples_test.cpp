@@ -142,3 +142,21 @@ TEST(BisscExamples, DecodeCliPrintsTheGoldenOutput) {
         EXPECT_EQ(r.out, readFile(capturePath(goldenPathFor(ex.file))));
     }
 }
+
+TEST(BisscExamples, DecodeCliWithBitsAutoPrintsTheGoldenOutput) {
+    // Through the plugin the CLI loads: `--opt bits=auto` in place of each example's
+    // width (26, 24, 32) prints the same golden lines.
+    for (const auto& ex : bisscExamples()) {
+        SCOPED_TRACE(ex.file);
+        std::vector<std::string> args = {
+            capturePath(ex.file), "--proto", "bissc", "--format", "jsonl", "--opt", "bits=auto"};
+        for (const auto& [k, v] : ex.options) {
+            if (k == "bits") continue;
+            args.push_back("--opt");
+            args.push_back(k + "=" + v);
+        }
+        const auto r = runDecode(args);
+        ASSERT_EQ(r.status, 0) << r.err;
+        EXPECT_EQ(r.out, readFile(capturePath(goldenPathFor(ex.file))));
+    }
+}
