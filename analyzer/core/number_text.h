@@ -23,6 +23,27 @@ inline char* hexDigits(char* end, std::uint64_t v) {
 }
 }  // namespace detail
 
+// The SI prefix that brings a magnitude below 1000: siPower(12.5e6) = 2, and
+// siPrefix(2) = "M"; v / siScale(2) = 12.5. Up to E (10^18).
+inline int siPower(double magnitude) {
+    int p = 0;
+    while (magnitude >= 1000 && p < 6) {
+        magnitude /= 1000;
+        ++p;
+    }
+    return p;
+}
+inline const char* siPrefix(int power) {
+    static const char* const kPrefix[] = {"", "k", "M", "G", "T", "P", "E"};
+    return kPrefix[power];
+}
+inline double siScale(int power) {
+    double s = 1;
+    for (int i = 0; i < power; ++i)
+        s *= 1000;
+    return s;
+}
+
 // Upper-case hexadecimal digits, zero-padded to a minimum width: "{:0{}X}".
 inline void appendHex(std::string& out, std::uint64_t v, int min_digits) {
     char buf[16];

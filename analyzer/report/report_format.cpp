@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "capture_stats.h"
+#include "core/number_text.h"
 #include "sinks/event_format.h"
 
 namespace busdecode {
@@ -18,12 +19,11 @@ bool endsWith(const std::string& s, std::string_view suffix) {
 }  // namespace
 
 std::string formatFrequency(double hz) {
-    // Pick the unit after rounding, so 999999.9999 Hz reads 1.000 MHz, not 1000.000 kHz.
-    const double a = std::fabs(hz) * (1 + 1e-7);
-    if (a >= 1e9) return fmt::format("{:.3f} GHz", hz / 1e9);
-    if (a >= 1e6) return fmt::format("{:.3f} MHz", hz / 1e6);
-    if (a >= 1e3) return fmt::format("{:.3f} kHz", hz / 1e3);
-    return fmt::format("{:.3g} Hz", hz);
+    // Pick the unit after rounding, so 999999.9999 Hz reads 1.000 MHz, not 1000.000 kHz;
+    // GHz at most (bus clocks).
+    const int p = std::min(siPower(std::fabs(hz) * (1 + 1e-7)), 3);
+    if (p == 0) return fmt::format("{:.3g} Hz", hz);
+    return fmt::format("{:.3f} {}Hz", hz / siScale(p), siPrefix(p));
 }
 
 std::string formatFieldValue(const std::string& key, double v) {

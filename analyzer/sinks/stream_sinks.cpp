@@ -1,12 +1,12 @@
 #include "stream_sinks.h"
 
-#include <iterator>
 #include <map>
 #include <string>
 #include <vector>
 
 #include <fmt/format.h>
 
+#include "core/number_text.h"
 #include "event_format.h"
 
 namespace busdecode {
@@ -20,16 +20,10 @@ struct Tally {
     std::uint64_t faulty = 0;
 };
 
-// "100 MS/s", "1 GS/s" (a VCD in ns), "1 TS/s" (ps): the tick as a rate, with the SI
-// prefix that keeps the number below 1000.
+// "100 MS/s", "1 GS/s" (a VCD in ns), "1 TS/s" (ps): the tick as a rate.
 std::string rateText(double hz) {
-    static const char* const kPrefix[] = {"", "k", "M", "G", "T", "P", "E"};
-    std::size_t i = 0;
-    while (hz >= 1000 && i + 1 < std::size(kPrefix)) {
-        hz /= 1000;
-        ++i;
-    }
-    return fmt::format("{:.6g} {}S/s", hz, kPrefix[i]);
+    const int p = siPower(hz);
+    return fmt::format("{:.6g} {}S/s", hz / siScale(p), siPrefix(p));
 }
 
 class TextSink : public OutputSink {

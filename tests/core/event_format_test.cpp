@@ -137,3 +137,14 @@ TEST(HexText, AsTheFormatStringHad) {
         ASSERT_EQ(got, "x" + fmt::format("{:0{}X}", v, width));
     }
 }
+
+TEST(NumberText, SiPrefixBringsTheMagnitudeBelowAThousand) {
+    EXPECT_EQ(siPower(999), 0);
+    EXPECT_EQ(siPower(1000), 1);
+    EXPECT_EQ(siPower(24e6), 2);
+    EXPECT_STREQ(siPrefix(siPower(24e6)), "M");
+    EXPECT_DOUBLE_EQ(24e6 / siScale(2), 24.0);
+    EXPECT_STREQ(siPrefix(siPower(1e12)), "T");
+    EXPECT_EQ(siPower(1e30), 6);  // E at most
+    EXPECT_STREQ(siPrefix(6), "E");
+}

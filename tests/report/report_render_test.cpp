@@ -10,6 +10,7 @@
 #include "report/capture_stats.h"
 #include "report/frame_layout.h"
 #include "report/html_report.h"
+#include "report/report_format.h"
 #include "report/report_sink.h"
 #include "report/text_report.h"
 #include "support/paths.h"
@@ -37,6 +38,16 @@ std::size_t countOf(const std::string& text, const std::string& what) {
     for (auto p = text.find(what); p != std::string::npos; p = text.find(what, p + 1))
         ++n;
     return n;
+}
+
+TEST(ReportFormat, FrequencyInHzKhzMhzGhz) {
+    EXPECT_EQ(formatFrequency(12), "12 Hz");
+    EXPECT_EQ(formatFrequency(250e3), "250.000 kHz");
+    EXPECT_EQ(formatFrequency(999999.9999), "1.000 MHz");  // the unit after rounding
+    EXPECT_EQ(formatFrequency(12.5e6), "12.500 MHz");
+    EXPECT_EQ(formatFrequency(2.4e9), "2.400 GHz");
+    EXPECT_EQ(formatFrequency(5e12), "5000.000 GHz");  // GHz at most
+    EXPECT_EQ(formatFrequency(-250e3), "-250.000 kHz");
 }
 
 TEST(TextReport, HasFactsCountsTimingPositionAndFaults) {
