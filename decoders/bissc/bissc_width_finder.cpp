@@ -9,7 +9,7 @@ namespace busdecode {
 
 namespace {
 
-constexpr int kDefaultBits = 26;  // the contract's default, when nothing fits
+constexpr int kDefaultBits = BisscSettings{}.bits;  // the contract's default, when nothing fits
 constexpr int kMaxBits = 64;
 
 // Counts a candidate width's clean frames; drops every event.
@@ -59,17 +59,20 @@ void BisscWidthFinder::start(const DecoderContext& ctx) {
     width_ = 0;
 }
 
+bool BisscWidthFinder::spanOver(Tick now) const {
+    return !held_.empty() && double(now - held_.front().t) * tb().secondsPerTick() >= kLearnSeconds;
+}
+
 void BisscWidthFinder::hold(const Held& h) {
     held_.push_back(h);
-    const double span_s = double(h.t - held_.front().t) * tb().secondsPerTick();
-    if (held_.size() >= kLearnEdges || span_s >= kLearnSeconds) {
-        decide();
+    if (held_.size() >= kLearnEdges || spanOver(h.t)) {
+        decide(score(kNoTick).best);
     } else if (held_.size() % kTryEvery == 0) {
         // Decided early when one width stands out (no other fits even a quarter as many
         // frames: a wrong width fits one frame in 128 by chance), so that a short capture
         // still being written (--follow) shows its frames before the learning span ends.
         const Scores s = score(kNoTick);
-        if (s.best_clean >= kSureFrames && s.runner_up_clean * 4 <= s.best_clean) decide();
+        if (s.best_clean >= kSureFrames && s.runner_up_clean * 4 <= s.best_clean) decide(s.best);
     }
 }
 
@@ -100,12 +103,11 @@ void BisscWidthFinder::advance(Tick now) {
     }
     last_advance_ = now;
     // A live capture that goes quiet still gets its frames within kLearnSeconds.
-    if (!held_.empty() && double(now - held_.front().t) * tb().secondsPerTick() >= kLearnSeconds)
-        decide();
+    if (spanOver(now)) decide(score(kNoTick).best);
 }
 
 void BisscWidthFinder::finish(Tick end) {
-    if (!decoder_) decide(end);
+    if (!decoder_) decide(score(end).best);
     decoder_->finish(end);
 }
 
@@ -151,8 +153,7 @@ BisscWidthFinder::Scores BisscWidthFinder::score(Tick end) const {
     return out;
 }
 
-void BisscWidthFinder::decide(Tick end) {
-    const int best = score(end).best;
+void BisscWidthFinder::decide(int best) {
     width_ = best ? best : kDefaultBits;
     decoder_ = makeDecoder(width_);
     if (!decoder_) {  // st_bits + mt_bits wider than the default: the widest frame

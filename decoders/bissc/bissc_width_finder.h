@@ -60,11 +60,14 @@ private:
         std::uint64_t best_clean = 0, runner_up_clean = 0;
     };
     void hold(const Held& h);
-    // Every width's clean frames among the held edges (at the capture's `end` if set).
+    // Every width's clean frames among the held edges. At the end of the capture (`end`
+    // set) the candidates see it too, so that the last frames count.
     Scores score(Tick end) const;
-    // Picks the width, starts the real decoder, hands it the held edges. At the end of
-    // the capture (`end` set) the candidates see it too, so that the last frames count.
-    void decide(Tick end = kNoTick);
+    // Starts the real decoder with width `best` (0: none fits, the default) and hands it
+    // the held edges.
+    void decide(int best);
+    // kLearnSeconds of capture have passed since the first held edge.
+    bool spanOver(Tick now) const;
     static void replay(Decoder& d, const std::vector<Held>& held);
     std::unique_ptr<Decoder> makeDecoder(int bits) const;  // nullptr: options don't fit
 

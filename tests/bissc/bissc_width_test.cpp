@@ -22,9 +22,11 @@ std::string asJsonl(const std::vector<Event>& events, const Timebase& tb) {
     return out;
 }
 
-// `frames` frames of `bits` bits at 2 MHz, positions from `position(i)`.
+// `frames` frames of `bits` bits at 2 MHz, positions from `position(i)`; the master
+// clocks `extra_clocks` past the stop bit, or stops after `truncate_after` rising edges.
 template <class Position>
-Waveform capture(int bits, int frames, Position position, int extra_clocks = 0) {
+Waveform capture(int bits, int frames, Position position, int extra_clocks = 0,
+                 int truncate_after = -1) {
     BisscGenConfig cfg;
     cfg.clock_hz = 2e6;
     cfg.bits = bits;
@@ -37,6 +39,7 @@ Waveform capture(int bits, int frames, Position position, int extra_clocks = 0) 
         f.data = position(i);
         f.ne = i % 7 != 3;  // nE active now and then: still a clean frame for the finder
         f.extra_clocks = extra_clocks;
+        f.truncate_after = truncate_after;
         gen.addFrame(f);
     }
     return gen.build();
@@ -164,17 +167,9 @@ TEST(BisscWidth, StandingEncoderWaitsForTheWholeSpan) {
 TEST(BisscWidth, WithoutACleanFrameTheDefaultWidth) {
     // Frames the master cuts short after 10 clocks, too few for a CRC under any width
     // (a wrong CRC would not do: some width passes it by chance): the default, 26.
-    BisscGenConfig cfg;
-    cfg.clock_hz = 1e6;
-    cfg.bits = 20;
-    BisscGenerator gen(cfg);
-    for (int i = 0; i < 3; ++i) {
-        BisscFrameSpec f;
-        f.data = 0x5A5A5u + std::uint64_t(i);
-        f.truncate_after = 10;
-        gen.addFrame(f);
-    }
-    const auto frames = ofType(decodeBissc(gen.build(), {{"bits", "auto"}}), "frame");
+    const Waveform w = capture(
+        20, 3, [](int i) { return 0x5A5A5u + std::uint64_t(i); }, 0, 10);
+    const auto frames = ofType(decodeBissc(w, {{"bits", "auto"}}), "frame");
     ASSERT_EQ(frames.size(), 3u);
     for (const auto& f : frames) {
         EXPECT_EQ(intField(f, "bits"), 26);
