@@ -376,8 +376,14 @@ void Session::run() {
     im.levels = reader.initialLevels();
     facts_.start = reader.startTick();
     im.now = facts_.start;
+    // Fields are built only if a sink reads them or a decoder correlates (it looks at
+    // the other decoders' events in the window).
+    bool fields_wanted = im.keep_window;
+    for (const auto* sink : sinks_)
+        fields_wanted |= sink->readsFields();
     for (int s = 0; s < int(im.slots.size()); ++s) {
         auto& slot = im.slots[s];
+        slot.ctx.fields_wanted = fields_wanted;
         slot.ctx.timebase = reader.timebase();
         slot.ctx.capture_start = facts_.start;
         for (int line : slot.role_line)

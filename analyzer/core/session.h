@@ -45,6 +45,9 @@ public:
     virtual void begin(const CaptureFacts& facts) { (void)facts; }
     virtual void onEvent(const Event& e, const CaptureFacts& facts) = 0;
     virtual void end(const CaptureFacts& facts) { (void)facts; }
+    // False for a sink that never reads Event::fields of an event with a summary (text
+    // output): with only such sinks, decoders may leave fields out.
+    virtual bool readsFields() const { return true; }
 };
 
 class Session {

@@ -21,6 +21,7 @@ LowerStack::~LowerStack() = default;
 
 void LowerStack::start(const DecoderContext& upper_ctx) {
     DecoderContext c = upper_ctx;
+    c.fields_wanted = true;  // the upper decoder reads the lower one's fields
     c.sink = this;
     c.initial_levels.assign(lower_roles_, -1);
     for (std::size_t u = 0; u < role_map_.size() && u < upper_ctx.initial_levels.size(); ++u)

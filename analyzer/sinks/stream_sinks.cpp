@@ -29,6 +29,8 @@ std::string rateText(double hz) {
 class TextSink : public OutputSink {
 public:
     explicit TextSink(std::FILE* out) : out_(out) {}
+    // appendEventText prints the summary, and fields only for events without one.
+    bool readsFields() const override { return false; }
     void begin(const CaptureFacts& f) override {
         tallies_.clear();
         last_tally_ = nullptr;

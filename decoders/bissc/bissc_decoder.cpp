@@ -390,7 +390,6 @@ void BisscDecoder::closeFrame(Tick end, Tick timeout_end, const char* error, boo
     Event e = freshEvent();
     e.proto = "bissc";
     e.type = "frame";
-    e.fields.reserve(20);  // the frame's fields, added below
     e.start = f_.start;
     e.end = std::max(timeout_end != kNoTick ? timeout_end : end, f_.start);
     for (const auto& err : f_.errors)
@@ -435,37 +434,41 @@ void BisscDecoder::closeFrame(Tick end, Tick timeout_end, const char* error, boo
     const bool acked = f_.ack != kNoTick;
     const std::int64_t delay_ns = acked ? std::llround(tb().toNsF(f_.delay)) : 0;
 
-    // Fields in place, Null where the frame did not get that far (one frame every few
-    // microseconds of capture: no temporaries).
-    auto add = [&e](std::string_view key, bool known, auto v) {
-        if (known)
-            e.add(key, v);
-        else
-            e.add(key, Null{});
-    };
-    add("position", complete, pos);
-    add("st", complete, lowBits(pos, s_.st_bits));
-    add("mt", complete, s_.mt_bits > 0 ? lowBits(pos >> s_.st_bits, s_.mt_bits) : std::uint64_t(0));
-    add("nE", complete, std::int64_t(f_.ne));
-    add("nW", complete, std::int64_t(f_.nw));
-    add("crc_rx", complete && s_.crc_bits > 0, std::int64_t(f_.crc_rx));
-    add("crc_ok", complete && s_.crc_bits > 0, crc_good);
-    add("cds", f_.cds >= 0, std::int64_t(f_.cds));
-    add("cdm", timed_out, std::int64_t(cdm));
-    add("line_delay_ns", acked, delay_ns);
-    add("proc_cycles", f_.start_index >= 0, std::int64_t(f_.proc_cycles));
-    add("ack_delay_ns", acked,
-        acked ? std::int64_t(std::llround(tb().toNsF(f_.ack_delay))) : std::int64_t(0));
-    add("clock_hz", clocked,
-        clocked ? std::round(1.0 / (period * tb().secondsPerTick())) : 0.0);  // whole Hz
-    add("timeout_ns", timed_out, timeout_ns);
-    add("extra_clocks", f_.stop_index >= 0,
-        std::int64_t(f_.rises.size()) - 1 - std::int64_t(f_.stop_index));
-    e.add("clocks", std::int64_t(f_.rises.size()));
-    e.add("bits", std::int64_t(s_.bits));
-    e.add("crc_bits", std::int64_t(s_.crc_bits));
-    e.add("hold_cdm", f_.from_hold);
-    e.add("retriggered", f_.retriggered);
+    if (fieldsWanted()) {  // the summary below is always set
+        e.fields.reserve(20);
+        // Fields in place, Null where the frame did not get that far (one frame every few
+        // microseconds of capture: no temporaries).
+        auto add = [&e](std::string_view key, bool known, auto v) {
+            if (known)
+                e.add(key, v);
+            else
+                e.add(key, Null{});
+        };
+        add("position", complete, pos);
+        add("st", complete, lowBits(pos, s_.st_bits));
+        add("mt", complete,
+            s_.mt_bits > 0 ? lowBits(pos >> s_.st_bits, s_.mt_bits) : std::uint64_t(0));
+        add("nE", complete, std::int64_t(f_.ne));
+        add("nW", complete, std::int64_t(f_.nw));
+        add("crc_rx", complete && s_.crc_bits > 0, std::int64_t(f_.crc_rx));
+        add("crc_ok", complete && s_.crc_bits > 0, crc_good);
+        add("cds", f_.cds >= 0, std::int64_t(f_.cds));
+        add("cdm", timed_out, std::int64_t(cdm));
+        add("line_delay_ns", acked, delay_ns);
+        add("proc_cycles", f_.start_index >= 0, std::int64_t(f_.proc_cycles));
+        add("ack_delay_ns", acked,
+            acked ? std::int64_t(std::llround(tb().toNsF(f_.ack_delay))) : std::int64_t(0));
+        add("clock_hz", clocked,
+            clocked ? std::round(1.0 / (period * tb().secondsPerTick())) : 0.0);  // whole Hz
+        add("timeout_ns", timed_out, timeout_ns);
+        add("extra_clocks", f_.stop_index >= 0,
+            std::int64_t(f_.rises.size()) - 1 - std::int64_t(f_.stop_index));
+        e.add("clocks", std::int64_t(f_.rises.size()));
+        e.add("bits", std::int64_t(s_.bits));
+        e.add("crc_bits", std::int64_t(s_.crc_bits));
+        e.add("hold_cdm", f_.from_hold);
+        e.add("retriggered", f_.retriggered);
+    }
 
     // "pos={} (0x{:X}) nE={} nW={} crc=0x{:02X} {} cds={} cdm={} delay={}ns busy={}",
     // at most about 180 characters.

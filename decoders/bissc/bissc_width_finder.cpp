@@ -134,6 +134,7 @@ BisscWidthFinder::Scores BisscWidthFinder::score(Tick end) const {
         FrameScore frames;
         DecoderContext ctx = ctx_;
         ctx.sink = &frames;
+        ctx.fields_wanted = true;  // FrameScore reads crc_ok
         candidate->start(ctx);
         replay(*candidate, held_);
         // Mid-capture, only the frames that ended among the held edges count (the one in

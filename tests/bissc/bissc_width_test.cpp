@@ -7,6 +7,7 @@
 #include "bissc_generator.h"
 #include "bissc_test_util.h"
 #include "bissc_width_finder.h"
+#include "capture/capture_reader.h"
 #include "core/registry.h"
 #include "sinks/event_format.h"
 
@@ -56,6 +57,25 @@ void expectSameAsFixedWidth(const Waveform& w, int bits) {
     ASSERT_FALSE(ofType(automatic, "frame").empty());
     EXPECT_EQ(intField(ofType(automatic, "frame").front(), "bits"), bits);
     EXPECT_EQ(asJsonl(automatic, w.timebase), asJsonl(fixed, w.timebase));
+}
+
+// The events of a session whose only sink, like text output, reads no fields.
+std::vector<Event> decodeForText(const Waveform& w, const std::string& bits) {
+    registerBissc();
+    struct SummaryOnly : OutputSink {
+        std::vector<Event> events;
+        void onEvent(const Event& e, const CaptureFacts&) override { events.push_back(e); }
+        bool readsFields() const override { return false; }
+    } sink;
+    auto reader = memoryReader(w);
+    DecoderRequest r;
+    r.proto = "bissc";
+    r.map = {{"ma", "MA"}, {"sl", "SLO"}};
+    r.options = {{"bits", bits}};
+    Session s({r}, *reader, "memory");
+    s.addSink(&sink);
+    s.run();
+    return sink.events;
 }
 
 }  // namespace
@@ -186,4 +206,26 @@ TEST(BisscWidth, OtherOptionsAreStillChecked) {
     EXPECT_THROW(factory->create(Options::resolve(factory->info(), given)), InputError);
     given = {{"bits", "auto"}, {"mt_bits", "12"}};  // st_bits auto: the rest of the width
     EXPECT_NO_THROW(factory->create(Options::resolve(factory->info(), given)));
+}
+
+TEST(BisscWidth, TextOutputLeavesFieldsOutAndStillFindsTheWidth) {
+    // With only text output, frames come without fields (their summary says it all), but
+    // the width finder's candidates still get theirs: it reads crc_ok. 18 bits, not the
+    // default 26, so that a finder seeing no clean frame would show.
+    std::mt19937_64 rng{18};
+    const Waveform w = capture(18, 12, [&](int) { return rng() & mask(18); });
+    const auto fixed = decodeBissc(w, {{"bits", "18"}});
+    for (const std::string bits : {"18", "auto"}) {
+        SCOPED_TRACE(bits);
+        const auto text = decodeForText(w, bits);
+        ASSERT_EQ(text.size(), fixed.size());
+        for (std::size_t i = 0; i < text.size(); ++i) {
+            EXPECT_EQ(eventToText(text[i], w.timebase), eventToText(fixed[i], w.timebase));
+            EXPECT_EQ(text[i].errors, fixed[i].errors);
+            if (text[i].type == "frame") {
+                EXPECT_TRUE(text[i].fields.empty());
+                EXPECT_EQ(fixed[i].fields.size(), 20u);
+            }
+        }
+    }
 }

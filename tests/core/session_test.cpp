@@ -3,10 +3,13 @@
 // and cross-decoder correlation.
 #include <gtest/gtest.h>
 
+#include "capture/capture_reader.h"
 #include "core/event_window.h"
 #include "core/registry.h"
 #include "core/session.h"
+#include "core/stacked.h"
 #include "core/waveform.h"
+#include "sinks/stream_sinks.h"
 
 using namespace busdecode;
 
@@ -17,6 +20,10 @@ namespace {
 class RiseDecoder : public Decoder {
 public:
     explicit RiseDecoder(const Options& o) : tag_(o.text("tag")), correlate_(o.flag("correlate")) {}
+    void start(const DecoderContext& ctx) override {
+        Decoder::start(ctx);
+        fields_wanted.push_back(fieldsWanted());
+    }
     void edge(Tick t, int, bool level) override {
         if (!level) {
             fell_ = t;
@@ -52,6 +59,7 @@ public:
     }
     bool correlates() const override { return correlate_; }
     static std::vector<Tick> glitches;
+    static std::vector<bool> fields_wanted;  // what each decoder was told at its start
 
 private:
     std::string tag_;
@@ -59,6 +67,7 @@ private:
     Tick fell_ = kNoTick;
 };
 std::vector<Tick> RiseDecoder::glitches;
+std::vector<bool> RiseDecoder::fields_wanted;
 
 DecoderInfo riseInfo() {
     DecoderInfo d;
@@ -232,6 +241,66 @@ TEST(Session, CorrelationSeesOtherDecodersEventsByTime) {
     for (const auto& e : ev)
         if (e.type == "edge" && !first) first = &e;
     EXPECT_EQ(asInt(*first->get("peers")), 1);
+}
+
+namespace {
+
+// A sink that never reads fields (as text output) beside sinks that do.
+struct SummarySink : OutputSink {
+    int events = 0;
+    void onEvent(const Event&, const CaptureFacts&) override { ++events; }
+    bool readsFields() const override { return false; }
+};
+struct FieldSink : OutputSink {
+    void onEvent(const Event&, const CaptureFacts&) override {}
+};
+
+// What the decoders of a session over twoLines() are told: fieldsWanted(), per decoder.
+std::vector<bool> fieldsWantedWith(const std::vector<DecoderRequest>& requests,
+                                   const std::vector<OutputSink*>& sinks) {
+    const Waveform w = twoLines();
+    auto reader = memoryReader(w);
+    Session s(requests, *reader, "memory");
+    for (auto* sink : sinks)
+        s.addSink(sink);
+    RiseDecoder::fields_wanted.clear();
+    s.run();
+    return RiseDecoder::fields_wanted;
+}
+
+}  // namespace
+
+TEST(Session, FieldsAreWantedWhenASinkReadsThemOrADecoderCorrelates) {
+    const std::vector<DecoderRequest> two = {{"rise", {{"in", "a"}}, {{"tag", "other"}}},
+                                             {"rise", {{"in", "input"}}, {}}};
+    const std::vector<DecoderRequest> correlating = {
+        {"rise", {{"in", "a"}}, {{"tag", "other"}}},
+        {"rise", {{"in", "input"}}, {{"correlate", "1"}}}};
+    SummarySink text, text2;
+    FieldSink json;
+    EXPECT_EQ(fieldsWantedWith(two, {&text}), (std::vector<bool>{false, false}));
+    EXPECT_EQ(text.events, 4);  // the events still come out
+    EXPECT_EQ(fieldsWantedWith(two, {&text, &text2}), (std::vector<bool>{false, false}));
+    EXPECT_EQ(fieldsWantedWith(two, {&text, &json}), (std::vector<bool>{true, true}));
+    EXPECT_EQ(fieldsWantedWith(two, {&json}), (std::vector<bool>{true, true}));
+    // A correlating decoder reads the other decoder's events: all of them get fields.
+    EXPECT_EQ(fieldsWantedWith(correlating, {&text}), (std::vector<bool>{true, true}));
+}
+
+TEST(Session, TextOutputReadsNoFieldsJsonDoes) {
+    EXPECT_FALSE(makeTextSink(stdout)->readsFields());
+    EXPECT_TRUE(makeJsonlSink(stdout)->readsFields());
+}
+
+TEST(Session, AStackedDecodersLowerOneAlwaysAddsFields) {
+    // The upper decoder reads the lower one's fields, whatever the output wants.
+    LowerStack stack("rise", Options{}, {0}, [](Event&&) {});
+    DecoderContext upper;
+    upper.initial_levels = {1};
+    upper.fields_wanted = false;
+    RiseDecoder::fields_wanted.clear();
+    stack.start(upper);
+    EXPECT_EQ(RiseDecoder::fields_wanted, std::vector<bool>{true});
 }
 
 TEST(Session, BadOptionNamesDecoderAndValidValues) {
