@@ -173,7 +173,11 @@ int runDecode(const DecodeArgs& a) {
         for (auto& s : owned)
             sinks.push_back(s.get());
         if (lcm) sinks.push_back(lcm.get());
-        decodeCapture(capture, requests, open, sinks, a.realtime, &g_stop);
+        const CaptureFacts facts =
+            decodeCapture(capture, requests, open, sinks, a.realtime, &g_stop);
+        if (a.format == "jsonl")  // text output has them in its summary
+            for (const auto& hint : facts.advice)
+                fmt::print(stderr, "decode: {}: hint: {}\n", capture, hint);
         if (g_stop) break;
     }
     return 0;

@@ -3,6 +3,7 @@
 // its bound lines in time order (merged next-edge iteration, as in libscopehal): cost
 // grows with edges, not samples. No Qt in here.
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "decoder_info.h"
@@ -64,6 +65,10 @@ public:
     // True if this decoder may set Event::wants_correlation. The session keeps the
     // window of recent events (a copy of each) only when some decoder says so.
     virtual bool correlates() const { return false; }
+    // After finish(): advice on the capture as a whole, one line each, for whoever reads
+    // the output (an option that looks wrong, say). Not events: the events say what the
+    // traffic holds, this what to try next.
+    virtual std::vector<std::string> advice() const { return {}; }
 
     // The earliest start tick of any event this decoder may still emit. The session
     // releases events in time order up to the minimum over all decoders.

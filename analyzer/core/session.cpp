@@ -441,6 +441,10 @@ void Session::run() {
         slot.decoder->finish(facts_.end);
     }
     im.release(true);
+    facts_.advice.clear();
+    for (const auto& slot : im.slots)
+        for (const auto& a : slot.decoder->advice())
+            facts_.advice.push_back(slot.instance + ": " + a);
     facts_.bytes = reader.bytesRead();
     for (auto* s : sinks_)
         s->end(facts_);

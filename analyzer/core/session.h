@@ -35,6 +35,8 @@ struct CaptureFacts {
     std::vector<std::string> protos;  // instance names, in --proto order
     std::uint64_t edges = 0;          // edges read on the mapped lines
     std::uint64_t bytes = 0;
+    // The decoders' advice at the end (Decoder::advice), each as "instance: text".
+    std::vector<std::string> advice;
 };
 
 // The sinks: text, jsonl, report, LCM. The session calls begin, then onEvent in time

@@ -73,6 +73,8 @@ public:
                        types.empty() ? "no events" : types, t.faulty,
                        errs.empty() ? "" : " (" + errs + ")");
         }
+        for (const auto& a : f.advice)
+            fmt::print(out_, "# hint: {}\n", a);
         std::fflush(out_);
     }
 

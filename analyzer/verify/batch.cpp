@@ -73,7 +73,7 @@ CaptureVerdict verifyCapture(const std::string& capture, const Rules& rules,
     const auto t0 = std::chrono::steady_clock::now();
     try {
         RuleChecker checker(rules);
-        decodeCapture(capture, requests, open, {&checker});
+        v.hints = decodeCapture(capture, requests, open, {&checker}).advice;
         v.outcomes = checker.outcomes();
         v.events = checker.eventSummary();
     } catch (const InputError& e) {

@@ -131,8 +131,12 @@ std::string junitXml(const std::vector<CaptureVerdict>& all, const std::string& 
         for (const auto& o : v.outcomes)
             out += fmt::format("  {} {}: {}\n", o.passed ? "pass" : "FAIL", o.name(), o.message);
     }
-    x += fmt::format("    <system-out>{}</system-out>\n    <system-err></system-err>\n",
-                     xmlText(out));
+    std::string hints;  // as verify prints them on stderr
+    for (const auto& v : all)
+        for (const auto& h : v.hints)
+            hints += fmt::format("decode: {}: hint: {}\n", v.capture, h);
+    x += fmt::format("    <system-out>{}</system-out>\n    <system-err>{}</system-err>\n",
+                     xmlText(out), xmlText(hints));
     x += "  </testsuite>\n</testsuites>\n";
     return x;
 }

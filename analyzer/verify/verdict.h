@@ -15,8 +15,9 @@ struct CaptureVerdict {
     bool input_error = false;  // unreadable capture, unbound role...: exit 2
     std::string error;
     std::vector<RuleOutcome> outcomes;
-    std::string events;  // "bissc 1000 frames"
-    double seconds = 0;  // decode time
+    std::string events;              // "bissc 1000 frames"
+    double seconds = 0;              // decode time
+    std::vector<std::string> hints;  // the decoders' advice (CaptureFacts::advice)
     bool passed() const;
 };
 

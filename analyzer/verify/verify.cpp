@@ -31,11 +31,14 @@ int runVerify(const DecodeArgs& args) {
         BatchOptions batch;
         batch.jobs = args.jobs;
         batch.progress = ::isatty(STDERR_FILENO) && args.captures.size() > 1;
-        const auto verdicts = verifyCaptures(args.captures, rules, requests, open, batch,
-                                             [](const CaptureVerdict& v) {
-                                                 fmt::print("{}\n", verdictLine(v));
-                                                 std::fflush(stdout);
-                                             });
+        const auto verdicts = verifyCaptures(
+            args.captures, rules, requests, open, batch, [](const CaptureVerdict& v) {
+                fmt::print("{}\n", verdictLine(v));
+                std::fflush(stdout);
+                // stdout keeps one line per capture
+                for (const auto& h : v.hints)
+                    fmt::print(stderr, "decode: {}: hint: {}\n", v.capture, h);
+            });
         fmt::print("{}\n", summaryLine(verdicts));
         std::fflush(stdout);
         if (!args.junit.empty()) writeFileAtomically(args.junit, junitXml(verdicts, args.rules));

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <fmt/format.h>
+
 #include "core/bit_word.h"
 #include "core/crc.h"
 #include "core/number_text.h"
@@ -155,6 +157,7 @@ void BisscDecoder::beginFrame(Tick start, bool from_hold) {
 }
 
 void BisscDecoder::onMa(Tick t, bool level) {
+    ++slow_ma_edges_;
     if (!takeDueSamples(t)) {
         scheduleUpTo(double(t));
         sampler_.advanceTo(t);
@@ -203,6 +206,7 @@ void BisscDecoder::onMaAfterSamples(Tick t, bool level) {
 }
 
 void BisscDecoder::onSl(Tick t, bool level) {
+    ++slow_sl_edges_;
     scheduleUpTo(double(t));
     sampler_.lineEdge(t, level);
     sl_ = level;
@@ -488,6 +492,18 @@ void BisscDecoder::closeFrame(Tick end, Tick timeout_end, const char* error, boo
     if (f_.proc_cycles > 0) text.text(" busy=").dec(f_.proc_cycles);
     e.summary.assign(text.view());
 
+    ++frames_;
+    if (acked) {
+        ++answered_frames_;
+        const auto benign = [](const std::string& err) {
+            return err == "error_bit" || err == "warning_bit" || err == "timeout_short" ||
+                   err == "glitch";
+        };
+        if (complete && s_.crc_bits > 0 && crc_good &&
+            std::all_of(e.errors.begin(), e.errors.end(), benign))
+            ++clean_frames_;
+    }
+
     ControlBits bits;
     bits.start = e.start;
     bits.end = e.end;
@@ -499,6 +515,31 @@ void BisscDecoder::closeFrame(Tick end, Tick timeout_end, const char* error, boo
     f_.slot = Slot::Done;
     idle();
     if (feed_control) control_.push(bits);
+}
+
+std::vector<std::string> BisscDecoder::advice() const {
+    // Lines that change but never make an answered frame are not BiSS-C's MA and SL
+    // (swapped, or other signals mapped), or the slave is not there. kMinEdges: more than
+    // a stray pulse or two. Every edge takes the slow paths while no frame is answered.
+    constexpr std::uint64_t kMinEdges = 16;
+    if (answered_frames_ == 0 && slow_ma_edges_ + slow_sl_edges_ >= kMinEdges)
+        return {fmt::format(
+            "no frame got an answer from the slave ({} started; MA changed {} times, SL {} "
+            "times): check that MA (the master's clock) and SL are mapped to the right signals",
+            frames_, slow_ma_edges_, slow_sl_edges_)};
+    // Few clean frames: a wrong width or CRC passes one frame in 64-128 by chance, and
+    // faults in the traffic itself are rarely in most frames.
+    if (answered_frames_ == 0 || s_.crc_bits == 0 || clean_frames_ * 8 >= answered_frames_)
+        return {};
+    const std::string clean =
+        clean_frames_ == 0
+            ? fmt::format("none of the {} answered frames", answered_frames_)
+            : fmt::format("only {} of the {} answered frames", clean_frames_, answered_frames_);
+    return {fmt::format(
+        "{} came out clean (CRC right, stop bit low) with bits={}: check the data width "
+        "(--opt bits=auto finds it from the traffic), the CRC options, and that MA and SL are "
+        "not swapped",
+        clean, s_.bits)};
 }
 
 void BisscDecoder::finish(Tick end) {

@@ -38,6 +38,16 @@ public:
     void finish(Tick end) override;
     void glitch(Tick t, int role) override;
     Tick watermark(Tick now) const override;
+    // Advice when no answered frame came out clean (see cleanFrames()): the data width
+    // or the lines' mapping is the likely cause.
+    std::vector<std::string> advice() const override;
+
+    // Frames the slave answered (an ACK), and of those the clean ones: the CRC right, the
+    // stop bit low, no fault but those the encoder reports itself (nE, nW) or that do not
+    // depend on the framing (timeout_short, glitch). A wrong data width makes nearly every
+    // frame unclean (the width finder picks the width with the most clean frames).
+    std::uint64_t answeredFrames() const { return answered_frames_; }
+    std::uint64_t cleanFrames() const { return clean_frames_; }
 
 private:
     enum class State {
@@ -174,6 +184,9 @@ private:
     // floor(min(min_quiet_ + f_.delay, slave_timeout_)): for whole ticks n, n > it exactly
     // when double(n) is above that, without a conversion per edge.
     Tick quiet_ticks_ = 0;
+    std::uint64_t frames_ = 0, answered_frames_ = 0, clean_frames_ = 0;
+    // Edges that took the slow paths (onMa, onSl): all of them while no frame is running.
+    std::uint64_t slow_ma_edges_ = 0, slow_sl_edges_ = 0;
 };
 
 void BisscDecoder::edge(Tick t, int role, bool level) {

@@ -2,6 +2,8 @@
 
 #include <string>
 
+#include <fmt/format.h>
+
 #include "bissc_decoder.h"
 #include "bissc_options.h"
 
@@ -12,20 +14,10 @@ namespace {
 constexpr int kDefaultBits = BisscSettings{}.bits;  // the contract's default, when nothing fits
 constexpr int kMaxBits = 64;
 
-// Counts a candidate width's clean frames; drops every event.
-class FrameScore : public EventSink {
+// A candidate's events are not wanted: it counts its clean frames itself.
+class DropEvents : public EventSink {
 public:
-    void onEvent(Event&& e) override {
-        if (e.type != "frame") return;
-        const Value* crc = e.get("crc_ok");
-        if (!crc || isNull(*crc) || asInt(*crc) == 0) return;
-        for (const auto& err : e.errors)
-            if (err != "error_bit" && err != "warning_bit" && err != "timeout_short" &&
-                err != "glitch")
-                return;  // stop_bit, crc, short_frame, ...: this width does not fit
-        ++clean;
-    }
-    std::uint64_t clean = 0;
+    void onEvent(Event&&) override {}
 };
 
 }  // namespace
@@ -40,7 +32,7 @@ BisscWidthFinder::BisscWidthFinder(const Options& options) : options_(options) {
 
 BisscWidthFinder::~BisscWidthFinder() = default;
 
-std::unique_ptr<Decoder> BisscWidthFinder::makeDecoder(int bits) const {
+std::unique_ptr<BisscDecoder> BisscWidthFinder::makeDecoder(int bits) const {
     Options o = options_;
     o.setRaw("bits", std::to_string(bits));
     try {
@@ -131,10 +123,10 @@ BisscWidthFinder::Scores BisscWidthFinder::score(Tick end) const {
     for (int bits = 1; bits <= kMaxBits; ++bits) {
         auto candidate = makeDecoder(bits);
         if (!candidate) continue;
-        FrameScore frames;
+        DropEvents dropped;
         DecoderContext ctx = ctx_;
-        ctx.sink = &frames;
-        ctx.fields_wanted = true;  // FrameScore reads crc_ok
+        ctx.sink = &dropped;
+        ctx.fields_wanted = false;
         candidate->start(ctx);
         replay(*candidate, held_);
         // Mid-capture, only the frames that ended among the held edges count (the one in
@@ -143,18 +135,20 @@ BisscWidthFinder::Scores BisscWidthFinder::score(Tick end) const {
             candidate->finish(end);
         else
             candidate->advance(last);
-        if (frames.clean > 0 && frames.clean >= out.best_clean) {  // ties: the larger width
+        const std::uint64_t clean = candidate->cleanFrames();
+        if (clean > 0 && clean >= out.best_clean) {  // ties: the larger width
             if (out.best) out.runner_up_clean = std::max(out.runner_up_clean, out.best_clean);
             out.best = bits;
-            out.best_clean = frames.clean;
+            out.best_clean = clean;
         } else {
-            out.runner_up_clean = std::max(out.runner_up_clean, frames.clean);
+            out.runner_up_clean = std::max(out.runner_up_clean, clean);
         }
     }
     return out;
 }
 
 void BisscWidthFinder::decide(int best) {
+    found_ = best != 0;
     width_ = best ? best : kDefaultBits;
     decoder_ = makeDecoder(width_);
     if (!decoder_) {  // st_bits + mt_bits wider than the default: the widest frame
@@ -167,6 +161,18 @@ void BisscWidthFinder::decide(int best) {
         decoder_->advance(last_advance_);
     held_.clear();
     held_.shrink_to_fit();
+}
+
+std::vector<std::string> BisscWidthFinder::advice() const {
+    if (!decoder_ || found_) return decoder_ ? decoder_->advice() : std::vector<std::string>{};
+    // No width fitted. Without an answered frame, the decoder's advice says why (lines
+    // that never make a frame); with some, its width is the default, no guide to the width.
+    if (decoder_->answeredFrames() == 0) return decoder_->advice();
+    return {fmt::format(
+        "no data width from 1 to {} gives a clean frame (CRC right, stop bit low; {} frames "
+        "decoded with the default, bits={}): check that MA and SL are not swapped, and the "
+        "CRC options",
+        kMaxBits, decoder_->answeredFrames(), width_)};
 }
 
 }  // namespace busdecode

@@ -15,12 +15,15 @@
 // the events are those of `--opt bits=N`. Without a clean frame, the default 26 is used.
 #include <cstdint>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "core/decoder.h"
 #include "core/options.h"
 
 namespace busdecode {
+
+class BisscDecoder;
 
 class BisscWidthFinder : public Decoder {
 public:
@@ -44,6 +47,8 @@ public:
     void finish(Tick end) override;
     void glitch(Tick t, int role) override;
     Tick watermark(Tick now) const override;
+    // The chosen decoder's, or (no width fitted) advice to check the lines and the CRC.
+    std::vector<std::string> advice() const override;
 
     // The width chosen (0 while still learning).
     int width() const { return width_; }
@@ -69,13 +74,14 @@ private:
     // kLearnSeconds of capture have passed since the first held edge.
     bool spanOver(Tick now) const;
     static void replay(Decoder& d, const std::vector<Held>& held);
-    std::unique_ptr<Decoder> makeDecoder(int bits) const;  // nullptr: options don't fit
+    std::unique_ptr<BisscDecoder> makeDecoder(int bits) const;  // nullptr: options don't fit
 
     Options options_;
     std::vector<Held> held_;
     Tick last_advance_ = kNoTick;
-    std::unique_ptr<Decoder> decoder_;  // once the width is known
+    std::unique_ptr<BisscDecoder> decoder_;  // once the width is known
     int width_ = 0;
+    bool found_ = false;  // width_ fitted the traffic (not the default for want of one)
 };
 
 }  // namespace busdecode

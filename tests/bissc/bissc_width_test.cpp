@@ -209,9 +209,9 @@ TEST(BisscWidth, OtherOptionsAreStillChecked) {
 }
 
 TEST(BisscWidth, TextOutputLeavesFieldsOutAndStillFindsTheWidth) {
-    // With only text output, frames come without fields (their summary says it all), but
-    // the width finder's candidates still get theirs: it reads crc_ok. 18 bits, not the
-    // default 26, so that a finder seeing no clean frame would show.
+    // With only text output, frames come without fields (their summary says it all), and
+    // bits=auto still finds the width. 18 bits, not the default 26, so that a finder
+    // seeing no clean frame would show.
     std::mt19937_64 rng{18};
     const Waveform w = capture(18, 12, [&](int) { return rng() & mask(18); });
     const auto fixed = decodeBissc(w, {{"bits", "18"}});

@@ -109,6 +109,31 @@ TEST(Cli, TextHeaderGivesTheTickAsARateWithAnSIPrefix) {
     EXPECT_NE(r.out.find("(saleae-csv, 1 TS/s timebase)"), std::string::npos) << r.out;
 }
 
+TEST(Cli, AHintEndsTheTextWhenNoFrameIsCleanAndGoesToStderrWithJsonl) {
+    // 32-bit frames decoded with the default width, 26: every frame fails.
+    const std::string csv = sourceDir() + "/captures/bissc_10mhz_long_cable.csv";
+    const std::string hint =
+        "bissc: none of the 6 answered frames came out clean (CRC right, stop bit low) with "
+        "bits=26: check the data width (--opt bits=auto finds it from the traffic)";
+    auto r = runDecode({csv, "--proto", "bissc"});
+    ASSERT_EQ(r.status, 0) << r.err;
+    const auto text = lines(r.out);
+    ASSERT_FALSE(text.empty());
+    EXPECT_EQ(text.back().rfind("# hint: " + hint, 0), 0u) << r.out;
+    EXPECT_EQ(r.err, "");
+
+    r = runDecode({csv, "--proto", "bissc", "--format", "jsonl"});
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(r.out.find("hint"), std::string::npos);
+    EXPECT_EQ(r.err.rfind("decode: " + csv + ": hint: " + hint, 0), 0u) << r.err;
+    EXPECT_EQ(countLines(r.err), 1);
+
+    // The right width: no hint.
+    r = runDecode({csv, "--proto", "bissc", "--opt", "bits=auto"});
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(r.out.find("# hint"), std::string::npos) << r.out;
+}
+
 TEST(Cli, StandardInputIsACapture) {
     const auto path = writeTemp("stdin.vcd", mixedCapture());
     auto r = runCommand(shellQuote(binDir() + "/decode") +

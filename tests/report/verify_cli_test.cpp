@@ -126,6 +126,28 @@ TEST(VerifyCli, AllCleanExitsZero) {
         << r.out;
 }
 
+TEST(VerifyCli, HintsGoToStderrAndJunitNotBetweenTheVerdictLines) {
+    // A width that does not fit: every frame fails, and the hint says what to check.
+    const auto caps = capturesOf("bissc");
+    const std::string junit = dir() + "/hint.xml";
+    const auto r = test::runDecode({"verify", caps[0].path, "--rules",
+                                    rulesFile("bissc.toml", test::kBisscRules), "--opt", "bits=20",
+                                    "--junit", junit});
+    EXPECT_EQ(r.status, 1) << r.out << r.err;
+    EXPECT_EQ(lines(r.out).size(), 2u) << r.out;  // the verdict and the summary
+    const std::string hint = "decode: " + caps[0].path + ": hint: bissc: none of the ";
+    EXPECT_EQ(r.err.rfind(hint, 0), 0u) << r.err;
+    EXPECT_NE(r.err.find(" answered frames came out clean (CRC right, stop bit low) with bits=20"),
+              std::string::npos)
+        << r.err;
+    EXPECT_EQ(lines(r.err).size(), 1u) << r.err;
+    EXPECT_NE(test::readFile(junit).find("<system-err>" + r.err), std::string::npos);
+
+    const auto clean = test::runDecode(
+        {"verify", caps[0].path, "--rules", rulesFile("bissc.toml", test::kBisscRules)});
+    EXPECT_EQ(clean.err, "");
+}
+
 struct JunitCounts {
     int suites = 0, cases = 0, failures = 0, errors = 0;
     int tests_attr = -1, failures_attr = -1, errors_attr = -1;

@@ -1,0 +1,122 @@
+// The hint at the end of a decode (Decoder::advice): when no frame comes out clean the
+// data width, the CRC options or the mapping is the likely cause, and the user is told
+// what to check; a capture whose faults are in the traffic itself gets no hint.
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "bissc_generator.h"
+#include "bissc_test_util.h"
+#include "capture/capture_reader.h"
+
+using namespace busdecode;
+using namespace busdecode::test;
+
+namespace {
+
+// `frames` frames of 18-bit positions at 2 MHz; every `corrupt_every`-th one (0: none)
+// with a wrong CRC.
+Waveform frames18(int frames, int corrupt_every = 0) {
+    BisscGenConfig cfg;
+    cfg.clock_hz = 2e6;
+    cfg.bits = 18;
+    cfg.line_delay_ns = 150;
+    cfg.timeout_ns = 15000;
+    BisscGenerator gen(cfg);
+    std::mt19937_64 rng{18};
+    for (int i = 0; i < frames; ++i) {
+        BisscFrameSpec f;
+        f.data = rng() & ((1u << 18) - 1);
+        f.corrupt_crc = corrupt_every > 0 && i % corrupt_every == 0;
+        gen.addFrame(f);
+    }
+    return gen.build();
+}
+
+// The advice of a session decoding `w`, and (through `events`) what it printed.
+std::vector<std::string> adviceFor(const Waveform& w,
+                                   const std::map<std::string, std::string>& options,
+                                   const std::string& ma = "MA", const std::string& sl = "SLO",
+                                   std::vector<Event>* events = nullptr) {
+    registerBissc();
+    struct Collect : OutputSink {
+        std::vector<Event> events;
+        void onEvent(const Event& e, const CaptureFacts&) override { events.push_back(e); }
+    } sink;
+    auto reader = memoryReader(w);
+    DecoderRequest r;
+    r.proto = "bissc";
+    r.map = {{"ma", ma}, {"sl", sl}};
+    r.options = options;
+    Session s({r}, *reader, "memory");
+    s.addSink(&sink);
+    s.run();
+    if (events) *events = sink.events;
+    return s.facts().advice;
+}
+
+bool has(const std::string& text, const std::string& part) {
+    return text.find(part) != std::string::npos;
+}
+
+}  // namespace
+
+TEST(BisscAdvice, NoneForCleanTraffic) {
+    const Waveform w = frames18(20);
+    EXPECT_TRUE(adviceFor(w, {{"bits", "18"}}).empty());
+    EXPECT_TRUE(adviceFor(w, {{"bits", "auto"}}).empty());
+}
+
+TEST(BisscAdvice, NoneWhenSomeFramesAreBadInTheTraffic) {
+    // Every other frame with a wrong CRC: faults of the traffic, not of the options.
+    std::vector<Event> events;
+    EXPECT_TRUE(adviceFor(frames18(20, 2), {{"bits", "18"}}, "MA", "SLO", &events).empty());
+    int crc_errors = 0;
+    for (const auto& e : events)
+        crc_errors += e.hasError("crc");
+    EXPECT_EQ(crc_errors, 10);
+}
+
+TEST(BisscAdvice, AWidthTooShortOrTooLongIsPointedAt) {
+    for (const std::string bits : {"12", "26"}) {
+        SCOPED_TRACE(bits);
+        const auto advice = adviceFor(frames18(20), {{"bits", bits}});
+        ASSERT_EQ(advice.size(), 1u);
+        EXPECT_TRUE(has(advice[0], "bissc: ")) << advice[0];
+        EXPECT_TRUE(has(advice[0], "came out clean")) << advice[0];
+        EXPECT_TRUE(has(advice[0], "with bits=" + bits + ":")) << advice[0];
+        EXPECT_TRUE(has(advice[0], "--opt bits=auto")) << advice[0];
+    }
+    // Too long: the master stops clocking before the frame's end, no frame is complete.
+    EXPECT_TRUE(has(adviceFor(frames18(20), {{"bits", "26"}})[0], "none of the 20 answered"));
+}
+
+TEST(BisscAdvice, AWrongCrcPolynomialLeavesOnlyChanceCleanFrames) {
+    // At the right width, a wrong polynomial still passes a frame now and then.
+    const auto advice = adviceFor(frames18(64), {{"bits", "18"}, {"crc_poly", "0x25"}});
+    ASSERT_EQ(advice.size(), 1u);
+    EXPECT_TRUE(has(advice[0], " of the 64 answered frames came out clean")) << advice[0];
+    EXPECT_TRUE(has(advice[0], "the CRC options")) << advice[0];
+}
+
+TEST(BisscAdvice, SwappedLinesAreNamed) {
+    // SL's changes start frames that no answer follows.
+    const auto advice = adviceFor(frames18(5), {{"bits", "18"}}, "SLO", "MA");
+    ASSERT_EQ(advice.size(), 1u);
+    EXPECT_TRUE(has(advice[0], "no frame got an answer from the slave")) << advice[0];
+    EXPECT_TRUE(has(advice[0], "mapped to the right signals")) << advice[0];
+    // The width finder passes it on: no width helps there.
+    const auto automatic = adviceFor(frames18(5), {{"bits", "auto"}}, "SLO", "MA");
+    EXPECT_EQ(automatic, advice);
+}
+
+TEST(BisscAdvice, NoWidthFitsWithoutACrc) {
+    // bits=auto needs a CRC to tell widths apart: without one nothing fits, and the
+    // hint says so instead of proposing bits=auto again.
+    const auto advice = adviceFor(frames18(10), {{"bits", "auto"}, {"crc_bits", "0"}});
+    ASSERT_EQ(advice.size(), 1u);
+    EXPECT_TRUE(has(advice[0], "no data width from 1 to 64 gives a clean frame")) << advice[0];
+    EXPECT_FALSE(has(advice[0], "bits=auto")) << advice[0];
+    // A fixed width without a CRC cannot be judged: no hint.
+    EXPECT_TRUE(adviceFor(frames18(10), {{"bits", "18"}, {"crc_bits", "0"}}).empty());
+}
