@@ -28,6 +28,7 @@ public:
     void glitch(Tick t, int upper_role);
     Tick watermark(Tick now) const;
     Decoder& lower() { return *lower_; }
+    const Decoder& lower() const { return *lower_; }
 
     void onEvent(Event&& e) override { handler_(std::move(e)); }
 

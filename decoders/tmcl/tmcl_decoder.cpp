@@ -345,4 +345,13 @@ std::shared_ptr<const DecoderFactory> makeTmclFactory() {
     return std::make_shared<SimpleFactory<TmclDecoder>>(std::move(info));
 }
 
+std::vector<std::string> TmclDecoder::advice() const {
+    std::vector<std::string> out;
+    for (const auto* stack : {lines_.get(), bus_.get()})
+        if (stack)
+            for (auto& a : stack->lower().advice())
+                out.push_back("its UART: " + a);
+    return out;
+}
+
 }  // namespace busdecode

@@ -31,6 +31,8 @@ public:
     void finish(Tick end) override;
     void glitch(Tick t, int role) override;
     Tick watermark(Tick now) const override;
+    // The UART's advice: a wrong rate or format garbles every datagram.
+    std::vector<std::string> advice() const override;
 
 private:
     enum Stream { kHost = 0, kModule = 1, kBus = 2 };

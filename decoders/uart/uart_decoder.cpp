@@ -224,6 +224,8 @@ void UartDecoder::endFrame(Line& l, bool cut_short) {
         if (!ok) e.error("parity");
     }
     if (!l.stop_ok) e.error("framing");
+    ++bytes_;
+    faulty_bytes_ += !e.errors.empty();
     const int hex_digits = (fmt_.bits + 3) / 4;
     e.summary = fmt::format("{} 0x{:0{}X}{}", l.name, l.value, hex_digits, printable(l.value));
     emit(std::move(e));
@@ -292,6 +294,20 @@ std::shared_ptr<const DecoderFactory> makeUartFactory() {
         {"baud", "baud=auto: the detected rate", {"baud", "measured_baud"}},
     };
     return std::make_shared<SimpleFactory<UartDecoder>>(std::move(info));
+}
+
+std::vector<std::string> UartDecoder::advice() const {
+    // A wrong rate, format or polarity garbles nearly every character; noise or a
+    // collision rarely most of them. kMinBytes: enough characters to tell.
+    constexpr std::uint64_t kMinBytes = 8;
+    if (bytes_ < kMinBytes || faulty_bytes_ * 2 <= bytes_) return {};
+    static constexpr const char* kParity[] = {"none", "even", "odd", "mark", "space", "ignore"};
+    return {fmt::format(
+        "{} of {} characters have framing or parity errors at baud={:g} (bits={} parity={} "
+        "stop={:g} invert={}): check the baud rate (--opt baud=auto measures it), the "
+        "character format, and the lines' polarity",
+        faulty_bytes_, bytes_, fmt_.baud, fmt_.bits, kParity[int(fmt_.parity)], fmt_.stop_bits,
+        int(fmt_.invert))};
 }
 
 }  // namespace busdecode

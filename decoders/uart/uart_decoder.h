@@ -28,6 +28,9 @@ public:
     void edge(Tick t, int role, bool level) override;
     void advance(Tick now) override;
     void finish(Tick end) override;
+    // Most characters with framing or parity errors: the rate, the format or the
+    // polarity is the likely cause.
+    std::vector<std::string> advice() const override;
 
     // Ticks per bit once the rate is known (0 while baud=auto is still measuring).
     double bitTicks() const { return bit_ticks_; }
@@ -73,6 +76,7 @@ private:
     // baud=auto: edges are held until enough pulses are seen, then replayed.
     std::vector<HeldEdge> held_;
     BaudEstimator estimator_{2};
+    std::uint64_t bytes_ = 0, faulty_bytes_ = 0;  // characters decoded; with framing/parity errors
 };
 
 std::shared_ptr<const DecoderFactory> makeUartFactory();

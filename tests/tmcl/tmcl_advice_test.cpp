@@ -1,0 +1,37 @@
+// TMCL passes on the hint of the UART it is stacked on: a wrong rate garbles every
+// datagram, and the UART's hint says what to check.
+#include <gtest/gtest.h>
+
+#include "capture/capture_reader.h"
+#include "core/registry.h"
+#include "core/session.h"
+#include "support/paths.h"
+#include "tmcl_decoder.h"
+#include "uart_decoder.h"
+
+namespace busdecode {
+namespace {
+
+std::vector<std::string> adviceWith(const std::map<std::string, std::string>& options) {
+    Registry::instance().add(makeUartFactory());
+    Registry::instance().add(makeTmclFactory());
+    const std::string path = test::sourceDir() + "/captures/tmcl_rs485_9600.vcd";
+    auto reader = openCapture(path, OpenOptions{});
+    Session session({{"tmcl", {}, options}}, *reader, path);
+    session.run();
+    return session.facts().advice;
+}
+
+}  // namespace
+
+TEST(TmclAdvice, TheUartsHintComesThrough) {
+    EXPECT_TRUE(adviceWith({}).empty());
+    const auto advice = adviceWith({{"baud", "115200"}});
+    ASSERT_EQ(advice.size(), 1u);
+    EXPECT_EQ(advice[0].rfind("tmcl: its UART: ", 0), 0u) << advice[0];
+    EXPECT_NE(advice[0].find("characters have framing or parity errors at baud=115200"),
+              std::string::npos)
+        << advice[0];
+}
+
+}  // namespace busdecode

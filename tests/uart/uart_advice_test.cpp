@@ -1,0 +1,79 @@
+// The hint at the end of a decode when most characters are garbled: a wrong baud rate,
+// character format or polarity; none when the settings fit or faults are few.
+#include <gtest/gtest.h>
+
+#include "capture/capture_reader.h"
+#include "core/registry.h"
+#include "core/session.h"
+#include "support/paths.h"
+#include "uart_decoder.h"
+#include "uart_generator.h"
+
+namespace busdecode {
+namespace {
+
+// The advice for captures/uart_rxtx_9600_8n1.vcd (31 characters, 8N1 at 9600 baud)
+// decoded with `options`.
+std::vector<std::string> adviceWith(const std::map<std::string, std::string>& options) {
+    Registry::instance().add(makeUartFactory());
+    const std::string path = test::sourceDir() + "/captures/uart_rxtx_9600_8n1.vcd";
+    auto reader = openCapture(path, OpenOptions{});
+    Session session({{"uart", {}, options}}, *reader, path);
+    session.run();
+    return session.facts().advice;
+}
+
+// `n` characters at 1 Mbaud, each with its stop bit low (a framing error), decoded.
+std::vector<std::string> adviceForFramingErrors(int n) {
+    Registry::instance().add(makeUartFactory());
+    UartFormat f;
+    f.baud = 1'000'000;
+    WaveBuilder wb(Timebase{1, 1'000'000'000}, {"tx"}, {1});
+    UartGenerator gen(wb, 0, f);
+    UartFaults bad;
+    bad.bad_stop = true;
+    double t = 2000;
+    for (int i = 0; i < n; ++i)
+        t = gen.sendChar(t, 0x55, bad) + 5000;
+    const Waveform w = wb.build(wb.ticksFromNs(t + 20000));
+    auto reader = memoryReader(w);
+    Session session({{"uart", {}, {{"baud", "1e6"}}}}, *reader, "memory");
+    session.run();
+    return session.facts().advice;
+}
+
+}  // namespace
+
+TEST(UartAdvice, NoneWhenTheSettingsFit) {
+    EXPECT_TRUE(adviceWith({}).empty());
+    EXPECT_TRUE(adviceWith({{"baud", "auto"}}).empty());
+}
+
+TEST(UartAdvice, AWrongRateOrFormatIsPointedAt) {
+    auto advice = adviceWith({{"baud", "115200"}});
+    ASSERT_EQ(advice.size(), 1u);
+    EXPECT_EQ(advice[0].rfind("uart: 105 of 105 characters have framing or parity errors at "
+                              "baud=115200 (bits=8 parity=none stop=1 invert=0): check the baud "
+                              "rate (--opt baud=auto measures it)",
+                              0),
+              0u)
+        << advice[0];
+    advice = adviceWith({{"parity", "even"}});
+    ASSERT_EQ(advice.size(), 1u);
+    EXPECT_NE(advice[0].find("21 of 25 characters"), std::string::npos) << advice[0];
+    EXPECT_NE(advice[0].find("parity=even"), std::string::npos) << advice[0];
+}
+
+TEST(UartAdvice, NoneWhenOnlySomeCharactersAreGarbled) {
+    // Twice the rate: 15 of 56 characters fail, fewer than half.
+    EXPECT_TRUE(adviceWith({{"baud", "19200"}}).empty());
+}
+
+TEST(UartAdvice, EightCharactersAreEnoughToTell) {
+    EXPECT_TRUE(adviceForFramingErrors(7).empty());
+    const auto advice = adviceForFramingErrors(8);
+    ASSERT_EQ(advice.size(), 1u);
+    EXPECT_EQ(advice[0].rfind("uart: 8 of 8 characters", 0), 0u) << advice[0];
+}
+
+}  // namespace busdecode
