@@ -350,7 +350,10 @@ void SsiDecoder::emitFrame(std::optional<Tick> tm_end, bool deadline_passed) {
 
     ++frames_;
     if (e.hasError("repeat_mismatch")) ++mismatches_;
-    if (e.hasError("short_frame")) ++shorts_;
+    if (e.hasError("short_frame")) {
+        const std::int64_t bits = asInt(*e.get("bits"));
+        short_bits_ = ++shorts_ == 1 || short_bits_ == bits ? bits : -1;
+    }
     if (!e.errors.empty()) ++error_frames_;
     if (const Value* c = e.get("clock_hz"); c && !isNull(*c)) {
         const double hz = asDouble(*c);
@@ -401,6 +404,23 @@ void SsiDecoder::finish(Tick end) {
     if (state_ == State::WaitTm) emitFrame(std::nullopt, false);
     if (cfg_.summary) emitSummary(end);
     idle();
+}
+
+std::vector<std::string> SsiDecoder::advice() const {
+    // One short frame is a master that stopped early; all of them, each with the same
+    // count, is a word of that length.
+    if (frames_ < 2 || shorts_ != frames_ || short_bits_ <= 0) return {};
+    const bool fields_fit = cfg_.st_bits + cfg_.mt_bits + cfg_.pos_shift <= short_bits_;
+    // One bit short without `lead`: the first clock edge's level may be a bit (POSITAL).
+    const bool lead_fits = !cfg_.lead && short_bits_ + 1 == cfg_.bits;
+    return {
+        fmt::format("every frame ended after {} bits, short of bits={}: the words look {} "
+                    "bits long (--opt bits={}{}{})",
+                    short_bits_, cfg_.bits, short_bits_, short_bits_,
+                    fields_fit ? "" : ", with st_bits and mt_bits to fit",
+                    lead_fits ? "; or --opt lead=1, if the level at the first clock edge "
+                                "is a bit"
+                              : "")};
 }
 
 }  // namespace busdecode

@@ -26,6 +26,8 @@ public:
     void edge(Tick t, int role, bool level) override;
     void advance(Tick now) override;
     void finish(Tick end) override;
+    // Every frame short by the same count: the words are likely that long.
+    std::vector<std::string> advice() const override;
     void glitch(Tick t, int role) override;
 
 private:
@@ -71,6 +73,7 @@ private:
     std::vector<std::int64_t> tm_values_;
     double clock_min_ = 0, clock_max_ = 0;
     std::int64_t frames_ = 0, mismatches_ = 0, shorts_ = 0, error_frames_ = 0;
+    std::int64_t short_bits_ = -1;  // the bits every short frame had (-1: none, or they differ)
 };
 
 }  // namespace busdecode
