@@ -177,7 +177,7 @@ int runDecode(const DecodeArgs& a) {
             decodeCapture(capture, requests, open, sinks, a.realtime, &g_stop);
         if (a.format == "jsonl")  // text output has them in its summary
             for (const auto& hint : facts.advice)
-                fmt::print(stderr, "decode: {}: hint: {}\n", capture, hint);
+                std::fputs(hintLine(capture, hint).c_str(), stderr);
         if (g_stop) break;
     }
     return 0;

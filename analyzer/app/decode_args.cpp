@@ -180,6 +180,10 @@ private:
 
 }  // namespace
 
+std::string hintLine(const std::string& capture, const std::string& hint) {
+    return fmt::format("decode: {}: hint: {}\n", capture, hint);
+}
+
 CaptureFacts decodeCapture(const std::string& path, const std::vector<DecoderRequest>& requests,
                            const OpenOptions& open, const std::vector<OutputSink*>& sinks) {
     return decodeCapture(path, requests, open, sinks, false, nullptr);

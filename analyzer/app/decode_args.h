@@ -39,6 +39,10 @@ std::vector<DecoderRequest> buildRequests(const std::vector<std::string>& protos
 // and BUSDECODE_PLUGIN_PATH. Safe to call repeatedly.
 void loadPlugins();
 
+// A decoder's advice (CaptureFacts::advice) as a line for stderr (with --format jsonl and
+// verify, whose stdout has no room for it): "decode: CAPTURE: hint: TEXT\n".
+std::string hintLine(const std::string& capture, const std::string& hint);
+
 // Opens one capture and decodes it into the sinks. Throws InputError on bad input.
 CaptureFacts decodeCapture(const std::string& path, const std::vector<DecoderRequest>& requests,
                            const OpenOptions& open, const std::vector<OutputSink*>& sinks);

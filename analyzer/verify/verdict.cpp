@@ -6,6 +6,8 @@
 
 #include <fmt/format.h>
 
+#include "app/decode_args.h"
+
 namespace busdecode {
 
 bool CaptureVerdict::passed() const {
@@ -134,7 +136,7 @@ std::string junitXml(const std::vector<CaptureVerdict>& all, const std::string& 
     std::string hints;  // as verify prints them on stderr
     for (const auto& v : all)
         for (const auto& h : v.hints)
-            hints += fmt::format("decode: {}: hint: {}\n", v.capture, h);
+            hints += hintLine(v.capture, h);
     x += fmt::format("    <system-out>{}</system-out>\n    <system-err>{}</system-err>\n",
                      xmlText(out), xmlText(hints));
     x += "  </testsuite>\n</testsuites>\n";

@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include "app/decode_args.h"
 #include "batch.h"
 #include "core/atomic_file.h"
 #include "core/options.h"
@@ -37,7 +38,7 @@ int runVerify(const DecodeArgs& args) {
                 std::fflush(stdout);
                 // stdout keeps one line per capture
                 for (const auto& h : v.hints)
-                    fmt::print(stderr, "decode: {}: hint: {}\n", v.capture, h);
+                    std::fputs(hintLine(v.capture, h).c_str(), stderr);
             });
         fmt::print("{}\n", summaryLine(verdicts));
         std::fflush(stdout);

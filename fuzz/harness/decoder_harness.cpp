@@ -5,7 +5,8 @@
 // events than the edges can explain.
 //
 // Input layout (every byte optional: missing bytes read as zero):
-//   timebase choice, flags (optional roles left unbound, glitch filter), initial levels,
+//   timebase choice, flags (optional roles left unbound, glitch filter, output reading
+//   no fields as text does), initial levels,
 //   start offset (varint, negated), one or two bytes per option, then edges:
 //   a byte [bits 0-2 role, bit 3 explicit level, bit 4 that level, bits 5-7 delta kind]
 //   followed by the delta's bytes.
@@ -134,8 +135,13 @@ std::uint64_t deltaOf(int kind, ByteStream& in) {
 struct CheckingSink : OutputSink {
     std::uint64_t events = 0;
     Tick last_start = std::numeric_limits<Tick>::min();
+    bool reads_fields = true;  // false: as text output, which prints the summary
+    bool readsFields() const override { return reads_fields; }
     void onEvent(const Event& e, const CaptureFacts&) override {
         ++events;
+        if (!reads_fields && e.summary.empty() && e.fields.empty())
+            failure(fmt::format("{} {} has neither a summary nor fields for text output", e.proto,
+                                e.type));
         if (e.end < e.start)
             failure(fmt::format("{} {} ends ({}) before it starts ({})", e.proto, e.type, e.end,
                                 e.start));
@@ -208,10 +214,10 @@ void runDecoderTarget(const std::string& id, const std::uint8_t* data, std::size
     w.start = start;
     w.end = t;
 
-    decodeChecked(w, req);
+    decodeChecked(w, req, !((flags >> 6) & 1));
 }
 
-DecodeStats decodeChecked(const Waveform& w, const DecoderRequest& req) {
+DecodeStats decodeChecked(const Waveform& w, const DecoderRequest& req, bool reads_fields) {
     registerDecoders();
     std::unique_ptr<CaptureReader> reader = memoryReader(w);
     std::unique_ptr<Session> session;
@@ -223,6 +229,7 @@ DecodeStats decodeChecked(const Waveform& w, const DecoderRequest& req) {
         return stats;
     }
     CheckingSink sink;
+    sink.reads_fields = reads_fields;
     session->addSink(&sink);
     try {
         session->run();
@@ -231,6 +238,9 @@ DecodeStats decodeChecked(const Waveform& w, const DecoderRequest& req) {
     } catch (const std::exception& e) {
         failure(std::string("decoding threw: ") + e.what());
     }
+    for (const auto& a : session->facts().advice)
+        if (a.empty() || a.find('\n') != std::string::npos)
+            failure(fmt::format("advice not a single line: '{}'", a));
     stats.edges = session->facts().edges;
     stats.events = sink.events;
     if (stats.events > 4 * stats.edges + 64)

@@ -33,12 +33,14 @@ void runTarget(const std::string& target, const std::uint8_t* data, std::size_t 
 
 // Decodes `w` with one decoder through a real Session and checks what the fuzz
 // decoder targets check: no exception out of run(), events in time order and never
-// ending before they start, at most 4 events per edge (+64). Throws HarnessFailure.
+// ending before they start, at most 4 events per edge (+64), advice in single lines.
+// reads_fields = false: the output reads no fields, as text output (the decoders may
+// leave them out), and every event must have a summary or fields. Throws HarnessFailure.
 struct DecodeStats {
     bool refused = false;  // the Session refused the options (InputError): not decoded
     std::uint64_t edges = 0, events = 0;
 };
-DecodeStats decodeChecked(const Waveform& w, const DecoderRequest& req);
+DecodeStats decodeChecked(const Waveform& w, const DecoderRequest& req, bool reads_fields = true);
 
 // The inverse of the decoder targets' input format: `w`'s line k drives the decoder's
 // role k, with the request's options (seeds for the fuzzers, made from generators).

@@ -49,11 +49,15 @@ DecoderRequest requestFor(const DecoderInfo& info,
 }
 
 void expectClean(const Waveform& w, const DecoderRequest& req, const std::string& what) {
-    try {
-        const auto stats = fuzz::decodeChecked(w, req);
-        EXPECT_FALSE(stats.refused) << req.proto << " refused " << what;
-    } catch (const fuzz::HarnessFailure& e) {
-        ADD_FAILURE() << req.proto << " on " << what << ": " << e.what();
+    // As jsonl reads the events (fields), and as text does (no fields, a summary each).
+    for (const bool reads_fields : {true, false}) {
+        try {
+            const auto stats = fuzz::decodeChecked(w, req, reads_fields);
+            EXPECT_FALSE(stats.refused) << req.proto << " refused " << what;
+        } catch (const fuzz::HarnessFailure& e) {
+            ADD_FAILURE() << req.proto << " on " << what << (reads_fields ? "" : " (as text)")
+                          << ": " << e.what();
+        }
     }
 }
 
