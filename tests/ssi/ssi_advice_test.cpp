@@ -2,10 +2,8 @@
 // of that length (or a lead bit not counted); an occasional short frame gets no hint.
 #include <gtest/gtest.h>
 
-#include "capture/capture_reader.h"
-#include "core/session.h"
 #include "ssi_test_util.h"
-#include "support/paths.h"
+#include "support/decode_facts.h"
 
 namespace busdecode {
 namespace {
@@ -13,11 +11,7 @@ namespace {
 std::vector<std::string> adviceFor(const std::string& capture,
                                    const std::map<std::string, std::string>& options) {
     ssitest::registerSsi();
-    const std::string path = test::sourceDir() + "/captures/" + capture;
-    auto reader = openCapture(path, OpenOptions{});
-    Session session({{"ssi", {}, options}}, *reader, path);
-    session.run();
-    return session.facts().advice;
+    return test::decodeCaptureFacts(capture, {"ssi", {}, options}).advice;
 }
 
 }  // namespace

@@ -2,10 +2,8 @@
 // datagram, and the UART's hint says what to check.
 #include <gtest/gtest.h>
 
-#include "capture/capture_reader.h"
 #include "core/registry.h"
-#include "core/session.h"
-#include "support/paths.h"
+#include "support/decode_facts.h"
 #include "tmcl_decoder.h"
 #include "uart_decoder.h"
 
@@ -15,11 +13,7 @@ namespace {
 std::vector<std::string> adviceWith(const std::map<std::string, std::string>& options) {
     Registry::instance().add(makeUartFactory());
     Registry::instance().add(makeTmclFactory());
-    const std::string path = test::sourceDir() + "/captures/tmcl_rs485_9600.vcd";
-    auto reader = openCapture(path, OpenOptions{});
-    Session session({{"tmcl", {}, options}}, *reader, path);
-    session.run();
-    return session.facts().advice;
+    return test::decodeCaptureFacts("tmcl_rs485_9600.vcd", {"tmcl", {}, options}).advice;
 }
 
 }  // namespace

@@ -5,7 +5,7 @@
 #include "capture/capture_reader.h"
 #include "core/registry.h"
 #include "core/session.h"
-#include "support/paths.h"
+#include "support/decode_facts.h"
 #include "uart_decoder.h"
 #include "uart_generator.h"
 
@@ -16,11 +16,7 @@ namespace {
 // decoded with `options`.
 std::vector<std::string> adviceWith(const std::map<std::string, std::string>& options) {
     Registry::instance().add(makeUartFactory());
-    const std::string path = test::sourceDir() + "/captures/uart_rxtx_9600_8n1.vcd";
-    auto reader = openCapture(path, OpenOptions{});
-    Session session({{"uart", {}, options}}, *reader, path);
-    session.run();
-    return session.facts().advice;
+    return test::decodeCaptureFacts("uart_rxtx_9600_8n1.vcd", {"uart", {}, options}).advice;
 }
 
 // `n` characters at 1 Mbaud, each with its stop bit low (a framing error), decoded.
