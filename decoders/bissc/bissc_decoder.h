@@ -38,8 +38,9 @@ public:
     void finish(Tick end) override;
     void glitch(Tick t, int role) override;
     Tick watermark(Tick now) const override;
-    // Advice when no answered frame came out clean (see cleanFrames()): the data width
-    // or the lines' mapping is the likely cause.
+    // Advice when fewer than one in eight answered frames came out clean (see
+    // cleanFrames()): the data width, the CRC options or the mapping is the likely cause;
+    // or when the lines change but no frame is answered: the mapping.
     std::vector<std::string> advice() const override;
 
     // Frames the slave answered (an ACK), and of those the clean ones: the CRC right, the

@@ -169,9 +169,9 @@ std::vector<std::string> BisscWidthFinder::advice() const {
     // that never make a frame); with some, its width is the default, no guide to the width.
     if (decoder_->answeredFrames() == 0) return decoder_->advice();
     return {fmt::format(
-        "no data width from 1 to {} gives a clean frame (CRC right, stop bit low; {} frames "
-        "decoded with the default, bits={}): check that MA and SL are not swapped, and the "
-        "CRC options",
+        "no data width from 1 to {} gives a clean frame (CRC right, stop bit low; {} answered "
+        "frames decoded with the default, bits={}): check that MA and SL are not swapped, and "
+        "the CRC options",
         kMaxBits, decoder_->answeredFrames(), width_)};
 }
 

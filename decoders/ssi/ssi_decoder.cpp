@@ -351,7 +351,8 @@ void SsiDecoder::emitFrame(std::optional<Tick> tm_end, bool deadline_passed) {
     ++frames_;
     if (e.hasError("repeat_mismatch")) ++mismatches_;
     if (e.hasError("short_frame")) {
-        const std::int64_t bits = asInt(*e.get("bits"));
+        const Value* b = e.get("bits");  // the bits the short frame had
+        const std::int64_t bits = b ? asInt(*b) : -1;
         short_bits_ = ++shorts_ == 1 || short_bits_ == bits ? bits : -1;
     }
     if (!e.errors.empty()) ++error_frames_;

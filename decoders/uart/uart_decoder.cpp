@@ -303,11 +303,11 @@ std::vector<std::string> UartDecoder::advice() const {
     if (bytes_ < kMinBytes || faulty_bytes_ * 2 <= bytes_) return {};
     static constexpr const char* kParity[] = {"none", "even", "odd", "mark", "space", "ignore"};
     return {fmt::format(
-        "{} of {} characters have framing or parity errors at baud={:g} (bits={} parity={} "
-        "stop={:g} invert={}): check the baud rate (--opt baud=auto measures it), the "
-        "character format, and the lines' polarity",
-        faulty_bytes_, bytes_, fmt_.baud, fmt_.bits, kParity[int(fmt_.parity)], fmt_.stop_bits,
-        int(fmt_.invert))};
+        "{} of {} characters have framing or parity errors at baud={:g}{} (bits={} parity={} "
+        "stop={:g} invert={}): check {}the character format, and the lines' polarity",
+        faulty_bytes_, bytes_, fmt_.baud, auto_baud_ ? " as measured" : "", fmt_.bits,
+        kParity[int(fmt_.parity)], fmt_.stop_bits, int(fmt_.invert),
+        auto_baud_ ? "" : "the baud rate (--opt baud=auto measures it), ")};
 }
 
 }  // namespace busdecode

@@ -60,6 +60,14 @@ TEST(UartAdvice, AWrongRateOrFormatIsPointedAt) {
     EXPECT_NE(advice[0].find("parity=even"), std::string::npos) << advice[0];
 }
 
+TEST(UartAdvice, WithAMeasuredRateTheFormatIsPointedAt) {
+    const auto advice = adviceWith({{"baud", "auto"}, {"parity", "odd"}});
+    ASSERT_EQ(advice.size(), 1u);
+    EXPECT_NE(advice[0].find("at baud=9600 as measured (bits=8 parity=odd"), std::string::npos)
+        << advice[0];
+    EXPECT_EQ(advice[0].find("baud=auto"), std::string::npos) << advice[0];
+}
+
 TEST(UartAdvice, NoneWhenOnlySomeCharactersAreGarbled) {
     // Twice the rate: 15 of 56 characters fail, fewer than half.
     EXPECT_TRUE(adviceWith({{"baud", "19200"}}).empty());
