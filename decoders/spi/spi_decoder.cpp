@@ -2,6 +2,8 @@
 
 #include <limits>
 
+#include <fmt/format.h>
+
 #include "core/number_text.h"
 #include "spi_info.h"
 
@@ -99,6 +101,8 @@ void SpiDecoder::wordDone(Tick t) {
 }
 
 void SpiDecoder::emitWord(Tick end, bool short_frame) {
+    ++words_;
+    if (short_frame) short_bits_ = ++short_words_ == 1 || short_bits_ == count_ ? count_ : -1;
     Event e = freshEvent();
     e.proto = "spi";
     e.type = "transfer";
@@ -150,6 +154,16 @@ void SpiDecoder::finish(Tick end) {
     if (lines_.open) settle(lines_);
     if (count_ > 0) emitWord(end, true);
     resetWord();
+}
+
+std::vector<std::string> SpiDecoder::advice() const {
+    // A master that stops now and then cuts a few words short; half of them or more, each
+    // after the same count, are words of that length.
+    if (words_ < 2 || short_words_ * 2 < words_ || short_bits_ <= 0) return {};
+    return {fmt::format(
+        "{} of {} words were cut short by chip select, each after {} bits of bits={}: the "
+        "words look {} bits long (--opt bits={})",
+        short_words_, words_, short_bits_, bits_, short_bits_, short_bits_)};
 }
 
 }  // namespace busdecode

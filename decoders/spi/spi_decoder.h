@@ -31,6 +31,9 @@ public:
     void advance(Tick now) override;
     void finish(Tick end) override;
     void glitch(Tick t, int role) override;
+    // Most words cut short by chip select, all after the same count: the words are
+    // likely that long.
+    std::vector<std::string> advice() const override;
     // The word in progress, else the open tick group, holds back the output.
     Tick watermark(Tick now) const override;
 
@@ -66,6 +69,8 @@ private:
     Tick last_sample_ = 0;
     Tick prev_sample_ = 0;
     bool word_glitch_ = false;
+    std::int64_t words_ = 0, short_words_ = 0;
+    int short_bits_ = -1;  // the bits every short word had (-1: none, or they differ)
 };
 
 }  // namespace busdecode
