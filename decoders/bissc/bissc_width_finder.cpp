@@ -14,12 +14,6 @@ namespace {
 constexpr int kDefaultBits = BisscSettings{}.bits;  // the contract's default, when nothing fits
 constexpr int kMaxBits = 64;
 
-// A candidate's events are not wanted: it counts its clean frames itself.
-class DropEvents : public EventSink {
-public:
-    void onEvent(Event&&) override {}
-};
-
 }  // namespace
 
 BisscWidthFinder::BisscWidthFinder(const Options& options) : options_(options) {
@@ -49,6 +43,7 @@ void BisscWidthFinder::start(const DecoderContext& ctx) {
     last_advance_ = kNoTick;
     decoder_.reset();
     width_ = 0;
+    found_ = false;
 }
 
 bool BisscWidthFinder::spanOver(Tick now) const {
@@ -123,9 +118,10 @@ BisscWidthFinder::Scores BisscWidthFinder::score(Tick end) const {
     for (int bits = 1; bits <= kMaxBits; ++bits) {
         auto candidate = makeDecoder(bits);
         if (!candidate) continue;
-        DropEvents dropped;
+        // Its events are not wanted (no sink: Decoder::emit drops them); it counts its
+        // clean frames itself.
         DecoderContext ctx = ctx_;
-        ctx.sink = &dropped;
+        ctx.sink = nullptr;
         ctx.fields_wanted = false;
         candidate->start(ctx);
         replay(*candidate, held_);
