@@ -26,14 +26,33 @@ std::string binDir() {
     return BUSDECODE_BIN_DIR;
 }
 
+namespace {
+// The test process's scratch directory, removed with everything in it when the process
+// exits (BUSDECODE_KEEP_TEST_FILES=1 keeps it, to look at a failing test's files): ctest
+// runs every test in a process of its own, and /tmp would otherwise collect thousands.
+class ScratchDir {
+public:
+    ScratchDir() {
+        path_ = (std::filesystem::temp_directory_path() / "busdecode-test-XXXXXX").string();
+        if (!mkdtemp(path_.data())) throw std::runtime_error("mkdtemp failed");
+    }
+    ~ScratchDir() {
+        if (std::getenv("BUSDECODE_KEEP_TEST_FILES")) return;
+        std::error_code ec;  // a test's child may still hold a file: best effort
+        std::filesystem::remove_all(path_, ec);
+    }
+    ScratchDir(const ScratchDir&) = delete;
+    ScratchDir& operator=(const ScratchDir&) = delete;
+    const std::string& path() const { return path_; }
+
+private:
+    std::string path_;
+};
+}  // namespace
+
 std::string tempDir() {
-    static std::string dir = [] {
-        std::string tmpl =
-            (std::filesystem::temp_directory_path() / "busdecode-test-XXXXXX").string();
-        if (!mkdtemp(tmpl.data())) throw std::runtime_error("mkdtemp failed");
-        return tmpl;
-    }();
-    return dir;
+    static const ScratchDir dir;
+    return dir.path();
 }
 
 std::string readFile(const std::string& path) {
