@@ -1,12 +1,12 @@
 // make_capture: writes the large captures bench/run.sh times.
 //
-//   make_capture BUS FORMAT SIZE_MB OUT     (FORMAT: vcd or csv)
+//   make_capture BUS FORMAT SIZE_MB OUT     (FORMAT: vcd, csv or saleae)
 //
 // BUS: spi, bissc, uart, ... (bench_captures.cpp); spi-periodic and bissc-periodic are the
 // same traffic with the same data in every word or frame (what unpredictable data costs).
 //
 // One chunk of traffic is made with the decoder's own generator and written with the
-// project's writers (writeVcd, writeCsv: sigrok dense CSV) into a temporary file; the
+// project's writers (writeVcd, writeCsv: sigrok dense or Saleae CSV) into a temporary file; the
 // chunk ends at the levels it started with, so its body is then repeated, VCD timestamps
 // shifted by one chunk period each time, until the file reaches SIZE_MB. The result is
 // what the writer would produce for the whole long capture, without holding it in memory.
@@ -139,11 +139,64 @@ void repeatCsv(const std::string& chunk_file, std::uint64_t target, Output& out)
     out.put(body);
 }
 
+// Saleae Logic 2 CSV: a row per change, times in decimal seconds with a fixed number of
+// decimals (writeCsv's choice for the timebase). Each repetition shifts the times by the
+// chunk's length; as in repeatCsv, the chunk's closing row (the next one's first time)
+// is written only at the end.
+void repeatSaleae(const std::string& chunk_file, std::uint64_t target, Output& out) {
+    const std::string text = slurp(chunk_file);
+    auto lines = splitLines(text);
+    if (lines.size() < 3) throw std::runtime_error("writeCsv output has no rows");
+    out.put(lines[0]);  // the header
+    // "W.FFFFFFFFF,..." -> W * 10^decimals + F, and the rest of the row.
+    struct Row {
+        std::int64_t units;
+        std::string_view rest;
+    };
+    std::vector<Row> rows;
+    int decimals = -1;
+    for (std::size_t i = 1; i < lines.size(); ++i) {
+        const std::string_view l = lines[i];
+        const auto dot = l.find('.'), comma = l.find(',');
+        if (dot == std::string_view::npos || comma == std::string_view::npos || dot > comma)
+            throw std::runtime_error("unexpected Saleae row: " + std::string(l));
+        const int d = int(comma - dot - 1);
+        if (decimals >= 0 && d != decimals) throw std::runtime_error("decimals vary");
+        decimals = d;
+        std::int64_t scale = 1;
+        for (int k = 0; k < d; ++k)
+            scale *= 10;
+        rows.push_back(
+            {std::strtoll(std::string(l.substr(0, dot)).c_str(), nullptr, 10) * scale +
+                 std::strtoll(std::string(l.substr(dot + 1, std::size_t(d))).c_str(), nullptr, 10),
+             l.substr(comma)});
+    }
+    std::int64_t scale = 1;
+    for (int k = 0; k < decimals; ++k)
+        scale *= 10;
+    const std::int64_t period = rows.back().units - rows.front().units;
+    if (rows.front().units < 0) throw std::runtime_error("negative times are not repeated");
+    std::uint64_t body_bytes = text.size() - lines[0].size();
+    char stamp[48];
+    for (std::int64_t k = 0;; ++k) {
+        const bool last = out.bytes() + body_bytes >= target;
+        const std::size_t n = last ? rows.size() : rows.size() - 1;
+        for (std::size_t i = 0; i < n; ++i) {
+            const std::int64_t u = rows[i].units + k * period;
+            std::snprintf(stamp, sizeof stamp, "%" PRId64 ".%0*" PRId64, u / scale, decimals,
+                          u % scale);
+            out.put(stamp);
+            out.put(rows[i].rest);
+        }
+        if (last) break;
+    }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
     if (argc != 5) {
-        std::fprintf(stderr, "usage: make_capture BUS vcd|csv SIZE_MB OUT\n");
+        std::fprintf(stderr, "usage: make_capture BUS vcd|csv|saleae SIZE_MB OUT\n");
         return 2;
     }
     try {
@@ -162,8 +215,11 @@ int main(int argc, char** argv) {
         } else if (format == "csv") {
             writeCsv(bus.chunk, chunk_file, CsvDialect::SigrokDense);
             repeatCsv(chunk_file, target, out);
+        } else if (format == "saleae") {
+            writeCsv(bus.chunk, chunk_file, CsvDialect::SaleaeLogic2);
+            repeatSaleae(chunk_file, target, out);
         } else {
-            throw std::invalid_argument("format must be vcd or csv");
+            throw std::invalid_argument("format must be vcd, csv or saleae");
         }
         std::filesystem::remove(chunk_file);
         std::printf("%s\t%s\t%" PRIu64 "\t%s\t%s\n", bus_id.c_str(), format.c_str(), out.bytes(),

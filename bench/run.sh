@@ -4,7 +4,7 @@
 #   bench/run.sh [-b BUILD_DIR] [-s SIZE_MB] [-q]
 #
 # Generates the captures with the project's generators (make_capture: SPI at 10 MHz back
-# to back and BiSS-C at 10 MHz, 100 MHz sampling, as VCD and sigrok dense CSV) into a
+# to back and BiSS-C at 10 MHz, 100 MHz sampling, as VCD, sigrok dense CSV and Saleae CSV) into a
 # temporary directory (removed at the end; one large capture at a time, so that each
 # stays in the page cache), then times `decode` against `sigrok-cli`, `wc -l` and the
 # tokeniser alone on the same cached files (hyperfine, median), records peak memory
@@ -149,6 +149,21 @@ row "spi.csv (sigrok dense, 100 MS/s): decode" "$size_mb MB" "$(fmt_s "$t_csv") 
 # shellcheck disable=SC2086
 mem_csv="$(peak_mb "$decode" "$f" $spi_args)"  # its row goes with the other peaks below
 csv_mb="$size_mb"
+rm -f "$f"
+
+# 2b. Saleae Logic 2 CSV (a row per change, decimal seconds): no target in the issue, but
+# the other CSV users bring; the same SPI traffic as above.
+f="$tmp/spi_saleae.csv"
+echo "generating $f ..." >&2
+gen spi saleae "$size" spi_saleae.csv >/dev/null
+echo "timing spi_saleae.csv ..." >&2
+# shellcheck disable=SC2086
+read -r t_sal c_sal < <(median $runs "$decode" "$f" $spi_args)
+size_mb="$(mb "$f")"
+row "spi_saleae.csv (Saleae Logic 2, a row per change): decode" "$size_mb MB" \
+    "$(fmt_s "$t_sal") s wall, $(fmt_s "$c_sal") s CPU" \
+    "**$(ratio "$size_mb" "$t_sal") MB/s** (wall), **$(ratio "$size_mb" "$c_sal") MB/s** (per CPU second)" \
+    "(none)" "-"
 rm -f "$f"
 
 # 3. Linear time: the doubling curve (SPI VCD)

@@ -49,6 +49,10 @@ const std::string& benchFile(const std::string& format) {
         late.start += kLate;
         late.end += kLate;
         writeVcd(late, path);
+    } else if (format == "csv_saleae") {
+        // Saleae Logic 2's export: one row per change, times as decimal seconds.
+        path = (dir.path / "spi_saleae.csv").string();
+        writeCsv(bus.chunk, path, CsvDialect::SaleaeLogic2);
     } else {
         writeCsv(bus.chunk, path, CsvDialect::SigrokDense);
     }
@@ -73,6 +77,10 @@ BENCHMARK_CAPTURE(readFile, vcd_late_all_lines, std::string("vcd_late"), true)
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(readFile, csv_all_lines, std::string("csv"), true)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(readFile, csv_one_line, std::string("csv"), false)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(readFile, csv_saleae_all_lines, std::string("csv_saleae"), true)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(readFile, csv_saleae_one_line, std::string("csv_saleae"), false)
+    ->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace busdecode::bench
