@@ -196,6 +196,15 @@ public:
                 continue;
             }
             row(line, &block);
+            // A dense capture holds its levels for many samples: the rows that repeat
+            // the last one whole are only counted (a sample's row is compared in one
+            // load, not found by memchr and compared as a line).
+            if (!timed_ && rows_ > 0) {
+                if (const std::uint64_t n = src_->skipLinesEqualTo(last_row_)) {
+                    rows_ += n;
+                    cur_ = Tick(rows_ - 1);
+                }
+            }
         }
     }
     Tick endTick() const override { return cur_; }
@@ -405,7 +414,7 @@ private:
             ++rows_;
             return;
         }
-        if (timed_ && plainTimedRow(line, block)) return;
+        if (timed_ ? plainTimedRow(line, block) : plainDenseRow(line, block)) return;
         split(line, sep_, fields_);
         if (fields_.size() != ncols_) {
             // A trailing separator is tolerated (some tools end rows with one).
@@ -485,10 +494,26 @@ private:
             return false;
         const Tick t = neg ? -Tick(ticks) : Tick(ticks);
         if (rows_ > 0 && t < cur_) return false;  // the general path words the error
-        // The values: ",0" or ",1" per column, four columns per 8-byte load, nothing after
-        // the last one.
+        if (!plainValues(p, end, 1)) return false;
+        prev_fast_ = {m, std::int8_t(whole.digits), std::int8_t(point ? frac : -1), neg, true};
+        takeRow(t, block);
+        return true;
+    }
+    // A dense row ("1,0,1,1"), the same way: the values only, the time its number.
+    bool plainDenseRow(std::string_view line, EdgeBlock* block) {
+        const char* const p = line.data();
+        const char* const end = p + line.size();
+        if (line.empty() || unsigned(p[0] - '0') >= 2) return false;
+        col_level_[0] = std::uint8_t(p[0] - '0');
+        if (!plainValues(p + 1, end, 1)) return false;
+        takeRow(Tick(rows_), block);
+        last_row_.assign(line);
+        return true;
+    }
+    // Columns `c` on from p to the end of the row: ",0" or ",1" each (with this file's
+    // separator), four per 8-byte load, nothing after the last; into col_level_.
+    bool plainValues(const char* p, const char* const end, std::size_t c) {
         std::uint8_t* const vals = col_level_.data();
-        std::size_t c = 1;
         for (; ncols_ - c >= 4 && end - p >= 8; c += 4, p += 8) {
             std::uint64_t w;
             std::memcpy(&w, p, 8);
@@ -503,10 +528,13 @@ private:
             if (end - p < 2 || p[0] != sep_ || unsigned(p[1] - '0') >= 2) return false;
             vals[c] = std::uint8_t(p[1] - '0');
         }
-        if (p != end) return false;
-        prev_fast_ = {m, std::int8_t(whole.digits), std::int8_t(point ? frac : -1), neg, true};
+        return p == end;
+    }
+    // A row read by a fast path: its time, and an edge per selected line that changed.
+    void takeRow(Tick t, EdgeBlock* block) {
         cur_ = t;
         ++rows_;
+        const std::uint8_t* const vals = col_level_.data();
         for (std::size_t i = 0; i < sel_.size(); ++i) {
             const std::uint8_t level = vals[sel_[i]];
             if (level != level_[i]) {
@@ -514,7 +542,6 @@ private:
                 if (block) block->edges.push_back({t, std::uint32_t(i), level});
             }
         }
-        return true;
     }
     static constexpr std::uint64_t kPow10[19] = {1ULL,
                                                  10ULL,

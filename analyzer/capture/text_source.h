@@ -46,6 +46,32 @@ public:
     // `first_line` (the number of the run's first line) only names a line that is too
     // long. Statuses and the view's lifetime are those of nextLine().
     Status nextLines(std::string_view& text, std::uint64_t first_line);
+    // Skips the complete lines already buffered that are `line` exactly (newline "\n",
+    // as returned by nextLine()), up to the first other one, and returns how many: a
+    // dense CSV repeats its last row for most samples. Counts them as lines returned;
+    // never reads or blocks (0 when the next line differs or is not buffered whole).
+    std::uint64_t skipLinesEqualTo(std::string_view line) {
+        const std::size_t len = line.size() + 1;
+        const char* p = pos_;
+        if (len <= 8) {
+            // One 8-byte load per line: its first len bytes against the line and "\n".
+            std::uint64_t want = 0;
+            std::memcpy(&want, line.data(), line.size());
+            want |= std::uint64_t('\n') << (8 * line.size());
+            const std::uint64_t mask = len == 8 ? ~0ULL : (1ULL << (8 * len)) - 1;
+            for (std::uint64_t w; end_ - p >= 8; p += len) {
+                std::memcpy(&w, p, 8);
+                if ((w & mask) != want) break;
+            }
+        } else {
+            for (; std::size_t(end_ - p) >= len; p += len)
+                if (std::memcmp(p, line.data(), len - 1) != 0 || p[len - 1] != '\n') break;
+        }
+        const auto n = std::uint64_t(p - pos_) / len;
+        pos_ = p;
+        line_no_ += n;
+        return n;
+    }
     // 1-based number of the line last returned.
     std::uint64_t lineNo() const { return line_no_; }
     // Blocks up to `ms` milliseconds for more input (pipes, followed files).

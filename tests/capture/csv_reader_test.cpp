@@ -245,6 +245,63 @@ TEST(CsvReader, PlainRowsReadAsTheGeneralPathReadsThem) {
     EXPECT_GT(failed, 50);
 }
 
+// The same for dense rows ("1,0,1"), which have no time column, and their repeats (a
+// dense capture repeats its last row for most samples: those are counted in one load).
+TEST(CsvReader, PlainDenseRowsReadAsTheGeneralPathReadsThem) {
+    std::srand(20261125);
+    auto rnd = [](int n) { return std::rand() % n; };
+    OpenOptions o;
+    o.rate_hz = 1e6;
+    int compared = 0, failed = 0;
+    for (int file = 0; file < 300; ++file) {
+        const int cols = 1 + rnd(9);
+        std::string head;
+        for (int c = 0; c < cols; ++c)
+            head += (c ? ",S" : "S") + std::to_string(c);
+        std::string plain = head + "\n", spaced = head + "\n";
+        const int fault_row = rnd(2) ? 1 + rnd(99) : -1;  // half the files: a bad value
+        std::string row, row_spaced;
+        for (int r = 0; r < 100; ++r) {
+            if (r == 0 || rnd(3) == 0 || r == fault_row) {  // else the last row again
+                row.clear();
+                row_spaced.clear();
+                const int bad_col = r == fault_row ? rnd(cols) : -1;
+                for (int c = 0; c < cols; ++c) {
+                    const char v = c == bad_col ? "x2"[rnd(2)] : char('0' + rnd(2));
+                    row += std::string(c ? "," : "") + v;
+                    row_spaced += std::string(c ? ", " : " ") + v;
+                }
+            }
+            plain += row + "\n";
+            spaced += row_spaced + "\n";
+        }
+        const std::string a = tempCapture("dense" + std::to_string(file) + ".csv", plain);
+        const std::string b = tempCapture("dense_sp" + std::to_string(file) + ".csv", spaced);
+        const std::string ea = errorOf(a, o), eb = errorOf(b, o);
+        if (!eb.empty()) {
+            ++failed;
+            EXPECT_EQ(ea.substr(a.size()), eb.substr(b.size())) << plain;
+            continue;
+        }
+        ASSERT_EQ(ea, "") << plain;
+        const auto ca = collectFile(a, {}, o), cb = collectFile(b, {}, o);
+        EXPECT_EQ(ca.initial, cb.initial) << plain;
+        EXPECT_EQ(ca.edges, cb.edges) << plain;
+        EXPECT_EQ(ca.end, cb.end) << plain;
+        EXPECT_EQ(ca.end, 99) << plain;
+        ++compared;
+    }
+    EXPECT_GT(compared, 100);
+    EXPECT_GT(failed, 100);
+    // Rows of both kinds in one file: a repeat is of the row just read, whichever path
+    // read it.
+    const auto p = tempCapture("mixed.csv", "A,B\n1, 0\n0,0\n1, 0\n1, 0\n0,0\n0,0\n1, 0\n");
+    const auto c = collectFile(p, {}, o);
+    EXPECT_EQ(c.initial, L({1, 0}));
+    EXPECT_EQ(c.edges, (Edges{{1, 0, 0}, {2, 0, 1}, {4, 0, 0}, {6, 0, 1}}));
+    EXPECT_EQ(c.end, 6);
+}
+
 // The message for a time going backwards quotes the previous time as written, also when
 // the previous row took the fast path (which keeps the time's parts, not its text).
 TEST(CsvReaderErrors, PreviousTimeAsWritten) {
