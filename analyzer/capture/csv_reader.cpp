@@ -198,9 +198,10 @@ public:
             row(line, &block);
             // A dense capture holds its levels for many samples: the rows that repeat
             // the last one whole are only counted (a sample's row is compared in one
-            // load, not found by memchr and compared as a line).
+            // load, not found by memchr and compared as a line). `line` is still the row
+            // just read: nothing was read into the buffer since.
             if (!timed_ && rows_ > 0) {
-                if (const std::uint64_t n = src_->skipLinesEqualTo(last_row_)) {
+                if (const std::uint64_t n = src_->skipLinesEqualTo(line)) {
                     rows_ += n;
                     cur_ = Tick(rows_ - 1);
                 }
@@ -507,7 +508,9 @@ private:
         col_level_[0] = std::uint8_t(p[0] - '0');
         if (!plainValues(p + 1, end, 1)) return false;
         takeRow(Tick(rows_), block);
-        last_row_.assign(line);
+        // row()'s same-text test is for the general path's rows: next() counts this one's
+        // repeats from its text in the buffer (no copy per row).
+        last_row_.clear();
         return true;
     }
     // Columns `c` on from p to the end of the row: ",0" or ",1" each (with this file's
