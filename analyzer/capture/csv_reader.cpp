@@ -500,7 +500,7 @@ private:
         takeRow(t, block);
         return true;
     }
-    // A dense row ("1,0,1,1"), the same way: the values only, the time its number.
+    // A dense row ("1,0,1,1") the same way: values only, its time the row's number.
     bool plainDenseRow(std::string_view line, EdgeBlock* block) {
         const char* const p = line.data();
         const char* const end = p + line.size();
@@ -546,25 +546,6 @@ private:
             }
         }
     }
-    static constexpr std::uint64_t kPow10[19] = {1ULL,
-                                                 10ULL,
-                                                 100ULL,
-                                                 1000ULL,
-                                                 10000ULL,
-                                                 100000ULL,
-                                                 1000000ULL,
-                                                 10000000ULL,
-                                                 100000000ULL,
-                                                 1000000000ULL,
-                                                 10000000000ULL,
-                                                 100000000000ULL,
-                                                 1000000000000ULL,
-                                                 10000000000000ULL,
-                                                 100000000000000ULL,
-                                                 1000000000000000ULL,
-                                                 10000000000000000ULL,
-                                                 100000000000000000ULL,
-                                                 1000000000000000000ULL};
     // The time of the previous row as written, for "time going backwards": the general
     // path keeps its text in prev_time_; plainTimedRow() keeps its parts, from which its
     // text is made again only for the message (a copy per row cost a fifth of its time).
@@ -604,7 +585,7 @@ private:
     std::vector<std::string_view> fields_;
     std::vector<std::size_t> sel_;  // column of each selected line
     std::vector<std::uint8_t> level_;
-    std::vector<std::uint8_t> col_level_;  // plainTimedRow()'s values, by column
+    std::vector<std::uint8_t> col_level_;  // the fast paths' values, by column
     std::uint64_t sep_zero_ = 0;           // and the four columns it expects per load
     std::uint64_t rows_ = 0;
     Tick start_ = 0, cur_ = 0;

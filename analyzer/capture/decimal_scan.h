@@ -40,10 +40,28 @@ inline std::uint64_t digitsValue(std::uint64_t w, int n) {
     return v & 0xFFFFFFFFULL;
 }
 
-inline constexpr std::uint64_t kPow10[9] = {1,      10,      100,      1000,     10000,
-                                            100000, 1000000, 10000000, 100000000};
-
 }  // namespace detail
+
+// 10^0 .. 10^18, every power of ten below 2^63.
+inline constexpr std::uint64_t kPow10[19] = {1ULL,
+                                             10ULL,
+                                             100ULL,
+                                             1000ULL,
+                                             10000ULL,
+                                             100000ULL,
+                                             1000000ULL,
+                                             10000000ULL,
+                                             100000000ULL,
+                                             1000000000ULL,
+                                             10000000000ULL,
+                                             100000000000ULL,
+                                             1000000000000ULL,
+                                             10000000000000ULL,
+                                             100000000000000ULL,
+                                             1000000000000000ULL,
+                                             10000000000000000ULL,
+                                             100000000000000000ULL,
+                                             1000000000000000000ULL};
 
 // The common case in two loads: up to 15 digits at p, reading exactly the 16 bytes at p
 // (the caller guarantees they are readable; no bounds check). digits == 16 means 16 or
@@ -58,7 +76,7 @@ inline DecimalScan scanDecimal16(const char* p) {
     if (n == 8) {
         std::memcpy(&w, p + 8, 8);
         const int n2 = detail::leadingDigits(w);
-        if (n2 > 0) t = t * detail::kPow10[n2] + detail::digitsValue(w, n2);
+        if (n2 > 0) t = t * kPow10[n2] + detail::digitsValue(w, n2);
         n += n2;
     }
     r.value = t;  // below 10^15 < 2^62 when digits < 16
@@ -70,7 +88,6 @@ inline DecimalScan scanDecimal16(const char* p) {
 // Reads the decimal digits starting at p (none is fine), never reading at or past e.
 inline DecimalScan scanDecimal(const char* p, const char* e) {
     static_assert(std::endian::native == std::endian::little, "SWAR digit scan is little-endian");
-    using detail::kPow10;
     const char* const start = p;
     DecimalScan r;
     std::uint64_t t = 0;
