@@ -133,36 +133,33 @@ for bus in spi bissc; do
     rm -f "$f"
 done
 
-# 2. Dense CSV throughput
-f="$tmp/spi.csv"
-echo "generating $f ..." >&2
-gen spi csv "$size" spi.csv >/dev/null
-echo "timing spi.csv ..." >&2
-# shellcheck disable=SC2086
-read -r t_csv c_csv < <(median $runs "$decode" "$f" $spi_args)
-size_mb="$(mb "$f")"
-csv_rate="$(ratio "$size_mb" "$t_csv")"
-csv_crate="$(ratio "$size_mb" "$c_csv")"
-row "spi.csv (sigrok dense, 100 MS/s): decode" "$size_mb MB" "$(fmt_s "$t_csv") s wall, $(fmt_s "$c_csv") s CPU" \
+# 2. CSV throughput: sigrok's dense CSV (the target), then Saleae Logic 2's export (a row
+# per change, decimal seconds: no target in the issue, but the other CSV users bring), of
+# the same SPI traffic. time_spi FORMAT NAME: generates $tmp/NAME and sets f, t_run,
+# c_run (median wall, mean CPU) and size_mb.
+time_spi() {
+    f="$tmp/$2"
+    echo "generating $f ..." >&2
+    gen spi "$1" "$size" "$2" >/dev/null
+    echo "timing $2 ..." >&2
+    # shellcheck disable=SC2086
+    read -r t_run c_run < <(median $runs "$decode" "$f" $spi_args)
+    size_mb="$(mb "$f")"
+}
+time_spi csv spi.csv
+csv_rate="$(ratio "$size_mb" "$t_run")"
+csv_crate="$(ratio "$size_mb" "$c_run")"
+row "spi.csv (sigrok dense, 100 MS/s): decode" "$size_mb MB" "$(fmt_s "$t_run") s wall, $(fmt_s "$c_run") s CPU" \
     "**$csv_rate MB/s** (wall), **$csv_crate MB/s** (per CPU second)" \
     ">= 200 MB/s" "$(verdict "$csv_rate >= 200") (wall), $(verdict "$csv_crate >= 200") (CPU)"
 # shellcheck disable=SC2086
 mem_csv="$(peak_mb "$decode" "$f" $spi_args)"  # its row goes with the other peaks below
 csv_mb="$size_mb"
 rm -f "$f"
-
-# 2b. Saleae Logic 2 CSV (a row per change, decimal seconds): no target in the issue, but
-# the other CSV users bring; the same SPI traffic as above.
-f="$tmp/spi_saleae.csv"
-echo "generating $f ..." >&2
-gen spi saleae "$size" spi_saleae.csv >/dev/null
-echo "timing spi_saleae.csv ..." >&2
-# shellcheck disable=SC2086
-read -r t_sal c_sal < <(median $runs "$decode" "$f" $spi_args)
-size_mb="$(mb "$f")"
+time_spi saleae spi_saleae.csv
 row "spi_saleae.csv (Saleae Logic 2, a row per change): decode" "$size_mb MB" \
-    "$(fmt_s "$t_sal") s wall, $(fmt_s "$c_sal") s CPU" \
-    "**$(ratio "$size_mb" "$t_sal") MB/s** (wall), **$(ratio "$size_mb" "$c_sal") MB/s** (per CPU second)" \
+    "$(fmt_s "$t_run") s wall, $(fmt_s "$c_run") s CPU" \
+    "**$(ratio "$size_mb" "$t_run") MB/s** (wall), **$(ratio "$size_mb" "$c_run") MB/s** (per CPU second)" \
     "(none)" "-"
 rm -f "$f"
 
