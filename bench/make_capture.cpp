@@ -155,25 +155,25 @@ void repeatSaleae(const std::string& chunk_file, std::uint64_t target, Output& o
     };
     std::vector<Row> rows;
     int decimals = -1;
+    std::int64_t scale = 1;  // 10^decimals
     for (std::size_t i = 1; i < lines.size(); ++i) {
         const std::string_view l = lines[i];
         const auto dot = l.find('.'), comma = l.find(',');
         if (dot == std::string_view::npos || comma == std::string_view::npos || dot > comma)
             throw std::runtime_error("unexpected Saleae row: " + std::string(l));
         const int d = int(comma - dot - 1);
-        if (decimals >= 0 && d != decimals) throw std::runtime_error("decimals vary");
-        decimals = d;
-        std::int64_t scale = 1;
-        for (int k = 0; k < d; ++k)
-            scale *= 10;
+        if (decimals < 0) {
+            decimals = d;
+            for (int k = 0; k < d; ++k)
+                scale *= 10;
+        } else if (d != decimals) {
+            throw std::runtime_error("decimals vary");
+        }
         rows.push_back(
             {std::strtoll(std::string(l.substr(0, dot)).c_str(), nullptr, 10) * scale +
                  std::strtoll(std::string(l.substr(dot + 1, std::size_t(d))).c_str(), nullptr, 10),
              l.substr(comma)});
     }
-    std::int64_t scale = 1;
-    for (int k = 0; k < decimals; ++k)
-        scale *= 10;
     const std::int64_t period = rows.back().units - rows.front().units;
     if (rows.front().units < 0) throw std::runtime_error("negative times are not repeated");
     std::uint64_t body_bytes = text.size() - lines[0].size();

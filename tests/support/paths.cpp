@@ -37,7 +37,9 @@ public:
         if (!mkdtemp(path_.data())) throw std::runtime_error("mkdtemp failed");
     }
     ~ScratchDir() {
-        if (std::getenv("BUSDECODE_KEEP_TEST_FILES")) return;
+        // Only by the process that made it: a forked child that exits normally must not
+        // take the directory from its parent.
+        if (getpid() != owner_ || std::getenv("BUSDECODE_KEEP_TEST_FILES")) return;
         std::error_code ec;  // a test's child may still hold a file: best effort
         std::filesystem::remove_all(path_, ec);
     }
@@ -47,6 +49,7 @@ public:
 
 private:
     std::string path_;
+    pid_t owner_ = getpid();
 };
 }  // namespace
 
