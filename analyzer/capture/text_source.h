@@ -46,18 +46,25 @@ public:
     // `first_line` (the number of the run's first line) only names a line that is too
     // long. Statuses and the view's lifetime are those of nextLine().
     Status nextLines(std::string_view& text, std::uint64_t first_line);
-    // Skips the complete lines already buffered that are `line` exactly (newline "\n",
-    // as returned by nextLine()), up to the first other one, and returns how many: a
-    // dense CSV repeats its last row for most samples. Counts them as lines returned;
-    // never reads or blocks (0 when the next line differs or is not buffered whole).
+    // Skips the complete lines already buffered that repeat `line`, the line nextLine()
+    // just returned, byte for byte with its line end ("\n" or "\r\n"), up to the first
+    // other one, and returns how many: a dense CSV repeats its last row for most samples.
+    // Counts them as lines returned; never reads or blocks (0 when the next line differs
+    // or is not buffered whole, or `line` is not the one just returned with its newline).
     std::uint64_t skipLinesEqualTo(std::string_view line) {
-        const std::size_t len = line.size() + 1;
+        // The line as it is in the buffer: from its start to where nextLine() left pos_.
+        const char* const raw = line.data();
+        const auto at = reinterpret_cast<std::uintptr_t>(raw);
+        if (at < reinterpret_cast<std::uintptr_t>(buf_) ||
+            at >= reinterpret_cast<std::uintptr_t>(pos_))
+            return 0;
+        const std::size_t len = std::size_t(pos_ - raw);
+        if (len < line.size() + 1 || len > line.size() + 2 || pos_[-1] != '\n') return 0;
         const char* p = pos_;
         if (len <= 8) {
-            // One 8-byte load per line: its first len bytes against the line and "\n".
+            // One 8-byte load per line: its first len bytes against the line.
             std::uint64_t want = 0;
-            std::memcpy(&want, line.data(), line.size());
-            want |= std::uint64_t('\n') << (8 * line.size());
+            std::memcpy(&want, raw, len);
             const std::uint64_t mask = len == 8 ? ~0ULL : (1ULL << (8 * len)) - 1;
             for (std::uint64_t w; end_ - p >= 8; p += len) {
                 std::memcpy(&w, p, 8);
@@ -65,7 +72,7 @@ public:
             }
         } else {
             for (; std::size_t(end_ - p) >= len; p += len)
-                if (std::memcmp(p, line.data(), len - 1) != 0 || p[len - 1] != '\n') break;
+                if (std::memcmp(p, raw, len) != 0) break;
         }
         const auto n = std::uint64_t(p - pos_) / len;
         pos_ = p;

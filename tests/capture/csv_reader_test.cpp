@@ -150,6 +150,8 @@ TEST(CsvReaderErrors, Messages) {
     // after repeated rows, which are counted without being returned one by one
     check("repeats.csv", "A,B\n0,1\n0,1\n0,1\n0,1\n0,1\n0,1\n0,1\n0,1\n0,1\n1,x\n",
           ":11: expected 0 or 1 in column 'B', found 'x'");
+    check("repeats_crlf.csv", "A,B\r\n0,1\r\n0,1\r\n0,1\r\n0,1\r\n0,1\r\n0,1\r\n1,x\r\n",
+          ":8: expected 0 or 1 in column 'B', found 'x'");
     check("repeats_long.csv",
           "A,B,C,D,E\n0,1,0,1,0\n0,1,0,1,0\n0,1,0,1,0\n0,1,0,1,0\n0,1,0,1,0\n0,1,0,1,0\n"
           "0,1,0,1,0\n0,1,0,1,0\n0,1,0,1,0\n0,1,0,1,0\n1,x,0,1,0\n",
@@ -265,7 +267,8 @@ TEST(CsvReader, PlainDenseRowsReadAsTheGeneralPathReadsThem) {
         std::string head;
         for (int c = 0; c < cols; ++c)
             head += (c ? ",S" : "S") + std::to_string(c);
-        std::string plain = head + "\n", spaced = head + "\n";
+        const std::string eol = rnd(3) ? "\n" : "\r\n";  // a third: Windows line ends
+        std::string plain = head + eol, spaced = head + eol;
         const int fault_row = rnd(2) ? 1 + rnd(99) : -1;  // half the files: a bad value
         std::string row, row_spaced;
         for (int r = 0; r < 100; ++r) {
@@ -279,8 +282,8 @@ TEST(CsvReader, PlainDenseRowsReadAsTheGeneralPathReadsThem) {
                     row_spaced += std::string(c ? ", " : " ") + v;
                 }
             }
-            plain += row + "\n";
-            spaced += row_spaced + "\n";
+            plain += row + eol;
+            spaced += row_spaced + eol;
         }
         const std::string a = tempCapture("dense" + std::to_string(file) + ".csv", plain);
         const std::string b = tempCapture("dense_sp" + std::to_string(file) + ".csv", spaced);
