@@ -461,7 +461,8 @@ private:
     // a time of plain digits with at most one point and no more decimals than the tick,
     // then single 0/1 values, no blanks or quotes. Taken without splitting the row into
     // fields, digits and values eight bytes at a time, without 128-bit arithmetic or
-    // division (the general path costs about 45 ns per row; bench/README.md). Anything
+    // division (the general path: about 50 ns a row, "The CSV readers" in
+    // bench/README.md). Anything
     // else, errors included, returns false having changed nothing, and row() takes the
     // row the general way: the results are the same.
     bool plainTimedRow(std::string_view line, EdgeBlock* block) {
@@ -548,7 +549,7 @@ private:
     }
     // The time of the previous row as written, for "time going backwards": the general
     // path keeps its text in prev_time_; plainTimedRow() keeps its parts, from which its
-    // text is made again only for the message (a copy per row cost a fifth of its time).
+    // text is made again only for the message (no copy of the text per row).
     struct PlainTime {
         std::uint64_t mantissa = 0;  // the digits, point left out
         std::int8_t whole_digits = 0;
