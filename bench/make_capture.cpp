@@ -23,6 +23,7 @@
 
 #include "bench_captures.h"
 #include "capture/capture_writer.h"
+#include "capture/decimal_scan.h"
 
 namespace {
 
@@ -163,9 +164,9 @@ void repeatSaleae(const std::string& chunk_file, std::uint64_t target, Output& o
             throw std::runtime_error("unexpected Saleae row: " + std::string(l));
         const int d = int(comma - dot - 1);
         if (decimals < 0) {
+            if (d > 18) throw std::runtime_error("more than 18 decimals");
             decimals = d;
-            for (int k = 0; k < d; ++k)
-                scale *= 10;
+            scale = std::int64_t(kPow10[d]);
         } else if (d != decimals) {
             throw std::runtime_error("decimals vary");
         }
