@@ -99,6 +99,32 @@ row() { rows+=("| $(IFS='|'; echo "$*" | sed 's/|/ | /g') |"); }
 
 load_start="$(cut -d' ' -f1-3 /proc/loadavg)"
 
+# sigrok's own session format, the one PulseView saves: VCD converted by sigrok-cli
+# (-O srzip), then decode and sigrok-cli each on that same .sr (no VCD parsing on
+# sigrok's side). time_sr VCD SIGROK_ARGS DECODE_ARGS adds the row.
+time_sr() {
+    local vcd="$1" sargs="$2" args="$3" sr="$tmp/session.sr"
+    echo "converting $vcd to $sr (sigrok-cli) ..." >&2
+    sigrok-cli -I vcd -i "$vcd" -O srzip -o "$sr"
+    sync
+    local samples
+    # Bytes of sample data, one byte a sample (4 probes: unitsize 1).
+    samples="$(python3 -c 'import sys, zipfile
+print(sum(i.file_size for i in zipfile.ZipFile(sys.argv[1]).infolist() if i.filename.startswith("logic-1")))' "$sr")"
+    echo "timing $sr ..." >&2
+    local t_sr c_sr t_srs c_srs
+    # shellcheck disable=SC2086
+    read -r t_sr c_sr < <(median "$runs" "$decode" "$sr" $args)
+    # shellcheck disable=SC2086
+    read -r t_srs c_srs < <(median 1 sigrok-cli -i "$sr" $sargs)
+    row "spi.sr (sigrok session of spi.vcd, $(echo "scale=1; $samples / 1000000" | bc) M samples): decode vs sigrok-cli" \
+        "$(mb "$sr") MB" \
+        "$(fmt_s "$t_sr") s wall, $(fmt_s "$c_sr") s CPU ($(echo "scale=0; $samples / $t_sr / 1000000" | bc -l) M samples/s)" \
+        "sigrok-cli $(fmt_s "$t_srs") s wall, $(fmt_s "$c_srs") s CPU: **$(ratio "$t_srs" "$t_sr")x** (wall), **$(ratio "$c_srs" "$c_sr")x** (CPU)" \
+        "(none)" "-"
+    rm -f "$sr"
+}
+
 # 1. VCD: decode vs sigrok-cli vs wc -l, one capture at a time (see resident())
 for bus in spi bissc; do
     f="$tmp/$bus.vcd"
@@ -130,6 +156,7 @@ for bus in spi bissc; do
         "$(fmt_s "$t_rd") s wall, $(fmt_s "$c_rd") s CPU" \
         "wc -l as above: reading alone at **$(ratio "$t_wc" "$t_rd")** (wall) of its speed" \
         "(a bound on the row above)" "-"
+    [ $bus = spi ] && time_sr "$f" "$sargs" "$args"
     rm -f "$f"
 done
 
