@@ -1,6 +1,9 @@
 // make_capture: writes the large captures bench/run.sh times.
 //
-//   make_capture BUS FORMAT SIZE_MB OUT     (FORMAT: vcd, csv or saleae)
+//   make_capture BUS FORMAT SIZE_MB OUT     (FORMAT: vcd, csv, saleae or sr)
+//
+// sr (a sigrok session) is SIZE_MB of samples before compression: one byte a sample up
+// to eight lines, 1e6 samples per MB.
 //
 // BUS: spi, bissc, uart, ... (bench_captures.cpp); spi-periodic and bissc-periodic are the
 // same traffic with the same data in every word or frame (what unpredictable data costs).
@@ -10,9 +13,11 @@
 // chunk ends at the levels it started with, so its body is then repeated, VCD timestamps
 // shifted by one chunk period each time, until the file reaches SIZE_MB. The result is
 // what the writer would produce for the whole long capture, without holding it in memory.
+#include <algorithm>
 #include <cinttypes>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -193,11 +198,33 @@ void repeatSaleae(const std::string& chunk_file, std::uint64_t target, Output& o
     }
 }
 
+// A sigrok session of `target` bytes of samples (before compression): the chunk's
+// samples over one period, repeated. The chunk ends at the levels it started with, so
+// the sample at tick start + period is the one at start again.
+std::uint64_t repeatSr(const Waveform& chunk, std::uint64_t target, const std::string& path) {
+    SampleRenderer renderer(chunk);
+    const std::size_t unit = renderer.unit();
+    const auto period = std::size_t(chunk.end - chunk.start);
+    std::vector<std::uint8_t> one(period * unit);
+    renderer.render(0, period, one.data());
+    const std::uint64_t samples = target / unit;
+    writeSrSamples(path, chunk.names, chunk.timebase.den / chunk.timebase.num, samples,
+                   [&](std::uint64_t first, std::size_t n, std::uint8_t* out) {
+                       for (std::size_t done = 0; done < n;) {
+                           const std::size_t at = std::size_t((first + done) % period);
+                           const std::size_t run = std::min(n - done, period - at);
+                           std::memcpy(out + done * unit, one.data() + at * unit, run * unit);
+                           done += run;
+                       }
+                   });
+    return std::filesystem::file_size(path);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
     if (argc != 5) {
-        std::fprintf(stderr, "usage: make_capture BUS vcd|csv|saleae SIZE_MB OUT\n");
+        std::fprintf(stderr, "usage: make_capture BUS vcd|csv|saleae|sr SIZE_MB OUT\n");
         return 2;
     }
     try {
@@ -208,6 +235,12 @@ int main(int argc, char** argv) {
                           : bus_id.rfind("bissc", 0) == 0 ? 3000
                                                           : 2000;
         const bench::BenchBus bus = bench::makeBus(bus_id, units);
+        if (format == "sr") {
+            const std::uint64_t bytes = repeatSr(bus.chunk, target, out_path);
+            std::printf("%s\t%s\t%" PRIu64 "\t%s\t%s\n", bus_id.c_str(), format.c_str(), bytes,
+                        bus.decode_args.c_str(), bus.sigrok_args.c_str());
+            return 0;
+        }
         const std::string chunk_file = out_path + ".chunk";
         Output out(out_path);
         if (format == "vcd") {
@@ -220,7 +253,7 @@ int main(int argc, char** argv) {
             writeCsv(bus.chunk, chunk_file, CsvDialect::SaleaeLogic2);
             repeatSaleae(chunk_file, target, out);
         } else {
-            throw std::invalid_argument("format must be vcd, csv or saleae");
+            throw std::invalid_argument("format must be vcd, csv, saleae or sr");
         }
         std::filesystem::remove(chunk_file);
         std::printf("%s\t%s\t%" PRIu64 "\t%s\t%s\n", bus_id.c_str(), format.c_str(), out.bytes(),

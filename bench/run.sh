@@ -4,7 +4,8 @@
 #   bench/run.sh [-b BUILD_DIR] [-s SIZE_MB] [-q]
 #
 # Generates the captures with the project's generators (make_capture: SPI at 10 MHz back
-# to back and BiSS-C at 10 MHz, 100 MHz sampling, as VCD, sigrok dense CSV and Saleae CSV) into a
+# to back and BiSS-C at 10 MHz, 100 MHz sampling, as VCD, sigrok dense CSV, Saleae CSV and
+# a sigrok session) into a
 # temporary directory (removed at the end; one large capture at a time, so that each
 # stays in the page cache), then times `decode` against `sigrok-cli`, `wc -l` and the
 # tokeniser alone on the same cached files (hyperfine, median), records peak memory
@@ -99,27 +100,22 @@ row() { rows+=("| $(IFS='|'; echo "$*" | sed 's/|/ | /g') |"); }
 
 load_start="$(cut -d' ' -f1-3 /proc/loadavg)"
 
-# sigrok's own session format, the one PulseView saves: VCD converted by sigrok-cli
-# (-O srzip), then decode and sigrok-cli each on that same .sr (no VCD parsing on
-# sigrok's side). time_sr VCD SIGROK_ARGS DECODE_ARGS adds the row.
+# sigrok's own session format, the one PulseView saves (make_capture spi sr: deflated
+# 4 MiB chunks, as sigrok writes them): decode and sigrok-cli on the same .sr, no VCD
+# parsing on sigrok's side. A quarter of SIZE_MB in M samples: about the VCD's duration.
 time_sr() {
-    local vcd="$1" sargs="$2" args="$3" sr="$tmp/session.sr"
-    echo "converting $vcd to $sr (sigrok-cli) ..." >&2
-    sigrok-cli -I vcd -i "$vcd" -O srzip -o "$sr"
-    sync
-    local samples
-    # Bytes of sample data, one byte a sample (4 probes: unitsize 1).
-    samples="$(python3 -c 'import sys, zipfile
-print(sum(i.file_size for i in zipfile.ZipFile(sys.argv[1]).infolist() if i.filename.startswith("logic-1")))' "$sr")"
+    local sr="$tmp/spi.sr" info samples t_sr c_sr t_srs c_srs
+    samples=$((size / 4))
+    echo "generating $sr ..." >&2
+    info="$(gen spi sr "$samples" spi.sr)"
     echo "timing $sr ..." >&2
-    local t_sr c_sr t_srs c_srs
     # shellcheck disable=SC2086
-    read -r t_sr c_sr < <(median "$runs" "$decode" "$sr" $args)
+    read -r t_sr c_sr < <(median "$runs" "$decode" "$sr" $(field "$info" 4))
     # shellcheck disable=SC2086
-    read -r t_srs c_srs < <(median 1 sigrok-cli -i "$sr" $sargs)
-    row "spi.sr (sigrok session of spi.vcd, $(echo "scale=1; $samples / 1000000" | bc) M samples): decode vs sigrok-cli" \
+    read -r t_srs c_srs < <(median 1 sigrok-cli -i "$sr" $(field "$info" 5))
+    row "spi.sr (sigrok session, $samples M samples at 100 MS/s): decode vs sigrok-cli" \
         "$(mb "$sr") MB" \
-        "$(fmt_s "$t_sr") s wall, $(fmt_s "$c_sr") s CPU ($(echo "scale=0; $samples / $t_sr / 1000000" | bc -l) M samples/s)" \
+        "$(fmt_s "$t_sr") s wall, $(fmt_s "$c_sr") s CPU ($(echo "scale=0; $samples / $t_sr" | bc -l) M samples/s)" \
         "sigrok-cli $(fmt_s "$t_srs") s wall, $(fmt_s "$c_srs") s CPU: **$(ratio "$t_srs" "$t_sr")x** (wall), **$(ratio "$c_srs" "$c_sr")x** (CPU)" \
         "(none)" "-"
     rm -f "$sr"
@@ -156,8 +152,8 @@ for bus in spi bissc; do
         "$(fmt_s "$t_rd") s wall, $(fmt_s "$c_rd") s CPU" \
         "wc -l as above: reading alone at **$(ratio "$t_wc" "$t_rd")** (wall) of its speed" \
         "(a bound on the row above)" "-"
-    [ $bus = spi ] && time_sr "$f" "$sargs" "$args"
     rm -f "$f"
+    if [ $bus = spi ]; then time_sr; fi
 done
 
 # 2. CSV throughput: sigrok's dense CSV (the target), then Saleae Logic 2's export (a row

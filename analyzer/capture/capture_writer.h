@@ -2,7 +2,10 @@
 // Writes an in-memory Waveform as a capture file the way real tools do: generators use
 // these to make the example captures in captures/ and the inputs of differential tests.
 // Files are written atomically (temporary file, then rename).
+#include <cstdint>
+#include <functional>
 #include <string>
+#include <vector>
 
 #include "core/waveform.h"
 
@@ -20,5 +23,38 @@ enum class CsvDialect {
 };
 // Dense dialects need a timebase that is one sample per tick (Timebase::fromSampleRate).
 void writeCsv(const Waveform& w, const std::string& path, CsvDialect dialect);
+
+// A sigrok session (.sr) as PulseView and `sigrok-cli -O srzip` write it: deflated
+// 4 MiB chunks of samples, 1 to 32 lines (unitsize 1 to 4). Needs a timebase of one
+// sample per tick. Throws InputError naming the file when it cannot be written.
+void writeSr(const Waveform& w, const std::string& path);
+
+// The same from a sample source: render(first, n, out) writes samples first .. first+n-1
+// (unitsize = ceil(lines / 8) bytes each, little-endian, line i in bit i) to out; it is
+// called once per 4 MiB chunk, in order. For captures longer than a Waveform can hold.
+using SrSampleWriter = std::function<void(std::uint64_t first, std::size_t n, std::uint8_t* out)>;
+void writeSrSamples(const std::string& path, const std::vector<std::string>& names,
+                    std::int64_t rate, std::uint64_t samples, const SrSampleWriter& render);
+
+// A waveform's dense samples as a session stores them (line i in bit i, unitsize =
+// ceil(lines / 8) bytes each, little-endian), stretch by stretch: render(first, n, out)
+// writes the samples of ticks start+first .. start+first+n-1. In order it carries its
+// place from one stretch to the next; an earlier stretch starts it over.
+class SampleRenderer {
+public:
+    explicit SampleRenderer(const Waveform& w);
+    std::size_t unit() const { return unit_; }
+    void render(std::uint64_t first, std::size_t n, std::uint8_t* out);
+
+private:
+    const Waveform& w_;
+    std::size_t unit_;
+    std::uint32_t start_levels_ = 0, levels_ = 0;  // bit i = line i
+    std::size_t k_ = 0;                            // next edge
+    Tick at_ = 0;                                  // tick after the last stretch
+};
+
+// A sample rate as sigrok writes it ("100 MHz", "250 kHz", "5 Hz").
+std::string sampleRateText(std::int64_t hz);
 
 }  // namespace busdecode

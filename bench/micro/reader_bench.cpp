@@ -1,6 +1,7 @@
-// The tokenisers: VCD and dense CSV files (written with the project's writers into a
-// temporary directory) read through openCapture, edges counted and dropped. Measures
-// bytes per second of the reader alone, with all lines mapped and with only one.
+// The tokenisers: VCD, CSV and sigrok session files (written with the project's writers
+// into a temporary directory) read through openCapture, edges counted and dropped.
+// Measures bytes per second of the reader alone (of the file; for a session, of its
+// compressed file, with samples/s beside), with all lines mapped and with only one.
 #include <benchmark/benchmark.h>
 
 #include <filesystem>
@@ -28,13 +29,19 @@ struct TempDir {
     }
 };
 
-// One file per format, written once per process (about 20 MB of SPI traffic each).
+// The traffic every file holds (about 20 MB of SPI as VCD).
+const BenchBus& benchBus() {
+    static const BenchBus bus = makeBus("spi", 20000);
+    return bus;
+}
+
+// One file per format, written once per process.
 const std::string& benchFile(const std::string& format) {
     static TempDir dir;
     static std::map<std::string, std::string> files;
     auto it = files.find(format);
     if (it != files.end()) return it->second;
-    static const BenchBus bus = makeBus("spi", 20000);
+    const BenchBus& bus = benchBus();
     std::string path = (dir.path / ("spi." + format)).string();
     if (format == "vcd") {
         writeVcd(bus.chunk, path);
@@ -53,6 +60,8 @@ const std::string& benchFile(const std::string& format) {
         // Saleae Logic 2's export: one row per change, times as decimal seconds.
         path = (dir.path / "spi_saleae.csv").string();
         writeCsv(bus.chunk, path, CsvDialect::SaleaeLogic2);
+    } else if (format == "sr") {
+        writeSr(bus.chunk, path);  // a sigrok session: deflated samples, one byte each
     } else {
         writeCsv(bus.chunk, path, CsvDialect::SigrokDense);
     }
@@ -69,6 +78,10 @@ void readFile(benchmark::State& state, const std::string& format, bool all_lines
     }
     state.SetBytesProcessed(std::int64_t(bytes));
     state.counters["edges/s"] = benchmark::Counter(double(edges), benchmark::Counter::kIsRate);
+    // Samples of capture read per second, whatever the format stores (the same traffic).
+    const Waveform& w = benchBus().chunk;
+    state.counters["samples/s"] = benchmark::Counter(
+        double(w.end - w.start + 1) * double(state.iterations()), benchmark::Counter::kIsRate);
 }
 
 BENCHMARK_CAPTURE(readFile, vcd_all_lines, std::string("vcd"), true)->Unit(benchmark::kMillisecond);
@@ -81,6 +94,8 @@ BENCHMARK_CAPTURE(readFile, csv_saleae_all_lines, std::string("csv_saleae"), tru
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(readFile, csv_saleae_one_line, std::string("csv_saleae"), false)
     ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(readFile, sr_all_lines, std::string("sr"), true)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(readFile, sr_one_line, std::string("sr"), false)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace busdecode::bench

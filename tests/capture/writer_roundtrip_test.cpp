@@ -6,6 +6,8 @@
 #include <filesystem>
 #include <random>
 
+#include <zip.h>
+
 #include "capture/capture_writer.h"
 #include "capture_util.h"
 #include "core/waveform.h"
@@ -110,6 +112,73 @@ TEST(WriterRoundTrip, SaleaeLogic2Csv) {
         EXPECT_EQ(c.tb.toNs(c.end), w.timebase.toNs(w.end));
         expectSameNs(inNs(c), wantNs(w), 0);
     }
+}
+
+// A sigrok session of 1 to 32 lines (unitsize 1 to 4) reads back sample for sample; the
+// longer ones span several 4 MiB chunks, which hold whole samples (4 MiB is no multiple
+// of a 3-byte sample).
+TEST(WriterRoundTrip, SigrokSession) {
+    std::mt19937 rng(5);
+    for (int lines : {1, 4, 8, 9, 17, 24, 32}) {
+        SCOPED_TRACE(lines);
+        std::vector<std::string> names;
+        std::vector<std::uint8_t> init;
+        for (int i = 0; i < lines; ++i) {
+            names.push_back("D" + std::to_string(i) + (i == 2 ? " with blanks" : ""));
+            init.push_back(std::uint8_t(rng() & 1));
+        }
+        WaveBuilder b(Timebase::fromSampleRate(50'000'000), names, init);
+        const Tick span = lines >= 17 ? 3'000'000 : 200'000;  // 17+: 3 bytes a sample
+        Tick t = 0;
+        while (t < span) {
+            t += Tick(rng() % 3000);
+            const auto l = std::uint32_t(rng() % unsigned(lines));
+            b.set(l, t, !b.level(l));
+        }
+        const Waveform w = b.build(t + 11);
+        const std::string p = tempDir() + "/rt.sr";
+        writeSr(w, p);
+        auto c = collectFile(p);
+        EXPECT_EQ(c.format, "sigrok-sr");
+        ASSERT_EQ(c.signals.size(), std::size_t(lines));
+        EXPECT_EQ(c.signals[lines - 1].name, names.back());
+        EXPECT_EQ(c.tb.den, 50'000'000);
+        EXPECT_EQ(c.initial, w.initial);
+        EXPECT_EQ(c.start, 0);
+        EXPECT_EQ(c.end, w.end);
+        EXPECT_EQ(c.edges, w.edges);
+
+        int err = 0;
+        zip_t* z = zip_open(p.c_str(), ZIP_RDONLY, &err);
+        ASSERT_NE(z, nullptr);
+        const std::uint64_t unit = std::uint64_t(lines + 7) / 8, samples = std::uint64_t(w.end) + 1;
+        const std::uint64_t per_chunk = (4u << 20) / unit;
+        const std::uint64_t chunks = (samples + per_chunk - 1) / per_chunk;
+        EXPECT_EQ(zip_get_num_entries(z, 0), zip_int64_t(2 + chunks));  // + version, metadata
+        zip_stat_t st;
+        ASSERT_EQ(zip_stat(z, "logic-1-1", 0, &st), 0);
+        EXPECT_EQ(st.size, std::min(samples, per_chunk) * unit);
+        EXPECT_EQ(zip_stat(z, ("logic-1-" + std::to_string(chunks + 1)).c_str(), 0, &st), -1);
+        zip_discard(z);
+    }
+}
+
+TEST(Writer, SigrokSessionErrors) {
+    WaveBuilder b(Timebase::fromSampleRate(1'000'000), {"A"}, {0});
+    const Waveform w = b.build(10);
+    const std::string bad = tempDir() + "/no/such/dir/x.sr";
+    try {
+        writeSr(w, bad);
+        FAIL() << "no error";
+    } catch (const InputError& e) {
+        EXPECT_EQ(std::string(e.what()).rfind(bad + ": cannot write", 0), 0u) << e.what();
+    }
+    EXPECT_FALSE(std::filesystem::exists(bad));
+    WaveBuilder wide(Timebase::fromSampleRate(1'000'000), std::vector<std::string>(33, "x"),
+                     std::vector<std::uint8_t>(33, 0));
+    EXPECT_THROW(writeSr(wide.build(10), tempDir() + "/wide.sr"), std::invalid_argument);
+    WaveBuilder ns(Timebase{3, 1'000'000'000}, {"A"}, {0});  // not a whole sample rate
+    EXPECT_THROW(writeSr(ns.build(10), tempDir() + "/ns.sr"), std::invalid_argument);
 }
 
 TEST(Writer, AtomicNoTemporaryLeftAndUnwritableIsAnError) {

@@ -1,7 +1,8 @@
 // Differential tests against the real sigrok-cli (Debian package sigrok-cli): the same
 // capture decoded by sigrok's SPI decoder and by ours must give the same words over the
 // same sample ranges. Covers every capture of sigrok-dumps spi/allmodes (all CPOL/CPHA,
-// cs polarity, LSB first, triggers mid-transfer) and a generated capture written as VCD.
+// cs polarity, LSB first, triggers mid-transfer) and a generated capture written as VCD
+// and as a sigrok session.
 // Skipped when sigrok-cli is not installed.
 #include <gtest/gtest.h>
 
@@ -141,11 +142,14 @@ TEST(SpiVsSigrokCli, AllModesCaptures) {
     EXPECT_GE(words, 50);
 }
 
-TEST(SpiVsSigrokCli, GeneratedVcdInEveryMode) {
+// Written as VCD and as a sigrok session (writeSr: sigrok-cli must read ours as its own).
+TEST(SpiVsSigrokCli, GeneratedVcdAndSrInEveryMode) {
     if (!haveSigrokCli()) GTEST_SKIP() << "sigrok-cli not installed";
     std::mt19937_64 rng(42);
-    for (int mode = 0; mode < 4; ++mode) {
-        SCOPED_TRACE(mode);
+    for (int run = 0; run < 8; ++run) {
+        const int mode = run % 4;
+        const std::string ext = run < 4 ? "vcd" : "sr";
+        SCOPED_TRACE(::testing::Message() << "mode " << mode << " " << ext);
         SpiMode m{mode >> 1, mode & 1, mode == 2, false};
         const int bits = 8 + 8 * mode;  // 8, 16, 24, 32
         std::vector<std::vector<SpiGenerator::Word>> transfers;
@@ -154,9 +158,13 @@ TEST(SpiVsSigrokCli, GeneratedVcdInEveryMode) {
             transfers.push_back({{rng() & mask, rng() & mask}, {rng() & mask, rng() & mask}});
         }
         Waveform w = makeSpiCapture(transfers, bits, m, SpiTiming{200, 100, 100, 20}, 500);
-        const std::string file = tempDir() + "/spi_mode" + std::to_string(mode) + ".vcd";
-        writeVcd(w, file);
-        BusSetup s{"cs", "sclk", "mosi", "miso", m.cpol, m.cpha, bits, m.lsb_first, false, "vcd"};
+        const std::string file = tempDir() + "/spi_mode" + std::to_string(mode) + "." + ext;
+        if (ext == "vcd")
+            writeVcd(w, file);
+        else
+            writeSr(w, file);
+        BusSetup s{"cs",   "sclk", "mosi",      "miso", m.cpol,
+                   m.cpha, bits,   m.lsb_first, false,  ext == "vcd" ? "vcd" : ""};
         auto want = sigrokWords(file, s);
         auto got = ourWords(file, s);
         ASSERT_EQ(want.size(), 24u);
