@@ -235,28 +235,28 @@ int main(int argc, char** argv) {
                           : bus_id.rfind("bissc", 0) == 0 ? 3000
                                                           : 2000;
         const bench::BenchBus bus = bench::makeBus(bus_id, units);
+        std::uint64_t bytes = 0;
         if (format == "sr") {
-            const std::uint64_t bytes = repeatSr(bus.chunk, target, out_path);
-            std::printf("%s\t%s\t%" PRIu64 "\t%s\t%s\n", bus_id.c_str(), format.c_str(), bytes,
-                        bus.decode_args.c_str(), bus.sigrok_args.c_str());
-            return 0;
-        }
-        const std::string chunk_file = out_path + ".chunk";
-        Output out(out_path);
-        if (format == "vcd") {
-            writeVcd(bus.chunk, chunk_file);
-            repeatVcd(chunk_file, bus.chunk, target, out);
-        } else if (format == "csv") {
-            writeCsv(bus.chunk, chunk_file, CsvDialect::SigrokDense);
-            repeatCsv(chunk_file, target, out);
-        } else if (format == "saleae") {
-            writeCsv(bus.chunk, chunk_file, CsvDialect::SaleaeLogic2);
-            repeatSaleae(chunk_file, target, out);
+            bytes = repeatSr(bus.chunk, target, out_path);
         } else {
-            throw std::invalid_argument("format must be vcd, csv, saleae or sr");
+            const std::string chunk_file = out_path + ".chunk";
+            Output out(out_path);
+            if (format == "vcd") {
+                writeVcd(bus.chunk, chunk_file);
+                repeatVcd(chunk_file, bus.chunk, target, out);
+            } else if (format == "csv") {
+                writeCsv(bus.chunk, chunk_file, CsvDialect::SigrokDense);
+                repeatCsv(chunk_file, target, out);
+            } else if (format == "saleae") {
+                writeCsv(bus.chunk, chunk_file, CsvDialect::SaleaeLogic2);
+                repeatSaleae(chunk_file, target, out);
+            } else {
+                throw std::invalid_argument("format must be vcd, csv, saleae or sr");
+            }
+            std::filesystem::remove(chunk_file);
+            bytes = out.bytes();
         }
-        std::filesystem::remove(chunk_file);
-        std::printf("%s\t%s\t%" PRIu64 "\t%s\t%s\n", bus_id.c_str(), format.c_str(), out.bytes(),
+        std::printf("%s\t%s\t%" PRIu64 "\t%s\t%s\n", bus_id.c_str(), format.c_str(), bytes,
                     bus.decode_args.c_str(), bus.sigrok_args.c_str());
     } catch (const std::exception& e) {
         std::fprintf(stderr, "make_capture: %s\n", e.what());

@@ -177,9 +177,11 @@ private:
     // sample before it shifted in, so that a load without a change costs one compare. At
     // 100 MS/s most samples repeat the one before; a sample at a time, each was a
     // compare and a branch the traffic's data decides. Returns how many of the `words`
-    // samples at p it took (it stops 8 bytes short of the end, or when the block could
-    // not take a whole load's edges); the caller's loop does the rest.
+    // samples at p it took (it stops when fewer than 8 bytes are left, or when the block
+    // could not take a whole load's edges); the caller's loop does the rest.
     std::size_t scanPacked(const std::uint8_t* p, std::size_t words, Edge*& out, Edge* full) {
+        static_assert(std::endian::native == std::endian::little,
+                      "a load's first sample must be its low bytes, as in the file");
         if (unit_ == 3) return 0;
         const unsigned shift = unsigned(8 * unit_);  // bits per sample
         const unsigned log2_shift = unit_ == 1 ? 3 : unit_ == 2 ? 4 : 5;

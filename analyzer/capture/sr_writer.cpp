@@ -45,7 +45,16 @@ zip_int64_t chunkCallback(void* state, void* data, zip_uint64_t len, zip_source_
     auto* c = static_cast<ChunkSource*>(state);
     switch (cmd) {
         case ZIP_SOURCE_OPEN:
-            c->make();
+            // No exception may cross libzip's C frames: it becomes libzip's error.
+            try {
+                c->make();
+            } catch (const std::bad_alloc&) {
+                zip_error_set(&c->error, ZIP_ER_MEMORY, 0);
+                return -1;
+            } catch (...) {
+                zip_error_set(&c->error, ZIP_ER_INTERNAL, 0);
+                return -1;
+            }
             c->at = 0;
             return 0;
         case ZIP_SOURCE_READ: {
