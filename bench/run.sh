@@ -56,7 +56,7 @@ resident() {
     fincore --bytes --noheadings --output RES,SIZE "$1" 2>/dev/null |
         awk '{ if ($2 > 0) printf "%.0f", 100 * $1 / $2 }' || echo "?"
 }
-mb() { echo "scale=1; $(stat -c %s "$1") / 1000000" | bc; }
+mb() { awk -v b="$(stat -c %s "$1")" 'BEGIN { printf "%.1f", b / 1000000 }'; }
 # "WALL CPU" seconds of a command: the median wall time and the mean user+system time
 # over N runs (hyperfine, no shell, one warm-up run unless N is 1).
 median() {

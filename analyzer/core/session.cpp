@@ -292,10 +292,17 @@ Session::Session(std::vector<DecoderRequest> requests, CaptureReader& reader, st
             if (auto it = req.map.find(rs.name); it != req.map.end()) {
                 ref = findSignal(sigs, it->second, false);
                 if (!ref) ref = findSignal(sigs, it->second, true);
-                if (!ref)
+                if (!ref) {
+                    // "--map cs=CS,sclk=CLK" reads as one role bound to a signal "CS,sclk=CLK".
+                    const bool several = it->second.find(',') != std::string::npos &&
+                                         it->second.find('=') != std::string::npos;
                     throw InputError(fmt::format(
-                        "decoder {}: --map {}={}: no such signal in the capture (signals: {})",
-                        info.id, rs.name, it->second, signalList(sigs)));
+                        "decoder {}: --map {}={}: no such signal in the capture (signals: "
+                        "{}){}",
+                        info.id, rs.name, it->second, signalList(sigs),
+                        several ? "; one --map per role: --map ROLE=SIGNAL --map ROLE=SIGNAL"
+                                : ""));
+                }
             } else {
                 std::vector<std::string> names = {rs.name};
                 names.insert(names.end(), rs.aliases.begin(), rs.aliases.end());

@@ -178,6 +178,8 @@ INSTANTIATE_TEST_SUITE_P(
         BadInput{{"@", "--proto", "uart", "--opt", "parity=maybe"}, "one of"},
         BadInput{{"@", "--proto", "spi", "--map", "sclk=nosuch"},
                  "--map sclk=nosuch: no such signal"},
+        BadInput{{"@", "--proto", "spi", "--map", "sclk=top.sclk,cs=top.cs"},
+                 "one --map per role: --map ROLE=SIGNAL --map ROLE=SIGNAL"},
         BadInput{{"@", "--proto", "spi", "--format", "xml"}, "--format xml"},
         BadInput{{"@"}, "no decoder chosen"}, BadInput{{"--proto", "spi"}, "no capture given"},
         BadInput{{"@", "--proto", "spi", "--bogus"}, "bogus"}));
