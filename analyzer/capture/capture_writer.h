@@ -25,7 +25,7 @@ enum class CsvDialect {
 void writeCsv(const Waveform& w, const std::string& path, CsvDialect dialect);
 
 // A sigrok session (.sr) as PulseView and `sigrok-cli -O srzip` write it: deflated
-// 4 MiB chunks of samples, 1 to 32 lines (unitsize 1 to 4). Needs a timebase of one
+// 4 MiB chunks of samples, 1 to 64 lines (unitsize 1 to 8). Needs a timebase of one
 // sample per tick. Throws InputError naming the file when it cannot be written.
 void writeSr(const Waveform& w, const std::string& path);
 
@@ -49,7 +49,7 @@ public:
 private:
     const Waveform& w_;
     std::size_t unit_;
-    std::uint32_t start_levels_ = 0, levels_ = 0;  // bit i = line i
+    std::uint64_t start_levels_ = 0, levels_ = 0;  // bit i = line i
     std::size_t k_ = 0;                            // next edge
     Tick at_ = 0;                                  // tick after the last stretch
 };

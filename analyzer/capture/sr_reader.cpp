@@ -1,6 +1,7 @@
 // sigrok session (.sr) reader: a ZIP holding `metadata` (INI) and the raw logic
 // samples in chunks `logic-1-1`, `logic-1-2`, ... (old sessions: one `logic-1`), each a
-// run of little-endian words of `unitsize` bytes; probe N is bit N-1 of a word.
+// run of little-endian words of `unitsize` bytes (1 to 8: up to 64 probes, as on the
+// 34-channel Sysclk LWLA); probe N is bit N-1 of a word.
 // Chunks are streamed through a fixed buffer; only changes of the selected probes
 // become edges. One tick is one sample (timebase 1/samplerate).
 //
@@ -83,7 +84,7 @@ public:
             const int bit = lines[i].signal;
             if (bit < 0 || bit >= int(signals_.size())) throw std::out_of_range("SrReader::select");
             sel_.push_back({bit, std::uint32_t(i)});
-            mask_ |= std::uint32_t(1) << bit;
+            mask_ |= std::uint64_t(1) << bit;
         }
     }
 
@@ -91,7 +92,7 @@ public:
         std::vector<std::uint8_t> out(sel_.size(), 0);
         if (!started_) {
             started_ = true;
-            std::uint32_t w = 0;
+            std::uint64_t w = 0;
             if (readWord(w)) {
                 prev_ = w & mask_;
                 sample_ = 1;
@@ -128,10 +129,9 @@ public:
             std::size_t k = scanPacked(p, words, out, full);
             p += k * unit_;
             for (; k < words && out <= full; ++k, p += unit_) {
-                std::uint32_t w = p[0];
-                if (unit_ > 1) w |= std::uint32_t(p[1]) << 8;
-                if (unit_ > 2) w |= std::uint32_t(p[2]) << 16;
-                if (unit_ > 3) w |= std::uint32_t(p[3]) << 24;
+                std::uint64_t w = p[0];
+                for (std::size_t b = 1; b < unit_; ++b)
+                    w |= std::uint64_t(p[b]) << (8 * b);
                 w &= mask_;
                 if (w != prev_) {
                     out = addEdges(out, Tick(sample_ + k), w);
@@ -163,8 +163,8 @@ private:
     // The edges of sample word w (masked) at tick t, against prev_, written at out (room
     // for one per selected line) in the order of the selected lines, as a tie keeps
     // reader order. Returns the end of what it wrote.
-    Edge* addEdges(Edge* out, Tick t, std::uint32_t w) const {
-        const std::uint32_t diff = w ^ prev_;
+    Edge* addEdges(Edge* out, Tick t, std::uint64_t w) const {
+        const std::uint64_t diff = w ^ prev_;
         for (const auto& s : sel_) {
             *out = Edge(t, s.line, std::uint8_t((w >> s.bit) & 1));
             out += (diff >> s.bit) & 1;
@@ -182,8 +182,8 @@ private:
     std::size_t scanPacked(const std::uint8_t* p, std::size_t words, Edge*& out, Edge* full) {
         static_assert(std::endian::native == std::endian::little,
                       "a load's first sample must be its low bytes, as in the file");
-        if (unit_ == 3) return 0;
-        const unsigned shift = unsigned(8 * unit_);  // bits per sample
+        if (unit_ != 1 && unit_ != 2 && unit_ != 4) return 0;  // 3, 5-8: the sample loop
+        const unsigned shift = unsigned(8 * unit_);            // bits per sample
         const unsigned log2_shift = unit_ == 1 ? 3 : unit_ == 2 ? 4 : 5;
         const std::size_t per_load = 8 / unit_;
         const std::uint64_t sample_bits = unit_ == 4 ? 0xFFFFFFFFULL : (1ULL << shift) - 1;
@@ -199,7 +199,7 @@ private:
             std::uint64_t changed = w ^ ((w << shift) | prev_);
             while (changed) {
                 const unsigned i = unsigned(std::countr_zero(changed)) >> log2_shift;
-                const auto s = std::uint32_t((w >> (shift * i)) & sample_bits);
+                const std::uint64_t s = (w >> (shift * i)) & sample_bits;
                 out = addEdges(out, Tick(sample_ + k + i), s);
                 prev_ = s;
                 changed &= ~(sample_bits << (shift * i));
@@ -244,9 +244,9 @@ private:
                 rate_ = parseRateHz(value);
             } else if (key == "unitsize") {
                 unit_ = std::size_t(std::atoi(value.c_str()));
-                if (unit_ < 1 || unit_ > 4)
+                if (unit_ < 1 || unit_ > 8)
                     throw InputError(fmt::format(
-                        "{}: unitsize={} not supported (1 to 4 bytes per sample)", name_, value));
+                        "{}: unitsize={} not supported (1 to 8 bytes per sample)", name_, value));
             } else if (key == "total probes") {
                 total = std::atoi(value.c_str());
             } else if (key.rfind("probe", 0) == 0) {
@@ -341,12 +341,12 @@ private:
         return len_ >= unit_;
     }
 
-    bool readWord(std::uint32_t& w) {
+    bool readWord(std::uint64_t& w) {
         if (pos_ + unit_ > len_ && !refill()) return false;
         const std::uint8_t* p = buf_.data() + pos_;
         w = 0;
         for (std::size_t i = 0; i < unit_; ++i)
-            w |= std::uint32_t(p[i]) << (8 * i);
+            w |= std::uint64_t(p[i]) << (8 * i);
         pos_ += unit_;
         return true;
     }
@@ -362,8 +362,8 @@ private:
     std::size_t unit_ = 0;
     std::vector<SignalInfo> signals_;
     std::vector<Sel> sel_;
-    std::uint32_t mask_ = 0;
-    std::uint32_t prev_ = 0;
+    std::uint64_t mask_ = 0;  // the selected probes' bits
+    std::uint64_t prev_ = 0;  // the last sample, masked
     std::vector<std::uint8_t> buf_;
     std::size_t pos_ = 0, len_ = 0;
     std::uint64_t consumed_ = 0, total_bytes_ = 0;

@@ -100,8 +100,8 @@ std::string iniValue(std::string v) {
 
 void writeSrSamples(const std::string& path, const std::vector<std::string>& names,
                     std::int64_t rate, std::uint64_t samples, const SrSampleWriter& render) {
-    if (names.empty() || names.size() > 32)
-        throw std::invalid_argument("writeSr: a session holds 1 to 32 lines");
+    if (names.empty() || names.size() > 64)
+        throw std::invalid_argument("writeSr: a session holds 1 to 64 lines");
     if (rate <= 0) throw std::invalid_argument("writeSr: the sample rate must be positive");
     const std::size_t unit = (names.size() + 7) / 8;
 
@@ -167,8 +167,8 @@ void writeSrSamples(const std::string& path, const std::vector<std::string>& nam
 }
 
 SampleRenderer::SampleRenderer(const Waveform& w) : w_(w), unit_((w.names.size() + 7) / 8) {
-    for (std::size_t i = 0; i < w.names.size() && i < 32; ++i)
-        if (i >= w.initial.size() || w.initial[i]) start_levels_ |= std::uint32_t(1) << i;
+    for (std::size_t i = 0; i < w.names.size() && i < 64; ++i)
+        if (i >= w.initial.size() || w.initial[i]) start_levels_ |= std::uint64_t(1) << i;
     levels_ = start_levels_;
     at_ = w.start;
 }
@@ -181,7 +181,7 @@ void SampleRenderer::render(std::uint64_t first, std::size_t n, std::uint8_t* ou
     }
     for (Tick t = from; t < from + Tick(n); ++t) {
         for (; k_ < w_.edges.size() && w_.edges[k_].t <= t; ++k_) {
-            const std::uint32_t bit = std::uint32_t(1) << w_.edges[k_].line;
+            const std::uint64_t bit = std::uint64_t(1) << w_.edges[k_].line;
             levels_ = w_.edges[k_].level ? levels_ | bit : levels_ & ~bit;
         }
         for (std::size_t b = 0; b < unit_; ++b)

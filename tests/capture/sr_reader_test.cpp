@@ -31,7 +31,7 @@ std::string writeSr(const std::string& name,
     return path;
 }
 
-std::string words(const std::vector<std::uint32_t>& samples, int unitsize) {
+std::string words(const std::vector<std::uint64_t>& samples, int unitsize) {
     std::string out;
     for (auto w : samples)
         for (int i = 0; i < unitsize; ++i)
@@ -44,7 +44,7 @@ TEST(SrReader, MetadataWithSpacesUnitsize2AndChunkOrder) {
         "[global]\nsigrok version = 0.2.0\n[device 1]\ncapturefile = logic-1\nunitsize = 2\n"
         "total probes = 10\nsamplerate = 1 MHz\nprobe1 = CS#\nprobe2 = MISO\nprobe10 = HIGH\n";
     // sample values; chunks hold 2, 2 and 1 samples, stored out of order in the ZIP
-    std::vector<std::uint32_t> s = {0x0001, 0x0001, 0x0200, 0x0203, 0x0002};
+    std::vector<std::uint64_t> s = {0x0001, 0x0001, 0x0200, 0x0203, 0x0002};
     auto p = writeSr("u2.sr", {{"version", "2"},
                                {"logic-1-2", words({s[2], s[3]}, 2)},
                                {"metadata", meta},
@@ -69,7 +69,8 @@ TEST(SrReader, ManyChunksSortNumericallyAndUnitsize4) {
         "Hz\nprobe32=top\nunitsize=4\n";
     std::vector<std::pair<std::string, std::string>> members{{"metadata", meta}};
     for (int k = 12; k >= 1; --k)  // logic-1-10 must come after logic-1-9
-        members.push_back({"logic-1-" + std::to_string(k), words({k % 2 ? 0x80000000u : 0u}, 4)});
+        members.push_back(
+            {"logic-1-" + std::to_string(k), words({k % 2 ? 0x80000000ull : 0ull}, 4)});
     auto c = collectFile(writeSr("u4.sr", members), {"top"});
     EXPECT_EQ(c.tb.den, 5);  // the stated rate, even when it is implausible
     EXPECT_EQ(c.initial, (std::vector<std::uint8_t>{1}));
@@ -102,8 +103,8 @@ TEST(SrReaderErrors, MissingChunkUnitsizeAndRate) {
     p = writeSr("none.sr", {{"metadata", meta}});
     EXPECT_EQ(errorOf(p), p + ": no logic data (no logic-1-1 chunk)");
     p = writeSr("unit.sr",
-                {{"metadata", "[device 1]\nsamplerate=1 MHz\nunitsize=5\n"}, {"logic-1-1", "x"}});
-    EXPECT_EQ(errorOf(p), p + ": unitsize=5 not supported (1 to 4 bytes per sample)");
+                {{"metadata", "[device 1]\nsamplerate=1 MHz\nunitsize=9\n"}, {"logic-1-1", "x"}});
+    EXPECT_EQ(errorOf(p), p + ": unitsize=9 not supported (1 to 8 bytes per sample)");
     p = writeSr("odd.sr",
                 {{"metadata", "[device 1]\nsamplerate=1 MHz\nunitsize=2\n"}, {"logic-1-1", "abc"}});
     EXPECT_EQ(errorOf(p),
@@ -120,25 +121,25 @@ TEST(SrReaderErrors, MissingChunkUnitsizeAndRate) {
 
 // Random sessions read through the reader, every block as it comes (repeats are not
 // dropped here: the reader says it hands over changes only), against the edges worked
-// out a sample at a time. Unit sizes 1 to 4 (3 takes no packed scan), changes from
+// out a sample at a time. Unit sizes 1 to 8 (3 and 5-8 take no packed scan), changes from
 // nearly none (long runs the packed scan skips) to nearly every sample (blocks filling
 // mid-load), chunks that split samples, and lines selected out of bit order and twice.
 TEST(SrReader, EveryChangeAsASampleAtATimeFindsIt) {
     std::mt19937_64 rng(20261124);
     int files = 0;
-    for (int unit = 1; unit <= 4; ++unit)
+    for (int unit = 1; unit <= 8; ++unit)
         for (double density : {0.0, 0.0005, 0.02, 0.3, 0.95})
             for (int round = 0; round < 3; ++round) {
                 SCOPED_TRACE(::testing::Message()
                              << "unit " << unit << " density " << density << " round " << round);
                 const int probes = 8 * unit;
                 const std::size_t n = 1 + rng() % 60000;
-                std::vector<std::uint32_t> samples(n);
-                std::uint32_t w = std::uint32_t(rng());
+                std::vector<std::uint64_t> samples(n);
+                std::uint64_t w = rng();
                 for (auto& x : samples) {
                     if (std::uniform_real_distribution<>(0, 1)(rng) < density)
-                        w ^= std::uint32_t(rng()) & (std::uint32_t(rng()) | (1u << (rng() % 32)));
-                    x = probes == 32 ? w : w & ((1u << probes) - 1);
+                        w ^= rng() & (rng() | (1ull << (rng() % 64)));
+                    x = probes == 64 ? w : w & ((1ull << probes) - 1);
                 }
                 const std::string data = words(samples, unit);
                 std::vector<std::pair<std::string, std::string>> members{
@@ -190,7 +191,7 @@ TEST(SrReader, EveryChangeAsASampleAtATimeFindsIt) {
                     ASSERT_EQ(got[i], want[i]) << "edge " << i;
                 ++files;
             }
-    EXPECT_EQ(files, 60);
+    EXPECT_EQ(files, 120);
 }
 
 void compareSrWithSigrokVcd(const std::string& sr_path, const std::string& vcd_path);
