@@ -139,7 +139,7 @@ TEST(BrokenInput, SrWrongUnitsize) {
                                                    {"metadata", srMetadata("0")},
                                                    {"logic-1-1", std::string(64, '\x01')}}));
     EXPECT_EQ(failureOf(p),
-              "decode: " + p + ": unitsize=0 not supported (1 to 4 bytes per sample)");
+              "decode: " + p + ": unitsize=0 not supported (1 to 8 bytes per sample)");
 }
 
 TEST(BrokenInput, SrUnitsizeTooSmallForItsProbes) {
