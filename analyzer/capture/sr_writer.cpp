@@ -122,10 +122,16 @@ void writeSrSamples(const std::string& path, const std::vector<std::string>& nam
         zip_error_fini(&ze);
         throw InputError(fmt::format("{}: cannot write: {}", path, msg));
     }
+    // Whatever stops the write (an error, an exception) discards the archive: libzip has
+    // written nothing yet, and never will.
+    struct Discard {
+        zip_t* z;
+        ~Discard() {
+            if (z) zip_discard(z);
+        }
+    } guard{z};
     auto fail = [&](const std::string& what) {
-        const std::string msg = fmt::format("{}: cannot write {}: {}", path, what, zip_strerror(z));
-        zip_discard(z);
-        throw InputError(msg);
+        throw InputError(fmt::format("{}: cannot write {}: {}", path, what, zip_strerror(z)));
     };
     auto addText = [&](const char* name, const std::string& text) {
         // libzip reads the buffer at zip_close(): it gets a copy of its own to free.
@@ -164,6 +170,7 @@ void writeSrSamples(const std::string& path, const std::vector<std::string>& nam
         }
     }
     if (zip_close(z) != 0) fail("the archive");
+    guard.z = nullptr;  // closed and freed
 }
 
 SampleRenderer::SampleRenderer(const Waveform& w) : w_(w), unit_((w.names.size() + 7) / 8) {
