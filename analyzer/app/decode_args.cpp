@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cstdlib>
+#include <filesystem>
 #include <mutex>
 #include <set>
 #include <thread>
@@ -192,8 +193,13 @@ CaptureFacts decodeCapture(const std::string& path, const std::vector<DecoderReq
 CaptureFacts decodeCapture(const std::string& path, const std::vector<DecoderRequest>& requests,
                            const OpenOptions& open, const std::vector<OutputSink*>& sinks,
                            bool realtime, const std::atomic<bool>* stop) {
-    // Read ahead on a second thread while this one decodes (two cores, pipelined).
-    std::unique_ptr<CaptureReader> reader = prefetchReader(openCapture(path, open));
+    // Read ahead on a second thread while this one decodes (two cores, pipelined). A file
+    // read to its end, never waiting for input, is handed over a few blocks at a time.
+    std::error_code ec;
+    const bool whole_file =
+        !open.follow && path != "-" && std::filesystem::is_regular_file(path, ec);
+    std::unique_ptr<CaptureReader> reader =
+        prefetchReader(openCapture(path, open), 32, whole_file ? 4 : 1);
     if (realtime) reader = std::make_unique<PacedReader>(std::move(reader));
     Session session(requests, *reader, path);
     if (stop) session.setStopFlag(stop);

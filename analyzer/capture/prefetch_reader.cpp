@@ -1,5 +1,6 @@
 #include "prefetch_reader.h"
 
+#include <algorithm>
 #include <atomic>
 #include <condition_variable>
 #include <deque>
@@ -14,8 +15,11 @@ namespace {
 
 class PrefetchReader : public CaptureReader {
 public:
-    PrefetchReader(std::unique_ptr<CaptureReader> inner, int ahead)
-        : in_(std::move(inner)), ahead_(ahead < 1 ? 1 : std::size_t(ahead)) {}
+    PrefetchReader(std::unique_ptr<CaptureReader> inner, int ahead, int batch)
+        : in_(std::move(inner)),
+          ahead_(ahead < 1 ? 1 : std::size_t(ahead)),
+          low_water_(ahead_ / 2),
+          batch_(std::clamp<std::size_t>(batch < 1 ? 1 : std::size_t(batch), 1, ahead_)) {}
     ~PrefetchReader() override {
         {
             std::lock_guard<std::mutex> lock(m_);
@@ -35,7 +39,15 @@ public:
     bool next(EdgeBlock& block) override {
         if (!worker_.joinable() && !finished_) worker_ = std::thread([this] { produce(); });
         std::unique_lock<std::mutex> lock(m_);
-        ready_.wait(lock, [&] { return !full_.empty() || finished_; });
+        if (full_.empty() && !finished_) {
+            // Likewise a decoder that found the queue empty sleeps until `batch_` blocks are
+            // ready, or one that is not full (the reader ran out of input: its edges must
+            // not wait), or the end.
+            consumer_waiting_ = true;
+            flush_ = false;
+            ready_.wait(lock, [&] { return full_.size() >= batch_ || flush_ || finished_; });
+            consumer_waiting_ = false;
+        }
         if (full_.empty()) {
             if (error_) std::rethrow_exception(std::exchange(error_, nullptr));
             block.clear();
@@ -46,8 +58,12 @@ public:
         full_.front().clear();
         spare_.push_back(std::move(full_.front()));
         full_.pop_front();
+        // A reader that found the queue full sleeps until it is half empty, not until one
+        // block is taken: one wake-up per ahead/2 blocks on the decoding thread when it
+        // is the slower one.
+        const bool wake = producer_waiting_ && full_.size() <= low_water_;
         lock.unlock();
-        space_.notify_one();
+        if (wake) space_.notify_one();
         return true;
     }
     // Valid once next() has returned false (the worker has finished by then).
@@ -66,8 +82,13 @@ private:
                 bytes_read_.store(in_->bytesRead(), std::memory_order_relaxed);
                 if (!more) break;
                 std::unique_lock<std::mutex> lock(m_);
-                space_.wait(lock, [&] { return full_.size() < ahead_ || quit_; });
+                if (full_.size() >= ahead_ && !quit_) {
+                    producer_waiting_ = true;
+                    space_.wait(lock, [&] { return full_.size() <= low_water_ || quit_; });
+                    producer_waiting_ = false;
+                }
                 if (quit_) break;
+                if (block.edges.size() < kEdgeBlockSize / 2) flush_ = true;
                 full_.push_back(std::move(block));
                 if (!spare_.empty()) {
                     block = std::move(spare_.back());
@@ -76,8 +97,9 @@ private:
                     block = EdgeBlock{};
                     block.edges.reserve(kEdgeBlockSize);
                 }
+                const bool wake = consumer_waiting_ && (full_.size() >= batch_ || flush_);
                 lock.unlock();
-                ready_.notify_one();
+                if (wake) ready_.notify_one();
             }
         } catch (...) {
             std::lock_guard<std::mutex> lock(m_);
@@ -92,6 +114,8 @@ private:
 
     std::unique_ptr<CaptureReader> in_;
     const std::size_t ahead_;
+    const std::size_t low_water_;  // a full queue refills from this many blocks
+    const std::size_t batch_;      // an empty queue is taken from again at this many
     std::thread worker_;
     std::mutex m_;
     std::condition_variable ready_, space_;
@@ -100,13 +124,17 @@ private:
     std::exception_ptr error_;
     bool finished_ = false;
     bool quit_ = false;
+    bool producer_waiting_ = false;  // the reader sleeps on space_
+    bool consumer_waiting_ = false;  // the decoder sleeps on ready_
+    bool flush_ = false;             // a block short of full came while it slept
     std::atomic<std::uint64_t> bytes_read_{0};
 };
 
 }  // namespace
 
-std::unique_ptr<CaptureReader> prefetchReader(std::unique_ptr<CaptureReader> inner, int ahead) {
-    return std::make_unique<PrefetchReader>(std::move(inner), ahead);
+std::unique_ptr<CaptureReader> prefetchReader(std::unique_ptr<CaptureReader> inner, int ahead,
+                                              int batch) {
+    return std::make_unique<PrefetchReader>(std::move(inner), ahead, batch);
 }
 
 }  // namespace busdecode
