@@ -64,6 +64,31 @@ bool sameEdges(const std::vector<Edge>& a, const std::vector<Edge>& b) {
     return true;
 }
 
+// Follows `p` (not growing) through the read-ahead until every edge of it has come out,
+// then stops: the worker, waiting for the file to grow, must notice and let go.
+void followToTheEnd(const std::string& p, int batch) {
+    std::size_t total = 0;
+    {
+        auto plain = openCapture(p, {});
+        for (const auto& blk : readAll(*plain).blocks)
+            total += blk.size();
+    }
+    std::atomic<bool> stop{false};
+    OpenOptions o;
+    o.follow = true;
+    o.stop = &stop;
+    auto pre = prefetchReader(openCapture(p, o), 32, batch);
+    pre->select({{0, -1}, {1, -1}});
+    pre->initialLevels();
+    EdgeBlock b;
+    std::size_t edges = 0;
+    while (edges < total && pre->next(b))
+        edges += b.edges.size();
+    EXPECT_EQ(edges, total);
+    stop = true;
+    pre.reset();
+}
+
 TEST(PrefetchReader, SameBlocksAsTheWrappedReader) {
     const std::string p = file("toggles.vcd", toggles(100000));
     auto plain = openCapture(p, {});
@@ -88,28 +113,9 @@ TEST(PrefetchReader, SameBlocksAsTheWrappedReader) {
 // full, which ends the decoder's wait for more blocks).
 TEST(PrefetchReader, AFollowedFileIsHandedOnWhileItWaits) {
     const std::string p = file("grow.vcd", toggles(40000));
-    std::size_t total = 0;
-    {
-        auto plain = openCapture(p, {});
-        for (const auto& blk : readAll(*plain).blocks)
-            total += blk.size();
-    }
     for (int batch : {1, 8}) {
         SCOPED_TRACE(batch);
-        std::atomic<bool> stop{false};
-        OpenOptions o;
-        o.follow = true;
-        o.stop = &stop;
-        auto pre = prefetchReader(openCapture(p, o), 32, batch);
-        pre->select({{0, -1}, {1, -1}});
-        pre->initialLevels();
-        EdgeBlock b;
-        std::size_t edges = 0;
-        while (edges < total && pre->next(b))
-            edges += b.edges.size();
-        EXPECT_EQ(edges, total);
-        stop = true;
-        pre.reset();
+        followToTheEnd(p, batch);
     }
 }
 
@@ -203,26 +209,7 @@ TEST(PrefetchReader, DestroyedMidwayAndWhileFollowing) {
         EdgeBlock b;
         ASSERT_TRUE(pre->next(b));  // the worker is now blocked on a full queue
     }
-    std::size_t total = 0;
-    {
-        auto plain = openCapture(p, {});
-        for (const auto& blk : readAll(*plain).blocks)
-            total += blk.size();
-    }
-    std::atomic<bool> stop{false};
-    OpenOptions o;
-    o.follow = true;
-    o.stop = &stop;
-    auto pre = prefetchReader(openCapture(p, o));
-    pre->select({{0, -1}, {1, -1}});
-    pre->initialLevels();
-    EdgeBlock b;
-    std::size_t edges = 0;
-    while (edges < total && pre->next(b))
-        edges += b.edges.size();
-    EXPECT_EQ(edges, total);
-    stop = true;  // the worker, waiting for the file to grow, must notice and let go
-    pre.reset();
+    followToTheEnd(p, 1);
 }
 
 }  // namespace
