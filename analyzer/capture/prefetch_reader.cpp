@@ -40,9 +40,10 @@ public:
         if (!worker_.joinable() && !finished_) worker_ = std::thread([this] { produce(); });
         std::unique_lock<std::mutex> lock(m_);
         if (full_.empty() && !finished_) {
-            // Likewise a decoder that found the queue empty sleeps until `batch_` blocks are
-            // ready, or one that is not full (the reader ran out of input: its edges must
-            // not wait), or the end.
+            // A decoder that finds the queue empty sleeps until `batch_` blocks are ready,
+            // or one that is not full (the reader ran out of input: its edges must not
+            // wait), or the end: one wake-up per batch on the reading thread when it is
+            // the slower one.
             consumer_waiting_ = true;
             flush_ = false;
             ready_.wait(lock, [&] { return full_.size() >= batch_ || flush_ || finished_; });
