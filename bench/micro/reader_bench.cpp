@@ -9,25 +9,13 @@
 
 #include "bench_captures.h"
 #include "capture/capture_writer.h"
+#include "core/scratch_dir.h"
 #include "read_edges.h"
 
 namespace busdecode::bench {
 namespace {
 
 namespace fs = std::filesystem;
-
-struct TempDir {
-    fs::path path;
-    TempDir() {
-        std::string tmpl = (fs::temp_directory_path() / "busdecode-bench-XXXXXX").string();
-        if (!mkdtemp(tmpl.data())) throw std::runtime_error("mkdtemp failed");
-        path = tmpl;
-    }
-    ~TempDir() {
-        std::error_code ec;
-        fs::remove_all(path, ec);
-    }
-};
 
 // The traffic every file holds (about 20 MB of SPI as VCD).
 const BenchBus& benchBus() {
@@ -37,12 +25,12 @@ const BenchBus& benchBus() {
 
 // One file per format, written once per process.
 const std::string& benchFile(const std::string& format) {
-    static TempDir dir;
+    static const ScratchDir dir("busdecode-bench");
     static std::map<std::string, std::string> files;
     auto it = files.find(format);
     if (it != files.end()) return it->second;
     const BenchBus& bus = benchBus();
-    std::string path = (dir.path / ("spi." + format)).string();
+    std::string path = (fs::path(dir.path()) / ("spi." + format)).string();
     if (format == "vcd") {
         writeVcd(bus.chunk, path);
     } else if (format == "vcd_late") {
@@ -58,7 +46,7 @@ const std::string& benchFile(const std::string& format) {
         writeVcd(late, path);
     } else if (format == "csv_saleae") {
         // Saleae Logic 2's export: one row per change, times as decimal seconds.
-        path = (dir.path / "spi_saleae.csv").string();
+        path = (fs::path(dir.path()) / "spi_saleae.csv").string();
         writeCsv(bus.chunk, path, CsvDialect::SaleaeLogic2);
     } else if (format == "sr") {
         writeSr(bus.chunk, path);  // a sigrok session: deflated samples, one byte each

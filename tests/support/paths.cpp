@@ -9,6 +9,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "core/scratch_dir.h"
+
 namespace busdecode::test {
 
 std::string sourceDir() {
@@ -26,35 +28,12 @@ std::string binDir() {
     return BUSDECODE_BIN_DIR;
 }
 
-namespace {
-// The test process's scratch directory, removed with everything in it when the process
-// exits (BUSDECODE_KEEP_TEST_FILES=1 keeps it, to look at a failing test's files): ctest
-// runs every test in a process of its own, and /tmp would otherwise collect thousands.
-class ScratchDir {
-public:
-    ScratchDir() {
-        path_ = (std::filesystem::temp_directory_path() / "busdecode-test-XXXXXX").string();
-        if (!mkdtemp(path_.data())) throw std::runtime_error("mkdtemp failed");
-    }
-    ~ScratchDir() {
-        // Only by the process that made it: a forked child that exits normally must not
-        // take the directory from its parent.
-        if (getpid() != owner_ || std::getenv("BUSDECODE_KEEP_TEST_FILES")) return;
-        std::error_code ec;  // a test's child may still hold a file: best effort
-        std::filesystem::remove_all(path_, ec);
-    }
-    ScratchDir(const ScratchDir&) = delete;
-    ScratchDir& operator=(const ScratchDir&) = delete;
-    const std::string& path() const { return path_; }
-
-private:
-    std::string path_;
-    pid_t owner_ = getpid();
-};
-}  // namespace
-
 std::string tempDir() {
-    static const ScratchDir dir;
+    // The test process's scratch directory, removed when the process exits
+    // (BUSDECODE_KEEP_TEST_FILES=1 keeps it, to look at a failing test's files): ctest runs
+    // every test in a process of its own, and /tmp would otherwise collect thousands.
+    static const ScratchDir dir("busdecode-test",
+                                std::getenv("BUSDECODE_KEEP_TEST_FILES") != nullptr);
     return dir.path();
 }
 
