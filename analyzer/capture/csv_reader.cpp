@@ -438,22 +438,14 @@ private:
         } else {
             t = Tick(rows_);
         }
-        cur_ = t;
-        ++rows_;
-        for (std::size_t i = 0; i < sel_.size(); ++i) {
-            std::string_view v = fields_[sel_[i]];
-            std::uint8_t level;
-            if (v.size() == 1 && (v[0] == '0' || v[0] == '1')) {
-                level = std::uint8_t(v[0] - '0');
-            } else {
+        for (const std::size_t col : sel_) {
+            std::string_view v = fields_[col];
+            if (v.size() != 1 || (v[0] != '0' && v[0] != '1'))
                 fail(fmt::format("expected 0 or 1 in column '{}', found '{}'",
-                                 signals_[sel_[i] - first_col_].full_name, printable(v)));
-            }
-            if (level != level_[i]) {
-                level_[i] = level;
-                if (block) block->edges.push_back({t, std::uint32_t(i), level});
-            }
+                                 signals_[col - first_col_].full_name, printable(v)));
+            col_level_[col] = std::uint8_t(v[0] - '0');
         }
+        takeRow(t, block);
         if (!timed_) last_row_.assign(line);
     }
 
@@ -461,10 +453,9 @@ private:
     // a time of plain digits with at most one point and no more decimals than the tick,
     // then single 0/1 values, no blanks or quotes. Taken without splitting the row into
     // fields, digits and values eight bytes at a time, without 128-bit arithmetic or
-    // division (the general path: about 50 ns a row, "The CSV readers" in
-    // bench/README.md). Anything
-    // else, errors included, returns false having changed nothing, and row() takes the
-    // row the general way: the results are the same.
+    // division ("The CSV readers" in bench/README.md has what that saves). Anything else,
+    // errors included, returns false having changed nothing, and row() takes the row the
+    // general way: the results are the same.
     bool plainTimedRow(std::string_view line, EdgeBlock* block) {
         const char* p = line.data();
         const char* const end = p + line.size();
@@ -534,7 +525,8 @@ private:
         }
         return p == end;
     }
-    // A row read by a fast path: its time, and an edge per selected line that changed.
+    // A row whose values are in col_level_: its time, and an edge per selected line that
+    // changed.
     void takeRow(Tick t, EdgeBlock* block) {
         cur_ = t;
         ++rows_;
@@ -586,8 +578,8 @@ private:
     std::vector<std::string_view> fields_;
     std::vector<std::size_t> sel_;  // column of each selected line
     std::vector<std::uint8_t> level_;
-    std::vector<std::uint8_t> col_level_;  // the fast paths' values, by column
-    std::uint64_t sep_zero_ = 0;           // and the four columns it expects per load
+    std::vector<std::uint8_t> col_level_;  // the row's values, by column
+    std::uint64_t sep_zero_ = 0;           // plainValues(): the four columns it expects per load
     std::uint64_t rows_ = 0;
     Tick start_ = 0, cur_ = 0;
     bool started_ = false, done_ = false;
