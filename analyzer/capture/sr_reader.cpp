@@ -129,10 +129,7 @@ public:
             std::size_t k = scanPacked(p, words, out, full);
             p += k * unit_;
             for (; k < words && out <= full; ++k, p += unit_) {
-                std::uint64_t w = p[0];
-                for (std::size_t b = 1; b < unit_; ++b)
-                    w |= std::uint64_t(p[b]) << (8 * b);
-                w &= mask_;
+                const std::uint64_t w = wordAt(p) & mask_;
                 if (w != prev_) {
                     out = addEdges(out, Tick(sample_ + k), w);
                     prev_ = w;
@@ -341,12 +338,17 @@ private:
         return len_ >= unit_;
     }
 
+    // The sample word at p: unitsize bytes, little-endian.
+    std::uint64_t wordAt(const std::uint8_t* p) const {
+        std::uint64_t w = 0;
+        for (std::size_t b = 0; b < unit_; ++b)
+            w |= std::uint64_t(p[b]) << (8 * b);
+        return w;
+    }
+
     bool readWord(std::uint64_t& w) {
         if (pos_ + unit_ > len_ && !refill()) return false;
-        const std::uint8_t* p = buf_.data() + pos_;
-        w = 0;
-        for (std::size_t i = 0; i < unit_; ++i)
-            w |= std::uint64_t(p[i]) << (8 * i);
+        w = wordAt(buf_.data() + pos_);
         pos_ += unit_;
         return true;
     }
