@@ -19,15 +19,25 @@ struct DecimalScan {
 
 namespace detail {
 
-// Number of leading bytes of w (memory order) that are '0'..'9', 0..8.
-inline int leadingDigits(std::uint64_t w) {
+// A byte of the result is non-zero iff that byte of w is not '0'..'9', up to the first
+// such byte; the bytes after it may be wrong either way. A byte is a digit iff its high
+// nibble is 3 both as is and after adding 6 (0x3A..0x3F become 0x40..). A carry out of a
+// byte (>= 0xFA) only disturbs the bytes after it, which lie beyond the first non-digit.
+inline std::uint64_t nonDigits(std::uint64_t w) {
     constexpr std::uint64_t k30 = 0x3030303030303030ULL, k06 = 0x0606060606060606ULL,
                             kF0 = 0xF0F0F0F0F0F0F0F0ULL;
-    // A byte is a digit iff its high nibble is 3 both as is and after adding 6 (0x3A..0x3F
-    // become 0x40..). A carry out of a byte (>= 0xFA) only disturbs the bytes after it,
-    // which lie beyond the first non-digit anyway.
-    const std::uint64_t non_digit = ((w ^ k30) | ((w + k06) ^ k30)) & kF0;
+    return ((w ^ k30) | ((w + k06) ^ k30)) & kF0;
+}
+
+// Number of leading bytes of w (memory order) that are '0'..'9', 0..8.
+inline int leadingDigits(std::uint64_t w) {
+    const std::uint64_t non_digit = nonDigits(w);
     return non_digit ? std::countr_zero(non_digit) / 8 : 8;
+}
+
+// The low n bytes set, n = 1..8.
+constexpr std::uint64_t lowBytes(int n) {
+    return n >= 8 ? ~std::uint64_t(0) : (std::uint64_t(1) << (8 * n)) - 1;
 }
 
 // The value of the first n (1..8) digit bytes of w (memory order, little-endian).
@@ -83,6 +93,32 @@ inline DecimalScan scanDecimal16(const char* p) {
     r.digits = n;
     r.end = p + n;
     return r;
+}
+
+// Exactly N digits (1..15) at p, in the VCD reader's tight loop, which knows how many the
+// last time had and expects as many: the number's end is then known before its bytes are
+// looked at, and the count needs no search. Reads the 16 bytes at p (no bounds check).
+// False when one of the N bytes is not a digit; the byte after them is not looked at.
+template <int N>
+inline bool digitsOfLength(const char* p, std::uint64_t& value) {
+    static_assert(N >= 1 && N <= 15, "up to 15 digits: below 10^15 < 2^62");
+    static_assert(std::endian::native == std::endian::little, "SWAR digit scan is little-endian");
+    std::uint64_t w;
+    std::memcpy(&w, p, 8);
+    if constexpr (N <= 8) {
+        value = detail::digitsValue(w, N);
+        return (detail::nonDigits(w) & detail::lowBytes(N)) == 0;
+    } else {
+        std::uint64_t w2;
+        std::memcpy(&w2, p + 8, 8);
+        if constexpr (N <= 10) {  // a digit or two more: no second SWAR for them
+            value = detail::digitsValue(w, 8);
+            for (int i = 0; i < N - 8; ++i)
+                value = value * 10 + (((w2 >> (8 * i)) & 0xFF) - '0');
+        } else
+            value = detail::digitsValue(w, 8) * kPow10[N - 8] + detail::digitsValue(w2, N - 8);
+        return (detail::nonDigits(w) | (detail::nonDigits(w2) & detail::lowBytes(N - 8))) == 0;
+    }
 }
 
 // Reads the decimal digits starting at p (none is fine), never reading at or past e.

@@ -24,6 +24,7 @@
 #include <cstring>
 #include <string>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 #include <fmt/format.h>
@@ -60,7 +61,7 @@ public:
         : src_(std::move(src)), opts_(opts) {
         short1_.assign(94, -1);
         short2_.assign(94 * 94, -1);
-        scalar1_.assign(94, kNotScalar);  // select() fills them
+        scalar1_.assign(256, kNotScalar);  // select() fills them
         scalar2_.assign(94 * 94, kNotScalar);
         parseHeader();
     }
@@ -95,9 +96,9 @@ public:
                 return std::int32_t(targets_[c.tbegin].line);
             return kNotScalar;
         };
-        scalar1_.assign(94, kNotScalar);
-        for (std::size_t i = 0; i < scalar1_.size(); ++i)
-            scalar1_[i] = scalarOf(short1_[i]);
+        scalar1_.assign(256, kNotScalar);  // by the byte itself: no range check
+        for (std::size_t i = 0; i < short1_.size(); ++i)
+            scalar1_[33 + i] = scalarOf(short1_[i]);
         scalar2_.assign(94 * 94, kNotScalar);
         for (std::size_t i = 0; i < scalar2_.size(); ++i)
             scalar2_[i] = scalarOf(short2_[i]);
@@ -503,71 +504,80 @@ private:
         }
     }
 
-    // The bulk of a capture, in one tight loop: `#time` and `0!`/`1"`/`1!a` tokens of plain
-    // one- and two-character scalars, separated by single blanks or newlines. It stops at anything
-    // else (the general loop in pump() handles it, errors included, and calls back), at a
-    // full block, and 32 bytes before the end of the run (its loads read ahead up to 17
-    // bytes, and the run may end at the end of the read buffer). Behaviour is pump()'s, token
-    // for token; only the dispatch and the block bookkeeping per token are gone (the
-    // reading thread's instructions per line of a 10 MB SPI capture, by callgrind: 167 -> 103;
-    // bench/README.md has the command).
-    void fastRun(EdgeBlock& block) {
-        const char* p = p_;
-        if (e_ - p < 32 || max_targets_ >= kEdgeBlockSize) return;
-        const char* const stop = e_ - 32;
-        std::uint64_t line = line_;
-        Tick cur = cur_;
-        // Edges are written through a pointer into the block sized to its capacity, and
-        // the block is cut back to what was written at the end.
-        std::vector<Edge>& edges = block.edges;
-        const std::size_t used = edges.size();
-        edges.resize(kEdgeBlockSize);
-        Edge* out = edges.data() + used;
-        Edge* const full = edges.data() + (kEdgeBlockSize - max_targets_);  // pump()'s test
+    // Where fastRun()'s loop is, between its runs.
+    struct FastCursor {
+        const char* p;
+        const char* stop;
+        Edge* out;
+        Edge* full;
+        std::uint64_t line;
+        Tick cur;
+    };
+
+    // fastRun()'s loop for times of N digits. Returns the digit count of a time of
+    // another length (1 to 15), for the loop of that length to take it, or 0 to stop.
+    template <int N>
+    int runTimesOf(FastCursor& at) {
+        const char* p = at.p;
+        const char* const stop = at.stop;
+        Edge* out = at.out;
+        Edge* const full = at.full;
+        std::uint64_t line = at.line;
+        Tick cur = at.cur;
         const std::int32_t* const scalar = scalar1_.data();
         const std::int32_t* const scalar2 = scalar2_.data();
         std::uint8_t* const level = level_.data();
+        int next = 0;
         while (p < stop && out <= full) {
             char c = *p;
             // Each token is taken only if a separator follows it, so that pump() sees
             // any faulty token whole and words its error as it always has.
             if (c == '#') {
-                const DecimalScan num = scanDecimal16(p + 1);
-                // No digits, or 16 or more: pump() reports it, or checks the range.
-                if (num.digits == 0 || num.digits >= 16) break;
-                const std::uint8_t k = kSeparator[static_cast<unsigned char>(*num.end)];
-                const Tick tt = Tick(num.value);
-                if (!k || tt < cur) break;  // pump() reports a time going backwards
+                // Where the time ends is known before its digits are read: the next
+                // token's loads need not wait for them.
+                std::uint64_t t;
+                const bool digits = digitsOfLength<N>(p + 1, t);
+                const std::uint8_t k = kSeparator[static_cast<unsigned char>(p[1 + N])];
+                if (!digits || !k) [[unlikely]] {
+                    // A time of another length goes to its own loop. No digits, 16 or
+                    // more, or no separator after them: pump() reports it, or checks the
+                    // range.
+                    const DecimalScan num = scanDecimal16(p + 1);
+                    if (num.digits >= 1 && num.digits <= 15 && num.digits != N) next = num.digits;
+                    break;
+                }
+                const Tick tt = Tick(t);
+                if (tt < cur) break;  // pump() reports a time going backwards
                 cur = tt;
                 line += k >> 1;
-                p = num.end + 1;
+                p += 2 + N;
                 // A value change follows nearly every time: the token after the time is
                 // taken below without the loop's tests (nothing was written, and p is at
                 // most 17 bytes past stop, well inside the 32 its 4-byte read may use).
                 c = *p;
             }
             if (unsigned(c - '0') < 2) {
-                const unsigned i = static_cast<unsigned char>(p[1]) - 33u;
                 std::uint8_t k = kSeparator[static_cast<unsigned char>(p[2])];
                 std::int32_t sel;
                 int len = 1;  // of the identifier
                 if (k) {
-                    if (i >= 94) break;
-                    sel = scalar[i];
+                    sel = scalar[static_cast<unsigned char>(p[1])];
                 } else {
                     k = kSeparator[static_cast<unsigned char>(p[3])];
+                    const unsigned i = static_cast<unsigned char>(p[1]) - 33u;
                     const unsigned j = static_cast<unsigned char>(p[2]) - 33u;
                     if (!k || i >= 94 || j >= 94) break;
                     sel = scalar2[i * 94 + j];
                     len = 2;
                 }
-                if (sel == kNotScalar) break;
-                if (sel >= 0) {
+                if (sel >= 0) [[likely]] {
                     const std::uint8_t v = std::uint8_t(c - '0');
                     if (level[sel] != v) {
                         level[sel] = v;
                         *out++ = Edge(cur, std::uint32_t(sel), v);
                     }
+                } else if (sel == kNotScalar) {
+                    break;
                 }
                 line += k >> 1;
                 p += 2 + len;
@@ -578,10 +588,53 @@ private:
                 break;  // anything else
             }
         }
-        edges.resize(std::size_t(out - edges.data()));
-        p_ = p;
-        line_ = line;
-        cur_ = cur;
+        at.p = p;
+        at.out = out;
+        at.line = line;
+        at.cur = cur;
+        return next;
+    }
+
+    // runTimesOf<N> by N, 1 to 15 (0 stands for 1).
+    using TimesOf = int (VcdReader::*)(FastCursor&);
+    template <std::size_t... N>
+    static constexpr std::array<TimesOf, 16> timesOfTable(std::index_sequence<N...>) {
+        return {&VcdReader::runTimesOf<int(N == 0 ? 1 : N)>...};
+    }
+
+    // The bulk of a capture, in one tight loop: `#time` and `0!`/`1"`/`1!a` tokens of plain
+    // one- and two-character scalars, separated by single blanks or newlines. It stops at anything
+    // else (the general loop in pump() handles it, errors included, and calls back), at a
+    // full block, and 32 bytes before the end of the run (its loads read ahead up to 17
+    // bytes, and the run may end at the end of the read buffer). Behaviour is pump()'s, token
+    // for token; only the dispatch and the block bookkeeping per token are gone (the
+    // reading thread's instructions per line of a 10 MB SPI capture, by callgrind: 167 -> 103;
+    // bench/README.md has the command). Its loop is made once per length of the times,
+    // 1 to 15 digits (runTimesOf): where a time ends is then known before its digits are
+    // read, and a time of another length switches loops (bench/README.md, stop 23).
+    void fastRun(EdgeBlock& block) {
+        if (e_ - p_ < 32 || max_targets_ >= kEdgeBlockSize) return;
+        // Edges are written through a pointer into the block sized to its capacity, and
+        // the block is cut back to what was written at the end.
+        std::vector<Edge>& edges = block.edges;
+        const std::size_t used = edges.size();
+        edges.resize(kEdgeBlockSize);
+        FastCursor at{p_,
+                      e_ - 32,
+                      edges.data() + used,
+                      edges.data() + (kEdgeBlockSize - max_targets_),  // pump()'s test
+                      line_,
+                      cur_};
+        // Times grow a digit now and then (and may shrink where leading zeros were
+        // written): each switch is one more call here.
+        static constexpr std::array<TimesOf, 16> kTimesOf =
+            timesOfTable(std::make_index_sequence<16>());
+        while (const int digits = (this->*kTimesOf[time_digits_])(at))
+            time_digits_ = digits;
+        edges.resize(std::size_t(at.out - edges.data()));
+        p_ = at.p;
+        line_ = at.line;
+        cur_ = at.cur;
     }
 
     // Hot path: a lookup; the message is built out of line.
@@ -605,7 +658,7 @@ private:
     std::vector<Target> targets_;
     std::size_t max_targets_ = 1;
     std::vector<int> short1_, short2_;
-    // For fastRun(), per one-character identifier (indexed like short1_) and per
+    // For fastRun(), per one-character identifier (indexed by its byte) and per
     // two-character one (like short2_: sigrok past 94 channels, many simulators): its
     // selected line, kUnselected, or kNotScalar (not declared, or several targets / a
     // vector bit: the general path in pump() handles it).
@@ -625,6 +678,7 @@ private:
     bool initial_done_ = false;
     bool done_ = false;
     Tick start_ = 0, cur_ = 0, end_ = 0;
+    int time_digits_ = 1;  // fastRun()'s loop: for times of this many digits
 };
 
 }  // namespace

@@ -1,11 +1,12 @@
-// The SWAR decimal scans (scanDecimal, and scanDecimal16 for the VCD reader's tight loop)
-// must agree with a plain digit loop on every length, every terminator, buffer ends at
-// every offset, and the 2^62 limit the VCD reader enforces.
+// The SWAR decimal scans (scanDecimal, and scanDecimal16 and digitsOfLength for the VCD
+// reader's tight loop) must agree with a plain digit loop on every length, every
+// terminator, buffer ends at every offset, and the 2^62 limit the VCD reader enforces.
 #include <gtest/gtest.h>
 
 #include <cstdint>
 #include <random>
 #include <string>
+#include <utility>
 
 #include "capture/decimal_scan.h"
 
@@ -59,6 +60,29 @@ void expectSame(const std::string& s) {
     }
 }
 
+// digitsOfLength<N> on s, padded for its 16-byte read: true exactly when the first N
+// bytes are digits, and then their value.
+template <int N>
+void expectSameOfLength(const std::string& s) {
+    const std::string padded = s + std::string(16, '\n');
+    const Reference want = reference(padded.substr(0, N));
+    std::uint64_t value = 0;
+    const bool digits = digitsOfLength<N>(padded.data(), value);
+    ASSERT_EQ(digits, want.digits == std::size_t(N)) << N << " of '" << s << "'";
+    if (digits) {
+        ASSERT_EQ(value, want.value) << N << " of '" << s << "'";
+    }
+}
+
+template <std::size_t... N>
+void expectSameOfEveryLength(const std::string& s, std::index_sequence<N...>) {
+    (expectSameOfLength<int(N) + 1>(s), ...);
+}
+
+void expectSameOfEveryLength(const std::string& s) {
+    expectSameOfEveryLength(s, std::make_index_sequence<15>());
+}
+
 }  // namespace
 
 TEST(DecimalScan, EveryLengthAndTerminator) {
@@ -67,8 +91,10 @@ TEST(DecimalScan, EveryLengthAndTerminator) {
         std::string digits;
         for (int i = 0; i < len; ++i)
             digits += char('0' + (i * 7 + 3) % 10);
-        for (const auto& term : terminators)
+        for (const auto& term : terminators) {
             expectSame(digits + term);
+            expectSameOfEveryLength(digits + term);
+        }
     }
 }
 
@@ -81,6 +107,7 @@ TEST(DecimalScan, RandomAgainstPlainLoop) {
         for (int i = 0; i < len; ++i)
             s += (rng() % 4) ? char('0' + rng() % 10) : alphabet[rng() % alphabet.size()];
         expectSame(s);
+        expectSameOfEveryLength(s);
     }
 }
 
@@ -92,4 +119,18 @@ TEST(DecimalScan, LimitOfTwoToTheSixtySecond) {
     expectSame("99999999999999999999999999");
     expectSame("0000000000000000000000000000012");  // leading zeros are not an overflow
     expectSame("999999999999999999");               // 18 digits: the fast path's limit
+}
+
+TEST(DecimalScan, OfLengthSeesANonDigitInEveryPlace) {
+    // One byte that is not a digit (just below '0', just above '9', and far from both),
+    // in every place of a run of digits of every length, and no digit missed or added.
+    for (int len = 1; len <= 16; ++len) {
+        for (int at = 0; at < len; ++at) {
+            for (char odd : {'/', ':', ' ', '\xff', '\xfa', '#'}) {
+                std::string s(std::size_t(len), '9');
+                s[std::size_t(at)] = odd;
+                expectSameOfEveryLength(s);
+            }
+        }
+    }
 }

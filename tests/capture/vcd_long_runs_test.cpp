@@ -206,6 +206,12 @@ TEST(VcdLongRuns, ErrorsDeepInARunNameTheirLine) {
     };
     const Case cases[] = {
         {"#500 1!", "time going backwards (#500 after #30999)"},
+        // The run's times have five digits: the tight loop takes a time of five as
+        // read where it expects it, and must still see what is wrong with one.
+        {"#30998 1!", "time going backwards (#30998 after #30999)"},
+        {"#3100a 1!", "expected a time after '#', found '#3100a'"},
+        {"#a1000 1!", "expected a time after '#', found '#a1000'"},
+        {"#31000a 1!", "expected a time after '#', found '#31000a'"},
         {"#12a 1!", "expected a time after '#', found '#12a'"},
         {"# 1!", "expected a time after '#', found '#'"},
         {"1%", "value change for undeclared identifier '%'"},
