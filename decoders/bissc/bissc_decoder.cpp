@@ -305,33 +305,6 @@ void BisscDecoder::startDelayEstimate(double ack_delay) {
     f_.ack_delay = ack_delay;
 }
 
-void BisscDecoder::setDelay(double delay) {
-    f_.delay = delay;
-    // floor() by truncation and one correction (std::floor is a library call without
-    // SSE4.1); clamped, so that a delay measured across an absurd gap cannot overflow.
-    constexpr double kMaxTick = 9.0e18;
-    const double limit =
-        std::clamp(std::min(min_quiet_ + delay, slave_timeout_), -kMaxTick, kMaxTick);
-    Tick q = Tick(limit);
-    if (double(q) > limit) --q;
-    quiet_ticks_ = q;
-}
-
-void BisscDecoder::refineDelay(Tick t) {
-    // Every SL change in the frame is the slave answering an MA rising edge: the one
-    // whose slot has not been sampled yet (all samples before t are scheduled, the next
-    // slot's is after t). Its offset is one more measurement of the line delay; the mean
-    // resolves the delay to a fraction of a capture sample (the ACK edge alone is
-    // quantised to a whole sample, 0.4 bit at 2.4 samples per bit).
-    const double period = meanPeriod();
-    if (period <= 0 || f_.scheduled >= f_.rises.size()) return;
-    const double offset = double(t - f_.rises[f_.scheduled]);
-    if (std::fabs(offset - f_.delay) >= period / 2) return;
-    f_.delay_sum += offset;
-    ++f_.delay_edges;
-    setDelay(f_.delay_sum / f_.delay_edges);
-}
-
 void BisscDecoder::drainSamples() {
     while (sampler_.ready()) {
         const LineSampler::Sample s = sampler_.pop();

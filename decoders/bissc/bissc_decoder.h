@@ -9,6 +9,7 @@
 // edge, and every bit is sampled at its MA rising edge + d + T/2: SL is read where the
 // slave's answer really is, however long the cable (d may span many bit times).
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <memory>
@@ -249,6 +250,33 @@ bool BisscDecoder::onSlInFrame(Tick t, bool level) {
     sl_ = level;
     refineDelay(t);  // (the slot is never Done in State::Data)
     return true;
+}
+
+inline void BisscDecoder::setDelay(double delay) {
+    f_.delay = delay;
+    // floor() by truncation and one correction (std::floor is a library call without
+    // SSE4.1); clamped, so that a delay measured across an absurd gap cannot overflow.
+    constexpr double kMaxTick = 9.0e18;
+    const double limit =
+        std::clamp(std::min(min_quiet_ + delay, slave_timeout_), -kMaxTick, kMaxTick);
+    Tick q = Tick(limit);
+    if (double(q) > limit) --q;
+    quiet_ticks_ = q;
+}
+
+inline void BisscDecoder::refineDelay(Tick t) {
+    // Every SL change in the frame is the slave answering an MA rising edge: the one
+    // whose slot has not been sampled yet (all samples before t are scheduled, the next
+    // slot's is after t). Its offset is one more measurement of the line delay; the mean
+    // resolves the delay to a fraction of a capture sample (the ACK edge alone is
+    // quantised to a whole sample, 0.4 bit at 2.4 samples per bit).
+    const double period = meanPeriod();
+    if (period <= 0 || f_.scheduled >= f_.rises.size()) return;
+    const double offset = double(t - f_.rises[f_.scheduled]);
+    if (std::fabs(offset - f_.delay) >= period / 2) return;
+    f_.delay_sum += offset;
+    ++f_.delay_edges;
+    setDelay(f_.delay_sum / f_.delay_edges);
 }
 
 double BisscDecoder::sampleTime(std::size_t k) const {
