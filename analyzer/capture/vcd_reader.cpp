@@ -504,7 +504,7 @@ private:
         }
     }
 
-    // Where fastRun()'s loop is, between its runs.
+    // fastRun()'s state, handed from the loop for one length of the times to the next.
     struct FastCursor {
         const char* p;
         const char* stop;
