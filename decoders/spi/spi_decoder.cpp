@@ -112,21 +112,24 @@ void SpiDecoder::emitWord(Tick end, bool short_frame) {
     const int digits = (n + 3) / 4;
     ShortLine text;  // at most 64 bits: "MOSI 0x" + 16 digits, twice, and the short note
     bool first = true;
+    // Fields only when a sink or another decoder reads them: text output prints the
+    // summary alone, and a word's fields cost more than its summary.
+    const bool fields = fieldsWanted();
     auto put = [&](const char* key, const char* label, const BitWord& w, bool bound) {
         if (!bound) {
-            e.add(key, Null{});
+            if (fields) e.add(key, Null{});
             return;
         }
         // MSB-first words keep the newest 64 bits; LSB-first words the first 64.
         std::uint64_t v = lowBits(w.value(), n);
-        e.add(key, v);
+        if (fields) e.add(key, v);
         if (!first) text.text(" ");
         first = false;
         text.text(label).text(" 0x").hex(v, digits);
     };
     put("mosi", "MOSI", mosi_, bound_ & bit(kSpiMosi));
     put("miso", "MISO", miso_, bound_ & bit(kSpiMiso));
-    e.add("bits", std::int64_t(n));
+    if (fields) e.add("bits", std::int64_t(n));
     if (short_frame) {
         e.error("short_frame");
         text.text(" (").dec(n).text(" of ").dec(bits_).text(" bits)");

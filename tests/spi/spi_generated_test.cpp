@@ -4,6 +4,7 @@
 
 #include <random>
 
+#include "capture/capture_reader.h"
 #include "core/registry.h"
 #include "core/session.h"
 #include "spi_generator.h"
@@ -124,6 +125,46 @@ TEST(Spi, WordCutShortByCsIsReportedWithItsBits) {
     EXPECT_TRUE(ev[1].errors.empty());
     EXPECT_EQ(u(ev[1], "mosi"), 0xCAFEF00Du);
     EXPECT_EQ(u(ev[1], "miso"), 0x87654321u);
+}
+
+TEST(Spi, TextOutputGetsTheSummaryWithoutFields) {
+    // A sink that reads no fields (text output) gets the same events, summaries and errors
+    // as one that does, without the fields; with MISO unbound, one line's text and
+    // fields are left out either way.
+    WaveBuilder wb(Timebase{1, 1'000'000'000}, {"cs", "sclk", "mosi", "miso"},
+                   SpiGenerator::idleLevels({}));
+    SpiGenerator gen(wb, {0, 1, 2, 3});
+    double t = gen.transfer(1000, {{0xDEADBEEF, 0x12345678}}, 32, 20);
+    t = gen.transfer(t + 1000, 0xCAFEF00D, 0x87654321, 32);
+    const Waveform bound = wb.build(wb.ticksFromNs(t + 1000));
+    struct SummaryOnly : OutputSink {
+        std::vector<Event> events;
+        void onEvent(const Event& e, const CaptureFacts&) override { events.push_back(e); }
+        bool readsFields() const override { return false; }
+    };
+    for (bool miso : {true, false}) {
+        SCOPED_TRACE(miso ? "miso bound" : "miso unbound");
+        Waveform w = bound;
+        if (!miso) w.names = {"cs", "sclk", "mosi", "unrelated"};
+        const auto with_fields = decode(w, {});
+        SummaryOnly text;
+        auto reader = memoryReader(w);
+        Session s({DecoderRequest{"spi", {}, {}}}, *reader, "memory");
+        s.addSink(&text);
+        s.run();
+        ASSERT_EQ(text.events.size(), 2u);
+        ASSERT_EQ(with_fields.size(), 2u);
+        for (std::size_t i = 0; i < 2; ++i) {
+            EXPECT_TRUE(text.events[i].fields.empty());
+            EXPECT_FALSE(with_fields[i].fields.empty());
+            EXPECT_EQ(text.events[i].summary, with_fields[i].summary);
+            EXPECT_EQ(text.events[i].errors, with_fields[i].errors);
+            EXPECT_EQ(text.events[i].start, with_fields[i].start);
+            EXPECT_EQ(text.events[i].end, with_fields[i].end);
+        }
+        EXPECT_EQ(text.events[0].summary, miso ? "MOSI 0xDEADB MISO 0x12345 (20 of 32 bits)"
+                                               : "MOSI 0xDEADB (20 of 32 bits)");
+    }
 }
 
 TEST(Spi, LsbFirstShortFrameKeepsTheBitsInPlace) {
