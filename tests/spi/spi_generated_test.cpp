@@ -110,13 +110,22 @@ TEST(Spi, SeveralWordsInOneCsAssertion) {
     }
 }
 
-TEST(Spi, WordCutShortByCsIsReportedWithItsBits) {
+namespace {
+
+// A 32-bit word cut short by cs after 20 bits, then a whole one.
+Waveform cutShortThenWhole() {
     WaveBuilder wb(Timebase{1, 1'000'000'000}, {"cs", "sclk", "mosi", "miso"},
                    SpiGenerator::idleLevels({}));
     SpiGenerator gen(wb, {0, 1, 2, 3});
     double t = gen.transfer(1000, {{0xDEADBEEF, 0x12345678}}, 32, 20);
     t = gen.transfer(t + 1000, 0xCAFEF00D, 0x87654321, 32);
-    auto ev = decode(wb.build(wb.ticksFromNs(t + 1000)), {});
+    return wb.build(wb.ticksFromNs(t + 1000));
+}
+
+}  // namespace
+
+TEST(Spi, WordCutShortByCsIsReportedWithItsBits) {
+    auto ev = decode(cutShortThenWhole(), {});
     ASSERT_EQ(ev.size(), 2u);
     EXPECT_EQ(ev[0].errors, std::vector<std::string>{"short_frame"});
     EXPECT_EQ(asInt(*ev[0].get("bits")), 20);
@@ -131,12 +140,7 @@ TEST(Spi, TextOutputGetsTheSummaryWithoutFields) {
     // A sink that reads no fields (text output) gets the same events, summaries and errors
     // as one that does, without the fields; with MISO unbound, one line's text and
     // fields are left out either way.
-    WaveBuilder wb(Timebase{1, 1'000'000'000}, {"cs", "sclk", "mosi", "miso"},
-                   SpiGenerator::idleLevels({}));
-    SpiGenerator gen(wb, {0, 1, 2, 3});
-    double t = gen.transfer(1000, {{0xDEADBEEF, 0x12345678}}, 32, 20);
-    t = gen.transfer(t + 1000, 0xCAFEF00D, 0x87654321, 32);
-    const Waveform bound = wb.build(wb.ticksFromNs(t + 1000));
+    const Waveform bound = cutShortThenWhole();
     struct SummaryOnly : OutputSink {
         std::vector<Event> events;
         void onEvent(const Event& e, const CaptureFacts&) override { events.push_back(e); }
