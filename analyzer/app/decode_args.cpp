@@ -2,7 +2,6 @@
 
 #include <chrono>
 #include <cstdlib>
-#include <filesystem>
 #include <mutex>
 #include <set>
 #include <thread>
@@ -194,12 +193,12 @@ CaptureFacts decodeCapture(const std::string& path, const std::vector<DecoderReq
                            const OpenOptions& open, const std::vector<OutputSink*>& sinks,
                            bool realtime, const std::atomic<bool>* stop) {
     // Read ahead on a second thread while this one decodes (two cores, pipelined). A file
-    // read to its end, never waiting for input, is handed over a few blocks at a time.
-    std::error_code ec;
-    const bool whole_file =
-        !open.follow && path != "-" && std::filesystem::is_regular_file(path, ec);
+    // read to its end, never waiting for input, is handed over a few blocks at a time:
+    // one whose size the reader knows (a regular file; a pipe's is unknown), not followed.
+    std::unique_ptr<CaptureReader> opened = openCapture(path, open);
+    const bool whole_file = !open.follow && opened->bytesTotal() > 0;
     std::unique_ptr<CaptureReader> reader =
-        prefetchReader(openCapture(path, open), 32, whole_file ? 4 : 1);
+        prefetchReader(std::move(opened), 32, whole_file ? 4 : 1);
     if (realtime) reader = std::make_unique<PacedReader>(std::move(reader));
     Session session(requests, *reader, path);
     if (stop) session.setStopFlag(stop);
