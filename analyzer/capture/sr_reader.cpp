@@ -186,7 +186,7 @@ private:
         const std::uint64_t sample_bits = unit_ == 4 ? 0xFFFFFFFFULL : (1ULL << shift) - 1;
         std::uint64_t mask = 0;
         for (std::size_t i = 0; i < per_load; ++i)
-            mask |= std::uint64_t(mask_) << (shift * i);
+            mask |= mask_ << (shift * i);
         Edge* const last = full - (per_load - 1) * sel_.size();  // room for a whole load
         std::size_t k = 0;
         for (; k + per_load <= words && out <= last; k += per_load) {
