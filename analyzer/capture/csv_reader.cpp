@@ -23,6 +23,7 @@
 #include <fmt/format.h>
 
 #include "core/options.h"
+#include "core/own_cache_lines.h"
 #include "decimal_scan.h"
 #include "readers.h"
 
@@ -143,7 +144,8 @@ bool toTicks(const Decimal& d, int resolution, Tick& t) {
     return true;
 }
 
-class CsvReader : public CaptureReader {
+// In cache lines of its own: its state is written as it reads (own_cache_lines.h).
+class alignas(kOwnLineBytes) CsvReader : public CaptureReader {
 public:
     CsvReader(std::unique_ptr<TextSource> src, const OpenOptions& opts)
         : src_(std::move(src)), opts_(opts) {
@@ -166,7 +168,7 @@ public:
 
     std::vector<std::uint8_t> initialLevels() override {
         if (!started_) start();
-        return level_;
+        return level_.toVector();
     }
     Tick startTick() const override { return start_; }
 
@@ -576,10 +578,10 @@ private:
     std::string current_, prev_time_;
     std::string last_row_;  // text of the last parsed untimed row
     std::vector<std::string_view> fields_;
-    std::vector<std::size_t> sel_;  // column of each selected line
-    std::vector<std::uint8_t> level_;
-    std::vector<std::uint8_t> col_level_;  // the row's values, by column
-    std::uint64_t sep_zero_ = 0;           // plainValues(): the four columns it expects per load
+    std::vector<std::size_t> sel_;           // column of each selected line
+    OwnLinesArray<std::uint8_t> level_;      // written per edge, on the reading thread
+    OwnLinesArray<std::uint8_t> col_level_;  // the row's values, by column (as level_)
+    std::uint64_t sep_zero_ = 0;             // plainValues(): the four columns it expects per load
     std::uint64_t rows_ = 0;
     Tick start_ = 0, cur_ = 0;
     bool started_ = false, done_ = false;

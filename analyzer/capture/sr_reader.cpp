@@ -25,6 +25,7 @@
 #include <zip.h>
 
 #include "core/options.h"
+#include "core/own_cache_lines.h"
 #include "readers.h"
 
 namespace busdecode {
@@ -40,7 +41,8 @@ std::string trim(const std::string& s) {
     return s.substr(b, e - b);
 }
 
-class SrReader : public CaptureReader {
+// In cache lines of its own: its state is written as it reads (own_cache_lines.h).
+class alignas(kOwnLineBytes) SrReader : public CaptureReader {
 public:
     SrReader(const std::string& path, int fd, const std::string& name, const OpenOptions& opts)
         : name_(name), opts_(opts) {

@@ -30,6 +30,7 @@
 #include <fmt/format.h>
 
 #include "core/options.h"
+#include "core/own_cache_lines.h"
 #include "decimal_scan.h"
 #include "readers.h"
 
@@ -55,7 +56,8 @@ struct StringHash {
     std::size_t operator()(std::string_view s) const { return std::hash<std::string_view>{}(s); }
 };
 
-class VcdReader : public CaptureReader {
+// In cache lines of its own: its state is written as it reads (own_cache_lines.h).
+class alignas(kOwnLineBytes) VcdReader : public CaptureReader {
 public:
     VcdReader(std::unique_ptr<TextSource> src, const OpenOptions& opts)
         : src_(std::move(src)), opts_(opts) {
@@ -106,7 +108,7 @@ public:
 
     std::vector<std::uint8_t> initialLevels() override {
         if (!initial_done_) readInitial();
-        return level_;
+        return level_.toVector();
     }
     Tick startTick() const override { return start_; }
 
@@ -665,7 +667,7 @@ private:
     static constexpr std::int32_t kNotScalar = -1, kUnselected = -2;
     std::vector<std::int32_t> scalar1_, scalar2_;
     std::unordered_map<std::string, int, StringHash, std::equal_to<>> long_;
-    std::vector<std::uint8_t> level_;
+    OwnLinesArray<std::uint8_t> level_;  // written per edge, on the reading thread
 
     // The rest of the current line (header), or of the current run of lines.
     const char* p_ = nullptr;
