@@ -83,8 +83,14 @@ protected:
     void emit(Event&& e) {
         if (ctx_.sink) ctx_.sink->onEvent(std::move(e));
     }
+    // An event from freshEvent(), handed over by its pointer.
+    void emit(EventPtr e) {
+        if (ctx_.sink) ctx_.sink->onOwnedEvent(std::move(e));
+    }
     // The event to fill for emit(): empty, with storage recycled by the sink if it can.
-    Event freshEvent() { return ctx_.sink ? ctx_.sink->freshEvent() : Event{}; }
+    EventPtr freshEvent() {
+        return ctx_.sink ? ctx_.sink->freshEvent() : std::make_unique<Event>();
+    }
     // Call when a frame (or anything that will become an event) starts / is done.
     void busyFrom(Tick t) {
         if (busy_since_ == kNoTick || t < busy_since_) busy_since_ = t;

@@ -11,13 +11,13 @@ void EventWindow::forEach(std::string_view proto, std::string_view type, Tick fr
         return fn(e);
     };
     for (const auto& e : released_)
-        if (!visit(e)) return;
+        if (!visit(*e)) return;
     if (pending_)
         for (const auto& e : *pending_)
-            if (!visit(e)) return;
+            if (!visit(*e)) return;
 }
 
-void EventWindow::remember(Event&& e, std::size_t keep) {
+void EventWindow::remember(EventPtr e, std::size_t keep) {
     released_.push_back(std::move(e));
     while (released_.size() > keep)
         released_.pop_front();

@@ -16,16 +16,13 @@ public:
     // [from, to]. Stops early when fn returns false.
     void forEach(std::string_view proto, std::string_view type, Tick from, Tick to,
                  const std::function<bool(const Event&)>& fn) const;
-    // Held events (released and not yet released), oldest first.
-    const std::deque<Event>& released() const { return released_; }
-
     // Session side.
-    void remember(Event&& e, std::size_t keep);
-    void setPending(const std::deque<Event>* pending) { pending_ = pending; }
+    void remember(EventPtr e, std::size_t keep);
+    void setPending(const std::deque<EventPtr>* pending) { pending_ = pending; }
 
 private:
-    std::deque<Event> released_;
-    const std::deque<Event>* pending_ = nullptr;
+    std::deque<EventPtr> released_;
+    const std::deque<EventPtr>* pending_ = nullptr;
 };
 
 }  // namespace busdecode

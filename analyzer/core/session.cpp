@@ -100,7 +100,7 @@ struct Session::Impl : EventSink {
     std::vector<std::uint8_t> levels;
     // Events not yet output, in start order, and which slot emitted each (two deques
     // kept in step, so the correlation window can see the events without a copy).
-    std::deque<Event> pending;
+    std::deque<EventPtr> pending;
     std::deque<int> pending_slot;
     EventWindow window;
     bool keep_window = false;  // some decoder correlates: remember released events
@@ -120,19 +120,27 @@ struct Session::Impl : EventSink {
     // block, so the pool must hold a block's worth to serve the next one: 10 MHz BiSS-C
     // makes about 165 frames per block, of 100 edges each; with 64, two thirds of its
     // frames were built in new storage. At most about 2 MB.
-    std::vector<Event> spare;
+    std::vector<EventPtr> spare;
     static constexpr std::size_t kMaxSpare = 1024;
 
-    Event freshEvent() override {
-        if (spare.empty()) return Event{};
-        Event e = std::move(spare.back());
+    EventPtr freshEvent() override {
+        if (spare.empty()) return std::make_unique<Event>();
+        EventPtr e = std::move(spare.back());
         spare.pop_back();
         return e;
     }
 
+    // An event a decoder built without freshEvent(): into storage of the pool.
     void onEvent(Event&& e) override {
-        e.instance = slots[emitting].instance;
-        if (pending.empty() || pending.back().start <= e.start) {  // the rule: in order
+        EventPtr owned = freshEvent();
+        *owned = std::move(e);
+        onOwnedEvent(std::move(owned));
+    }
+
+    void onOwnedEvent(EventPtr e) override {
+        e->instance = slots[emitting].instance;
+        const Tick start = e->start;
+        if (pending.empty() || pending.back()->start <= start) {  // the rule: in order
             pending.push_back(std::move(e));
             pending_slot.push_back(emitting);
             return;
@@ -140,7 +148,7 @@ struct Session::Impl : EventSink {
         // Insert keeping start order (out-of-order events are late by a few: search from
         // the back).
         std::size_t at = pending.size();
-        while (at > 0 && pending[at - 1].start > e.start)
+        while (at > 0 && pending[at - 1]->start > start)
             --at;
         pending.insert(pending.begin() + at, std::move(e));
         pending_slot.insert(pending_slot.begin() + at, emitting);
@@ -155,20 +163,20 @@ struct Session::Impl : EventSink {
         return w;
     }
 
-    // Outputs e (the front of `pending`, in place, or taken out of it to be correlated),
-    // then keeps it for reuse or in the correlation window; e is left moved from.
-    void output(Event& e, int slot) {
-        if (e.wants_correlation) {
+    // Outputs e, taken out of `pending`, then keeps it for reuse or in the correlation
+    // window.
+    void output(EventPtr e, int slot) {
+        if (e->wants_correlation) {
             window.setPending(&pending);
-            slots[slot].decoder->correlate(e, window);
+            slots[slot].decoder->correlate(*e, window);
             window.setPending(nullptr);
         }
         for (auto* s : *sinks)
-            s->onEvent(e, *facts);
+            s->onEvent(*e, *facts);
         if (keep_window) {
             window.remember(std::move(e), 4096);
         } else if (spare.size() < kMaxSpare) {
-            e.reset();
+            e->reset();
             spare.push_back(std::move(e));
         }
     }
@@ -177,23 +185,18 @@ struct Session::Impl : EventSink {
         const Tick w = all ? std::numeric_limits<Tick>::max() : watermark();
         constexpr std::size_t kMaxHeld = 200000;  // bounded memory even if a decoder stalls
         while (!pending.empty()) {
-            const Event& next = pending.front();
+            const Event& next = *pending.front();
             const bool forced = pending.size() > kMaxHeld;
             if (!all && !forced) {
                 if (next.start >= w) break;
                 if (next.wants_correlation && next.end >= w) break;
             }
+            // Out of `pending` first: the correlation window shows what is still pending.
+            EventPtr out = std::move(pending.front());
             const int slot = pending_slot.front();
-            if (next.wants_correlation) {  // out of `pending` first: the window shows pending
-                Event out = std::move(pending.front());
-                pending.pop_front();
-                pending_slot.pop_front();
-                output(out, slot);
-            } else {  // in place, one move fewer
-                output(pending.front(), slot);
-                pending.pop_front();
-                pending_slot.pop_front();
-            }
+            pending.pop_front();
+            pending_slot.pop_front();
+            output(std::move(out), slot);
         }
     }
 

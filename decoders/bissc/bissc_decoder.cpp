@@ -364,7 +364,8 @@ void BisscDecoder::takeSample(int index, bool level, double t) {
 }
 
 void BisscDecoder::closeFrame(Tick end, Tick timeout_end, const char* error, bool feed_control) {
-    Event e = freshEvent();
+    EventPtr owned = freshEvent();
+    Event& e = *owned;
     e.proto = "bissc";
     e.type = "frame";
     e.start = f_.start;
@@ -483,7 +484,7 @@ void BisscDecoder::closeFrame(Tick end, Tick timeout_end, const char* error, boo
     bits.cdm = cdm;
     bits.cds = complete ? f_.cds : -1;
 
-    emit(std::move(e));
+    emit(std::move(owned));
     sampler_.cancelAll();
     f_.slot = Slot::Done;
     idle();

@@ -103,7 +103,8 @@ void SpiDecoder::wordDone(Tick t) {
 void SpiDecoder::emitWord(Tick end, bool short_frame) {
     ++words_;
     if (short_frame) short_bits_ = ++short_words_ == 1 || short_bits_ == count_ ? count_ : -1;
-    Event e = freshEvent();
+    EventPtr owned = freshEvent();
+    Event& e = *owned;
     e.proto = "spi";
     e.type = "transfer";
     e.start = word_start_;
@@ -136,7 +137,7 @@ void SpiDecoder::emitWord(Tick end, bool short_frame) {
     }
     if (word_glitch_) e.error("glitch");
     e.summary.assign(text.view());
-    emit(std::move(e));
+    emit(std::move(owned));
 }
 
 void SpiDecoder::resetWord() {

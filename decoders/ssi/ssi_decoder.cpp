@@ -217,7 +217,8 @@ void SsiDecoder::close(bool capture_end) {
 
     const SsiWord w = assembleWord(samples, cfg_);
     const SsiFields f = w.short_frame ? SsiFields{} : splitFields(w.raw, cfg_);
-    Event e = freshEvent();
+    pending_ = freshEvent();
+    Event& e = *pending_;
     e.fields.reserve(20 + cfg_.status.size());
     e.proto = "ssi";
     e.type = "frame";
@@ -297,7 +298,6 @@ void SsiDecoder::close(bool capture_end) {
     if (b_.reread) text += " reread";
     if (T > 0) text += " clk=" + formatHz(clock_hz);
     e.summary = std::move(text);
-    pending_ = std::move(e);
     // The last clock edge of a complete word shifts out a separator 0 (without separators
     // it starts the next repeat): only then must data be low and tm measurable.
     pending_checks_tm_ = !w.short_frame && w.partial_bits == 0 && !b_.overlong && cfg_.ring_gap > 0;
@@ -319,7 +319,7 @@ void SsiDecoder::close(bool capture_end) {
     if (data_ || capture_end) {
         // Data high and no low period after the last clock: nothing to measure. A complete
         // word must be followed by a low level (line break / no encoder otherwise).
-        if (!capture_end && pending_checks_tm_) pending_.error("tm_missing");
+        if (!capture_end && pending_checks_tm_) pending_->error("tm_missing");
         pending_checks_tm_ = false;
         emitFrame(std::nullopt, false);
         return;
@@ -332,7 +332,7 @@ void SsiDecoder::close(bool capture_end) {
 }
 
 void SsiDecoder::emitFrame(std::optional<Tick> tm_end, bool deadline_passed) {
-    Event& e = pending_;
+    Event& e = *pending_;
     std::string tm_text = "tm=?";
     if (tm_end) {
         const std::int64_t tm_ns = tb().toNs(*tm_end - e.end);
@@ -361,14 +361,14 @@ void SsiDecoder::emitFrame(std::optional<Tick> tm_end, bool deadline_passed) {
         clock_min_ = frames_ == 1 || clock_min_ == 0 ? hz : std::min(clock_min_, hz);
         clock_max_ = std::max(clock_max_, hz);
     }
-    emit(std::move(e));
-    pending_ = Event{};
+    emit(std::move(pending_));
     state_ = State::Idle;
     idle();
 }
 
 void SsiDecoder::emitSummary(Tick end) {
-    Event e = freshEvent();
+    EventPtr owned = freshEvent();
+    Event& e = *owned;
     e.proto = "ssi";
     e.type = "summary";
     e.start = end;
@@ -396,7 +396,7 @@ void SsiDecoder::emitSummary(Tick end) {
     text += fmt::format(" repeat_mismatches={} short_frames={} error_frames={}", mismatches_,
                         shorts_, error_frames_);
     e.summary = std::move(text);
-    emit(std::move(e));
+    emit(std::move(owned));
 }
 
 void SsiDecoder::finish(Tick end) {

@@ -61,7 +61,7 @@ private:
     bool data_ = true;
     State state_ = State::Idle;
     Burst b_;
-    Event pending_;                   // the closed burst's frame, waiting for tm
+    EventPtr pending_;                // the closed burst's frame, waiting for tm
     bool pending_checks_tm_ = false;  // tm is only checked for complete, unbroken words
     Tick wait_deadline_ = 0;
     Tick last_clock_ = kNoTick;  // last clock edge of the last burst

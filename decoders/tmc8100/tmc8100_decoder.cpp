@@ -60,14 +60,15 @@ void Tmc8100Decoder::edge(Tick t, int role, bool level) {
         }
         if (!someone_waits && firmware_ == Firmware::App && miso_bound_) {
             // The firmware raises SPI_DATA_AVAILABLE when it queues replies; nothing asked.
-            Event e = freshEvent();
+            EventPtr owned = freshEvent();
+            Event& e = *owned;
             e.proto = "tmc8100";
             e.type = "avail";
             e.start = e.end = t;
             e.set("level", std::int64_t(1));
             e.error("unexpected_avail");
             e.summary = "GPIO6 (SPI_DATA_AVAILABLE) rose with no command waiting for replies";
-            emit(std::move(e));
+            emit(std::move(owned));
         }
     }
     avail_level_ = level;
@@ -129,7 +130,8 @@ void Tmc8100Decoder::onTransfer(Event&& spi) {
         acc_bits_ = 0;
         acc_mosi_ = acc_miso_ = 0;
         // Not a datagram: report what was on MOSI without giving it a meaning.
-        Event e = freshEvent();
+        EventPtr owned = freshEvent();
+        Event& e = *owned;
         e.proto = "tmc8100";
         e.type = "command";
         e.start = spi.start;
@@ -140,7 +142,7 @@ void Tmc8100Decoder::onTransfer(Event&& spi) {
         e.set("word", mosi ? Value(*mosi) : Value(Null{}));
         e.errors = spi.errors;
         e.summary = fmt::format("{}-bit word, not a 32-bit datagram", bits);
-        emit(std::move(e));
+        emit(std::move(owned));
         return;
     }
     if (miso) onMiso(std::uint32_t(*miso), spi);
@@ -150,7 +152,8 @@ void Tmc8100Decoder::onTransfer(Event&& spi) {
 
 void Tmc8100Decoder::emitReply(ReplyKind kind, std::uint32_t word, const Event& spi,
                                const Waiting* w, std::vector<std::string> errors) {
-    Event e = freshEvent();
+    EventPtr owned = freshEvent();
+    Event& e = *owned;
     e.proto = "tmc8100";
     e.type = "reply";
     e.start = spi.start;
@@ -166,7 +169,7 @@ void Tmc8100Decoder::emitReply(ReplyKind kind, std::uint32_t word, const Event& 
     for (const auto& x : spi.errors)
         e.error(x);
     e.summary = w ? fmt::format("{} (reply to {})", text, w->cmd.name) : text;
-    emit(std::move(e));
+    emit(std::move(owned));
 }
 
 void Tmc8100Decoder::record(Waiting& w, ReplyKind kind, std::uint32_t word) {
@@ -279,7 +282,8 @@ void Tmc8100Decoder::onMosi(std::uint32_t word, const Event& spi) {
 
     const bool boot = firmware_ == Firmware::Bootloader;
     Command c = boot ? bootloaderCommand(word) : appCommand(word, protocol_);
-    Event e = freshEvent();
+    EventPtr owned = freshEvent();
+    Event& e = *owned;
     e.proto = "tmc8100";
     e.type = "command";
     e.start = spi.start;
@@ -320,7 +324,7 @@ void Tmc8100Decoder::onMosi(std::uint32_t word, const Event& spi) {
             finishFront(true);
     }
     e.summary = std::move(text);
-    emit(std::move(e));
+    emit(std::move(owned));
 }
 
 void Tmc8100Decoder::finishFront(bool incomplete) {
@@ -330,7 +334,8 @@ void Tmc8100Decoder::finishFront(bool incomplete) {
 
 void Tmc8100Decoder::complete(Waiting& w, bool incomplete) {
     if (w.cmd.name != "read_encoder") return;
-    Event e = freshEvent();
+    EventPtr owned = freshEvent();
+    Event& e = *owned;
     e.proto = "tmc8100";
     e.type = "encoder_read";
     e.start = w.start;
@@ -378,7 +383,7 @@ void Tmc8100Decoder::complete(Waiting& w, bool incomplete) {
     // correlate() consumes these in order; bounded in case a host never calls it.
     while (corr_window_.size() > 256)
         corr_window_.erase(corr_window_.begin());
-    emit(std::move(e));
+    emit(std::move(owned));
 }
 
 void Tmc8100Decoder::correlate(Event& e, const EventWindow& window) {

@@ -142,7 +142,8 @@ void TmclDecoder::flushShort(Stream stream) {
     auto& p = partial_[stream];
     if (p.empty()) return;
     const bool reply = stream == kModule || (stream == kBus && pending_.awaiting);
-    Event e = freshEvent();
+    EventPtr owned = freshEvent();
+    Event& e = *owned;
     e.proto = "tmcl";
     e.type = reply ? "reply" : "command";
     e.start = p.front().start;
@@ -159,7 +160,7 @@ void TmclDecoder::flushShort(Stream stream) {
         hex += fmt::format(" {:02X}", b.value);
     e.summary = fmt::format("{} cut short after {} of 9 bytes:{}", e.type, p.size(), hex);
     p.clear();
-    emit(std::move(e));
+    emit(std::move(owned));
 }
 
 bool TmclDecoder::isReplyOnBus(const Datagram& d) const {
@@ -207,7 +208,8 @@ void TmclDecoder::onDatagram(Stream stream, const std::vector<ByteIn>& bytes) {
 
 void TmclDecoder::emitCommand(const Datagram& d, Tick start, Tick end, bool fault) {
     const Command c = parseCommand(d);
-    Event e = freshEvent();
+    EventPtr owned = freshEvent();
+    Event& e = *owned;
     e.proto = "tmcl";
     e.type = "command";
     e.start = start;
@@ -230,7 +232,7 @@ void TmclDecoder::emitCommand(const Datagram& d, Tick start, Tick end, bool faul
     if (!c.checksum_ok)
         e.summary += fmt::format("  [checksum {:02X}, sum {:02X}]", d[8], checksumOf(d));
     pending_ = PendingCommand{c, text, start, end, true};
-    emit(std::move(e));
+    emit(std::move(owned));
 }
 
 void TmclDecoder::pairWithCommand(Event& e, Tick start, Tick end) {
@@ -246,7 +248,8 @@ void TmclDecoder::pairWithCommand(Event& e, Tick start, Tick end) {
 
 void TmclDecoder::emitReply(const Datagram& d, Tick start, Tick end, bool fault) {
     const Reply r = parseReply(d);
-    Event e = freshEvent();
+    EventPtr owned = freshEvent();
+    Event& e = *owned;
     e.proto = "tmcl";
     e.type = "reply";
     e.start = start;
@@ -273,11 +276,12 @@ void TmclDecoder::emitReply(const Datagram& d, Tick start, Tick end, bool fault)
                                  answers ? "" : ", answers another command");
     if (!r.checksum_ok)
         e.summary += fmt::format("  [checksum {:02X}, sum {:02X}]", d[8], checksumOf(d));
-    emit(std::move(e));
+    emit(std::move(owned));
 }
 
 void TmclDecoder::emitVersionReply(const Datagram& d, Tick start, Tick end, bool fault) {
-    Event e = freshEvent();
+    EventPtr owned = freshEvent();
+    Event& e = *owned;
     e.proto = "tmcl";
     e.type = "reply";
     e.start = start;
@@ -292,7 +296,7 @@ void TmclDecoder::emitVersionReply(const Datagram& d, Tick start, Tick end, bool
     pairWithCommand(e, start, end);
     if (fault) e.error("framing");
     e.summary = fmt::format("reply {}: GetVersion \"{}\"", d[0], version);
-    emit(std::move(e));
+    emit(std::move(owned));
 }
 
 void TmclDecoder::updateBusy() {

@@ -66,7 +66,8 @@ void UartDecoder::decideBaud() {
     fmt_.baud = std::clamp(fmt_.baud, 1.0, 1e9);
     bit_ticks_ = tb().fromSeconds(1.0 / fmt_.baud);
     if (measured && !held_.empty()) {
-        Event e = freshEvent();
+        EventPtr owned = freshEvent();
+        Event& e = *owned;
         e.proto = "uart";
         e.type = "baud";
         e.start = e.end = held_.front().t;
@@ -74,7 +75,7 @@ void UartDecoder::decideBaud() {
         e.set("measured_baud", *measured);
         e.summary = fmt::format("baud rate {:g} (measured {:.1f} from the shortest pulses)",
                                 fmt_.baud, *measured);
-        emit(std::move(e));
+        emit(std::move(owned));
     }
     std::vector<HeldEdge> replay;
     replay.swap(held_);
@@ -202,7 +203,8 @@ void UartDecoder::endFrame(Line& l, bool cut_short) {
     l.in_frame = false;
     ++l.generation;
     l.sampler.cancelAll();
-    Event e = freshEvent();
+    EventPtr owned = freshEvent();
+    Event& e = *owned;
     e.proto = "uart";
     e.type = "byte";
     e.start = l.frame_start;
@@ -212,7 +214,7 @@ void UartDecoder::endFrame(Line& l, bool cut_short) {
         e.set("line", l.name);
         e.error("short_frame");
         e.summary = fmt::format("{} (capture ended mid-character)", l.name);
-        emit(std::move(e));
+        emit(std::move(owned));
         return;
     }
     e.set("value", std::int64_t(l.value));
@@ -228,7 +230,7 @@ void UartDecoder::endFrame(Line& l, bool cut_short) {
     faulty_bytes_ += !e.errors.empty();
     const int hex_digits = (fmt_.bits + 3) / 4;
     e.summary = fmt::format("{} 0x{:0{}X}{}", l.name, l.value, hex_digits, printable(l.value));
-    emit(std::move(e));
+    emit(std::move(owned));
     // Low through the whole frame, stop bits included: a break, reported when it ends.
     if (l.all_low && !l.stop_ok && (l.level == fmt_.invert)) {
         l.in_break = true;
@@ -238,7 +240,8 @@ void UartDecoder::endFrame(Line& l, bool cut_short) {
 
 void UartDecoder::emitBreak(Line& l, Tick end) {
     l.in_break = false;
-    Event e = freshEvent();
+    EventPtr owned = freshEvent();
+    Event& e = *owned;
     e.proto = "uart";
     e.type = "break";
     e.start = l.break_start;
@@ -247,7 +250,7 @@ void UartDecoder::emitBreak(Line& l, Tick end) {
     e.set("duration_ns", tb().toNs(end - l.break_start));
     e.summary = fmt::format("{} break ({} bit times)", l.name,
                             std::llround(double(end - l.break_start) / bit_ticks_));
-    emit(std::move(e));
+    emit(std::move(owned));
 }
 
 void UartDecoder::updateBusy() {

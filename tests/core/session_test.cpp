@@ -129,7 +129,8 @@ public:
     explicit AlternateDecoder(const Options&) {}
     void edge(Tick t, int, bool level) override {
         if (!level) return;
-        Event e = freshEvent();
+        EventPtr owned = freshEvent();
+        Event& e = *owned;
         e.proto = "alternate";
         e.type = "rise";
         e.start = e.end = t;
@@ -139,7 +140,7 @@ public:
             e.summary = "an odd one, with a summary longer than a short string";
             e.instance = "kept?";
         }
-        emit(std::move(e));
+        emit(std::move(owned));
     }
     void finish(Tick) override {}
 
