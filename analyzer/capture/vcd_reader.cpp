@@ -665,7 +665,9 @@ private:
     // selected line, kUnselected, or kNotScalar (not declared, or several targets / a
     // vector bit: the general path in pump() handles it).
     static constexpr std::int32_t kNotScalar = -1, kUnselected = -2;
-    std::vector<std::int32_t> scalar1_, scalar2_;
+    // Read per edge on the reading thread: in lines of their own, so that no object the
+    // decoding thread writes shares a line with them (own_cache_lines.h).
+    OwnLinesArray<std::int32_t> scalar1_, scalar2_;
     std::unordered_map<std::string, int, StringHash, std::equal_to<>> long_;
     OwnLinesArray<std::uint8_t> level_;  // written per edge, on the reading thread
 

@@ -1,10 +1,11 @@
 #pragma once
-// State that one thread writes on every edge, kept in cache lines that nothing else
-// uses. The reading thread writes each line's level as it tokenises; the decoding thread
-// runs beside it on the other core. A few bytes from the heap share their cache line
-// with whatever the allocator puts next to them, and each write then takes that line
-// away from the other core (false sharing): an 8-byte change in the heap's layout once
-// made BiSS-C's decode 12 % slower that way (bench/README.md, stop 24).
+// State that one thread writes or reads on every edge, kept in cache lines that nothing
+// else uses. The reading thread writes each line's level as it tokenises, and looks up
+// each identifier; the decoding thread runs beside it on the other core. A few bytes
+// from the heap share their cache line with whatever the allocator puts next to them,
+// and each write by one core then takes that line away from the other (false sharing):
+// an 8-byte change in the heap's layout once made BiSS-C's decode 12 % slower that way
+// (bench/README.md, stop 24).
 #include <algorithm>
 #include <cstddef>
 #include <memory>
