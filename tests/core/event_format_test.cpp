@@ -72,6 +72,28 @@ TEST(EventFormat, AppendFormsMatchStringForms) {
               "\"mosi\":165,\"bits\":8,\"errors\":[\"short_frame\"]}");
 }
 
+TEST(EventFormat, NameAndTypeColumnsAsFmtPadsThem) {
+    // "{:<8} {:<12}": padded to the width, and names longer than it written whole.
+    const Timebase tb{1, 1'000'000'000};
+    for (const std::string name :
+         {"", "s", "spi", "tmc8100", "spi_bus1", "tmc8100#2", "a_long_instance"})
+        for (const std::string type :
+             {"", "frame", "encoder_read", "register_read", "a_longer_event_type"})
+            for (const bool instance : {false, true}) {
+                Event e;
+                (instance ? e.instance : e.proto) = name;
+                if (instance) e.proto = "unused";
+                e.type = type;
+                e.start = 5;
+                e.summary = "summary";
+                e.error("crc");
+                const std::string shown = instance && name.empty() ? e.proto : name;
+                EXPECT_EQ(eventToText(e, tb),
+                          fmt::format("{:>14.9f} s  {:<8} {:<12} summary  !crc", 5e-9, shown, type))
+                    << name << " / " << type;
+            }
+}
+
 TEST(EventFormat, AddAppendsSetReplaces) {
     Event e;
     e.add("a", std::int64_t(1)).add("b", std::int64_t(2));
