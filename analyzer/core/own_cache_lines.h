@@ -15,7 +15,7 @@
 
 namespace busdecode {
 
-// Twice a cache line: x86 cores fetch lines in adjacent pairs.
+// Twice a cache line: x86 cores' adjacent-line prefetch pulls lines in pairs.
 inline constexpr std::size_t kOwnLineBytes = 128;
 
 // A fixed-size array of trivially copyable values in whole lines of its own.
