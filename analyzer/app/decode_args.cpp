@@ -133,8 +133,16 @@ void loadPlugins() {
                 QObject* root = loader.instance();
                 auto* plugin = root ? qobject_cast<DecoderPlugin*>(root) : nullptr;
                 if (!plugin) {
+                    // A Qt plugin that loads but is not ours: most likely a decoder built
+                    // against another version of the interface (plugin.h).
+                    const std::string why =
+                        root ? fmt::format(
+                                   "it does not implement {}: rebuild it against "
+                                   "this version's plugins/busdecode/plugin.h",
+                                   BUSDECODE_PLUGIN_IID)
+                             : loader.errorString().toStdString();
                     fmt::print(stderr, "decode: warning: {}: not a busdecode plugin ({})\n",
-                               path.toStdString(), loader.errorString().toStdString());
+                               path.toStdString(), why);
                     continue;
                 }
                 for (auto& f : plugin->factories())

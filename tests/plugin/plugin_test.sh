@@ -21,4 +21,18 @@ fi
 # --list shows the plugin's declaration
 list=$(BUSDECODE_PLUGIN_PATH="$tmp/pulse" "$tmp/prefix/bin/decode" --list)
 grep -q "^pulse  Pulse widths" <<<"$list" || { echo "--list does not show the plugin"; exit 1; }
+# A plugin built against another version of the interface (here: the same example, its
+# installed plugin.h saying 1.0) is refused with a warning that says why, not loaded:
+# its calls into decode would not match.
+cp -r "$tmp/prefix" "$tmp/old_prefix"
+header=$(find "$tmp/old_prefix" -name plugin.h -path '*busdecode*' | head -1)
+sed -i 's|"org.busdecode.DecoderPlugin/[0-9.]*"|"org.busdecode.DecoderPlugin/1.0"|' "$header"
+grep -q 'DecoderPlugin/1.0"' "$header" || { echo "could not rewrite $header"; exit 1; }
+cmake -S "$src_dir/plugins/example" -B "$tmp/old_pulse" -G Ninja -DCMAKE_PREFIX_PATH="$tmp/old_prefix" >/dev/null
+cmake --build "$tmp/old_pulse" >/dev/null
+old_list=$(BUSDECODE_PLUGIN_PATH="$tmp/old_pulse" "$tmp/prefix/bin/decode" --list 2>"$tmp/old.err")
+cat "$tmp/old.err"
+grep -q "not a busdecode plugin (it does not implement org.busdecode.DecoderPlugin/" "$tmp/old.err" ||
+  { echo "no warning for a plugin of another interface version"; exit 1; }
+if grep -q "^pulse " <<<"$old_list"; then echo "a plugin of another interface version was loaded"; exit 1; fi
 echo "plugin test passed"
