@@ -138,7 +138,7 @@ void loadPlugins() {
                     const std::string why =
                         root ? fmt::format(
                                    "it does not implement {}: rebuild it against "
-                                   "this version's plugins/busdecode/plugin.h",
+                                   "this version's busdecode/plugin.h",
                                    BUSDECODE_PLUGIN_IID)
                              : loader.errorString().toStdString();
                     fmt::print(stderr, "decode: warning: {}: not a busdecode plugin ({})\n",
