@@ -7,6 +7,12 @@
 #include <climits>
 #include <cstdint>
 #include <cstring>
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 namespace busdecode {
 
@@ -95,6 +101,62 @@ inline DecimalScan scanDecimal16(const char* p) {
     return r;
 }
 
+namespace detail {
+
+// digitsOfLength<N> below, by SWAR: the portable version.
+template <int N>
+inline bool digitsOfLengthSwar(const char* p, std::uint64_t& value) {
+    std::uint64_t w;
+    std::memcpy(&w, p, 8);
+    if constexpr (N <= 8) {
+        value = digitsValue(w, N);
+        return (nonDigits(w) & lowBytes(N)) == 0;
+    } else {
+        std::uint64_t w2;
+        std::memcpy(&w2, p + 8, 8);
+        if constexpr (N <= 10) {  // a digit or two more: no second SWAR for them
+            value = digitsValue(w, 8);
+            for (int i = 0; i < N - 8; ++i)
+                value = value * 10 + (((w2 >> (8 * i)) & 0xFF) - '0');
+        } else
+            value = digitsValue(w, 8) * kPow10[N - 8] + digitsValue(w2, N - 8);
+        return (nonDigits(w) | (nonDigits(w2) & lowBytes(N - 8))) == 0;
+    }
+}
+
+#if defined(__SSE2__)
+// digitsOfLength<N> below, in one 16-byte register (SSE2, every x86-64): the digits
+// combined in pairs by three multiply-adds (digits -> 2-digit -> 4-digit -> 8-digit
+// lanes) and one 64-bit multiply. The SWAR version chains two or three 64-bit multiplies
+// per time; this one took reading the 500 MB BiSS-C capture alone from 151 to 114 ms
+// (bench/README.md, stop 25).
+template <int N>
+inline bool digitsOfLengthSse2(const char* p, std::uint64_t& value) {
+    const __m128i d =
+        _mm_sub_epi8(_mm_loadu_si128(reinterpret_cast<const __m128i*>(p)), _mm_set1_epi8('0'));
+    const __m128i nine = _mm_set1_epi8(9);
+    const int is_digit = _mm_movemask_epi8(_mm_cmpeq_epi8(_mm_max_epu8(d, nine), nine));
+    // The N digits moved to the top bytes, zeros (leading zeros) shifted in below them.
+    const __m128i digits = _mm_slli_si128(d, 16 - N);
+    const __m128i zero = _mm_setzero_si128();
+    // pmaddwd's lanes are little-endian: the first (more significant) digit of a pair is
+    // the low 16 bits, so its weight comes first.
+    const __m128i by10 = _mm_set_epi16(1, 10, 1, 10, 1, 10, 1, 10);
+    const __m128i pairs = _mm_packs_epi32(_mm_madd_epi16(_mm_unpacklo_epi8(digits, zero), by10),
+                                          _mm_madd_epi16(_mm_unpackhi_epi8(digits, zero), by10));
+    const __m128i quads =  // each <= 9999: packs below cannot saturate
+        _mm_madd_epi16(pairs, _mm_set_epi16(1, 100, 1, 100, 1, 100, 1, 100));
+    const __m128i eights = _mm_madd_epi16(_mm_packs_epi32(quads, quads),
+                                          _mm_set_epi16(1, 10000, 1, 10000, 1, 10000, 1, 10000));
+    const std::uint64_t both = std::uint64_t(_mm_cvtsi128_si64(eights));  // high 8, low 8
+    value = (both & 0xFFFFFFFFULL) * 100000000ULL + (both >> 32);
+    constexpr int kFirstN = (1 << N) - 1;
+    return (is_digit & kFirstN) == kFirstN;
+}
+#endif
+
+}  // namespace detail
+
 // Exactly N digits (1..15) at p, in the VCD reader's tight loop, which knows how many the
 // last time had and expects as many: the number's end is then known before its bytes are
 // looked at, and the count needs no search. Reads the 16 bytes at p (no bounds check).
@@ -103,22 +165,11 @@ template <int N>
 inline bool digitsOfLength(const char* p, std::uint64_t& value) {
     static_assert(N >= 1 && N <= 15, "up to 15 digits: below 10^15 < 2^62");
     static_assert(std::endian::native == std::endian::little, "SWAR digit scan is little-endian");
-    std::uint64_t w;
-    std::memcpy(&w, p, 8);
-    if constexpr (N <= 8) {
-        value = detail::digitsValue(w, N);
-        return (detail::nonDigits(w) & detail::lowBytes(N)) == 0;
-    } else {
-        std::uint64_t w2;
-        std::memcpy(&w2, p + 8, 8);
-        if constexpr (N <= 10) {  // a digit or two more: no second SWAR for them
-            value = detail::digitsValue(w, 8);
-            for (int i = 0; i < N - 8; ++i)
-                value = value * 10 + (((w2 >> (8 * i)) & 0xFF) - '0');
-        } else
-            value = detail::digitsValue(w, 8) * kPow10[N - 8] + detail::digitsValue(w2, N - 8);
-        return (detail::nonDigits(w) | (detail::nonDigits(w2) & detail::lowBytes(N - 8))) == 0;
-    }
+#if defined(__SSE2__)
+    return detail::digitsOfLengthSse2<N>(p, value);
+#else
+    return detail::digitsOfLengthSwar<N>(p, value);
+#endif
 }
 
 // Reads the decimal digits starting at p (none is fine), never reading at or past e.

@@ -66,12 +66,21 @@ template <int N>
 void expectSameOfLength(const std::string& s) {
     const std::string padded = s + std::string(16, '\n');
     const Reference want = reference(padded.substr(0, N));
-    std::uint64_t value = 0;
-    const bool digits = digitsOfLength<N>(padded.data(), value);
-    ASSERT_EQ(digits, want.digits == std::size_t(N)) << N << " of '" << s << "'";
-    if (digits) {
-        ASSERT_EQ(value, want.value) << N << " of '" << s << "'";
-    }
+    const auto check = [&](const char* version, auto of_length) {
+        std::uint64_t value = 0;
+        const bool digits = of_length(padded.data(), value);
+        ASSERT_EQ(digits, want.digits == std::size_t(N))
+            << version << " " << N << " of '" << s << "'";
+        if (digits) {
+            ASSERT_EQ(value, want.value) << version << " " << N << " of '" << s << "'";
+        }
+    };
+    // The version the reader uses, and each one this machine can run.
+    check("digitsOfLength", digitsOfLength<N>);
+    check("SWAR", detail::digitsOfLengthSwar<N>);
+#if defined(__SSE2__)
+    check("SSE2", detail::digitsOfLengthSse2<N>);
+#endif
 }
 
 template <std::size_t... N>
@@ -108,6 +117,15 @@ TEST(DecimalScan, RandomAgainstPlainLoop) {
             s += (rng() % 4) ? char('0' + rng() % 10) : alphabet[rng() % alphabet.size()];
         expectSame(s);
         expectSameOfEveryLength(s);
+    }
+}
+
+TEST(DecimalScan, LargestOfEveryLength) {
+    // All nines: the largest value each step of the combining holds (99, 9999, 99999999).
+    for (int len = 1; len <= 16; ++len) {
+        expectSame(std::string(std::size_t(len), '9'));
+        expectSameOfEveryLength(std::string(std::size_t(len), '9'));
+        expectSameOfEveryLength(std::string(std::size_t(len), '9') + "0");
     }
 }
 
