@@ -5,6 +5,10 @@
 //                                            how much of decode's time is reading
 //     read_capture --edges [--rate HZ] FILE  prints every edge (read_edges.h: printEdges),
 //                                            to compare two builds' readers line for line
+//     read_capture --prefetch FILE           the same count, read ahead on a second thread
+//                                            as decode reads (prefetchReader), this thread
+//                                            reading every edge: what handing the edges
+//                                            between two cores costs the reading thread
 //
 // Errors (unreadable or broken captures) are printed as one line, with exit status 2; with
 // --edges also on stdout, so that two builds' outputs compare errors too.
@@ -19,11 +23,14 @@
 int main(int argc, char** argv) {
     using namespace busdecode;
     bool edges = false;
+    bool prefetch = false;
     OpenOptions opts;
     int i = 1;
     for (; i < argc - 1; ++i) {
         if (std::strcmp(argv[i], "--edges") == 0) {
             edges = true;
+        } else if (std::strcmp(argv[i], "--prefetch") == 0) {
+            prefetch = true;
         } else if (std::strcmp(argv[i], "--rate") == 0 && i + 2 < argc) {
             opts.rate_hz = std::atof(argv[++i]);
         } else {
@@ -31,12 +38,16 @@ int main(int argc, char** argv) {
         }
     }
     if (i != argc - 1) {
-        std::fprintf(stderr, "usage: read_capture [--edges [--rate HZ]] FILE\n");
+        std::fprintf(stderr, "usage: read_capture [--edges [--rate HZ] | --prefetch] FILE\n");
         return 2;
     }
     try {
         if (edges) {
             bench::printEdges(argv[i], opts, stdout);
+        } else if (prefetch) {
+            const bench::Touched n = bench::readEdgesAhead(argv[i]);
+            std::printf("%llu edges (checksum %llu)\n", (unsigned long long)n.edges,
+                        (unsigned long long)n.checksum);
         } else {
             const unsigned long long n = bench::readEdges(argv[i]);
             std::printf("%llu edges\n", n);

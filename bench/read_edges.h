@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "capture/capture_reader.h"
+#include "capture/prefetch_reader.h"
 
 namespace busdecode::bench {
 
@@ -37,6 +38,26 @@ inline std::uint64_t readEdges(const std::string& path, int only = -1) {
     while (reader->next(block))
         edges += block.edges.size();
     return edges;
+}
+
+struct Touched {
+    std::uint64_t edges = 0;
+    std::uint64_t checksum = 0;  // of every edge's fields, so that each one is read
+};
+
+// Reads the whole file on a second thread, as decode does (prefetchReader with decode's
+// read-ahead), and reads every edge handed over.
+inline Touched readEdgesAhead(const std::string& path) {
+    auto reader = prefetchReader(openSelected(path, {}), kReadAheadBlocks, kWholeFileBatch);
+    (void)reader->initialLevels();
+    EdgeBlock block;
+    Touched out;
+    while (reader->next(block)) {
+        out.edges += block.edges.size();
+        for (const Edge& e : block.edges)
+            out.checksum += std::uint64_t(e.t) ^ e.line ^ e.level;
+    }
+    return out;
 }
 
 // Everything the reader hands a decoder, as text: the format, the start tick and the

@@ -206,7 +206,7 @@ CaptureFacts decodeCapture(const std::string& path, const std::vector<DecoderReq
     std::unique_ptr<CaptureReader> opened = openCapture(path, open);
     const bool whole_file = !open.follow && opened->bytesTotal() > 0;
     std::unique_ptr<CaptureReader> reader =
-        prefetchReader(std::move(opened), 32, whole_file ? 4 : 1);
+        prefetchReader(std::move(opened), kReadAheadBlocks, whole_file ? kWholeFileBatch : 1);
     if (realtime) reader = std::make_unique<PacedReader>(std::move(reader));
     Session session(requests, *reader, path);
     if (stop) session.setStopFlag(stop);

@@ -20,7 +20,10 @@ namespace busdecode {
 // block short of full, or the end: fewer wake-ups of the reader's thread when it is the
 // slower one. Only for a reader that never waits for input (a regular file, not
 // followed): a live input keeps 1, so that each block is handed on as soon as it is read.
-std::unique_ptr<CaptureReader> prefetchReader(std::unique_ptr<CaptureReader> inner, int ahead = 32,
-                                              int batch = 1);
+// decode's choices (decode_args.cpp; bench/read_capture --prefetch times the same).
+inline constexpr int kReadAheadBlocks = 32;
+inline constexpr int kWholeFileBatch = 4;
+std::unique_ptr<CaptureReader> prefetchReader(std::unique_ptr<CaptureReader> inner,
+                                              int ahead = kReadAheadBlocks, int batch = 1);
 
 }  // namespace busdecode
