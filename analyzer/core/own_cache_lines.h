@@ -4,8 +4,8 @@
 // each identifier; the decoding thread runs beside it on the other core. A few bytes
 // from the heap share their cache line with whatever the allocator puts next to them,
 // and each write by one core then takes that line away from the other (false sharing):
-// an 8-byte change in the heap's layout once made BiSS-C's decode 12 % slower that way
-// (bench/README.md, stop 24).
+// a change that only moved the heap's layout (events handed on by pointer) once made
+// BiSS-C's decode 12 % slower that way (bench/README.md, stop 24).
 #include <algorithm>
 #include <cstddef>
 #include <memory>
