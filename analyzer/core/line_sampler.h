@@ -27,7 +27,14 @@ public:
     // Schedules a sample at tick t (fractional ticks allowed). Times must not decrease.
     void schedule(double t, std::uint32_t tag) { buf_.push_back({t, tag, false}); }
     // Drops the samples not resolved yet (resolved ones can still be popped).
-    void cancelAll() { buf_.resize(resolved_); }
+    void cancelAll() {
+        if (head_ == resolved_) {  // nothing left to pop either: empty (see empty())
+            buf_.clear();
+            head_ = resolved_ = 0;
+        } else {
+            buf_.resize(resolved_);
+        }
+    }
 
     // An edge of the sampled line at t: samples strictly before t see the old level.
     void lineEdge(Tick t, bool level) {
@@ -40,6 +47,9 @@ public:
     void flush() { resolveBefore(1e300); }
 
     bool ready() const { return head_ < resolved_; }
+    // Nothing to pop and nothing pending: !ready() && pending() == 0 in one test. The
+    // buffer is emptied whenever that holds (pop(), cancelAll(), reset()).
+    bool empty() const { return buf_.empty(); }
     Sample pop() {
         // Field by field: a whole-struct copy loads `level` inside a wider word just
         // after resolveBefore() stored it as a byte, and that store cannot be forwarded

@@ -220,7 +220,7 @@ bool BisscDecoder::takeDueSamples(Tick t) {
     // empty: every sample due before t resolves to SL's level now (the sampler gives a
     // newly scheduled sample the line's present level), and is taken at once, in order.
     // Not at an SL edge: there the samples are taken after SL's new level is recorded.
-    if (state_ != State::Data || sampler_.ready() || sampler_.pending() != 0) return false;
+    if (state_ != State::Data || !sampler_.empty()) return false;
     const double now = double(t);
     while (state_ == State::Data && f_.scheduled < f_.rises.size()) {
         double at = sampleTime(f_.scheduled);
@@ -240,8 +240,7 @@ bool BisscDecoder::takeDueSamples(Tick t) {
 bool BisscDecoder::onSlInFrame(Tick t, bool level) {
     // Then scheduleUpTo(), lineEdge() and drainSamples() have nothing to resolve or take,
     // and checkQuiet() nothing to close.
-    if (state_ != State::Data || t - last_ma_edge_ > quiet_ticks_ || sampler_.ready() ||
-        sampler_.pending() != 0)
+    if (state_ != State::Data || t - last_ma_edge_ > quiet_ticks_ || !sampler_.empty())
         return false;
     // The usual SL edge answers a rise whose sample is still to come: with every sample
     // taken, the edge may be the slave giving up (onSl() checks).
