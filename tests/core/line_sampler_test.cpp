@@ -4,6 +4,7 @@
 // paths ask empty() instead of both).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <deque>
 #include <random>
