@@ -71,6 +71,16 @@ void expectSameState(const LineSampler& s, const ModelSampler& m, int step) {
     ASSERT_EQ(s.empty(), !m.ready() && m.pending() == 0) << "step " << step;
 }
 
+// Pops one sample from each (the model has one ready): the same sample, the same level.
+void expectSamePop(LineSampler& s, ModelSampler& m, int run, int step) {
+    ASSERT_TRUE(s.ready()) << "run " << run << " step " << step;
+    const auto a = s.pop();
+    const auto b = m.pop();
+    ASSERT_EQ(a.tag, b.tag) << "run " << run << " step " << step;
+    ASSERT_EQ(a.t, b.t);
+    ASSERT_EQ(a.level, b.level);
+}
+
 }  // namespace
 
 TEST(LineSampler, SamplesBeforeAnEdgeSeeTheOldLevel) {
@@ -168,27 +178,16 @@ TEST(LineSampler, EmptyOnlyWhenNothingIsReadyOrPendingWhateverTheOrder) {
                     }
                     break;
                 default:
-                    while (m.ready() && (rng() & 1)) {
-                        ASSERT_TRUE(s.ready());
-                        const auto a = s.pop();
-                        const auto b = m.pop();
-                        ASSERT_EQ(a.tag, b.tag) << "run " << run << " step " << step;
-                        ASSERT_EQ(a.t, b.t);
-                        ASSERT_EQ(a.level, b.level);
-                    }
+                    while (m.ready() && (rng() & 1))
+                        ASSERT_NO_FATAL_FAILURE(expectSamePop(s, m, run, step));
                     break;
             }
             expectSameState(s, m, step);
         }
         s.flush();
         m.flush();
-        while (m.ready()) {
-            ASSERT_TRUE(s.ready());
-            const auto a = s.pop();
-            const auto b = m.pop();
-            ASSERT_EQ(a.tag, b.tag);
-            ASSERT_EQ(a.level, b.level);
-        }
+        while (m.ready())
+            ASSERT_NO_FATAL_FAILURE(expectSamePop(s, m, run, -1));
         EXPECT_TRUE(s.empty());
     }
 }
