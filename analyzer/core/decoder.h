@@ -45,6 +45,10 @@ public:
         for (; first != last; ++first)
             edge(first->t, role_of_line[first->line], first->level != 0);
     }
+    // One edge through the decoder's general code alone: what edge() does, without the
+    // fast paths a decoder may take in edge() or edges(). Such a decoder overrides it,
+    // and its tests and the fuzz harness check the fast paths against it.
+    virtual void edgeReference(Tick t, int role, bool level) { edge(t, role, level); }
     // Time has advanced to `now` with no further edge on this decoder's lines before it.
     // Called between edge blocks; lets timeouts close frames promptly in live decoding.
     virtual void advance(Tick now) { (void)now; }

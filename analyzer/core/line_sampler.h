@@ -41,6 +41,9 @@ public:
         resolveBefore(double(t));
         level_ = level;
     }
+    // An edge of the sampled line while the sampler is empty(): lineEdge() without a
+    // sample to resolve, so without the time (BiSS-C sets the level once per run of edges).
+    void setLevel(bool level) { level_ = level; }
     // No edge on the sampled line before `now`: samples before it see the current level.
     void advanceTo(Tick now) { resolveBefore(double(now)); }
     // End of capture: resolves every remaining sample with the current level.

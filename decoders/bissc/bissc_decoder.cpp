@@ -156,13 +156,115 @@ void BisscDecoder::beginFrame(Tick start, bool from_hold) {
     }
 }
 
+void BisscDecoder::edge(Tick t, int role, bool level) {
+    if (dataEdgesNow()) {
+        std::size_t rises = f_.rises.size();
+        const DataRefs members{f_.scheduled,     rises,        f_.delay,       f_.period,
+                               f_.last_sample_t, f_.delay_sum, f_.delay_edges, quiet_ticks_,
+                               last_ma_edge_,    sl_,          f_.slot,        f_.data,
+                               f_.data_count};
+        if (takeDataEdge(members, t, role, level)) {
+            if (role == kSl) sampler_.setLevel(level);  // (empty)
+            return;
+        }
+    }
+    edgeReference(t, role, level);
+}
+
+void BisscDecoder::edges(const Edge* first, const Edge* last, const int* role_of_line) {
+    while (first != last) {
+        // A frame's data is most of the edges: taken in runs, each ended by the first
+        // edge that needs more than the usual (takeDataEdge()), which the general path
+        // then takes.
+        if (dataEdgesNow()) {
+            first = dataRun(first, last, role_of_line);
+            if (first == last) break;
+        }
+        edgeReference(first->t, role_of_line[first->line], first->level != 0);
+        ++first;
+    }
+}
+
+void BisscDecoder::edgeReference(Tick t, int role, bool level) {
+    if (role == kMa)
+        onMa(t, level);
+    else if (role == kSl)
+        onSl(t, level);
+}
+
+bool BisscDecoder::takeDataEdge(const DataRefs& s, Tick t, int role, bool level) {
+    if (role == kMa) {
+        if (t - s.last_ma_edge > s.quiet_ticks) return false;  // a clock pause: checkQuiet()
+        // Every sample due before t sees SL's level now (scheduleUpTo() and
+        // LineSampler::advanceTo() would resolve it so), taken in order, its time pushed
+        // past the last sample's as scheduleUpTo() does.
+        const double now = double(t);
+        while (s.scheduled < s.rises) {
+            double at = sampleTimeWith(s.scheduled, s.delay, s.period);
+            if (at >= now) break;
+            at = std::max(at, s.last_sample_t);
+            if (at >= now) return false;  // pushed to t or later: the sampler holds it
+            if (s.slot == Slot::Data)
+                takeDataBitOf(s.data, s.data_count, s.slot, s.sl);
+            else if (!takePlainSlot(s.slot, int(s.scheduled), s.sl))
+                return false;  // takeSample() takes it
+            s.last_sample_t = at;
+            ++s.scheduled;
+        }
+        recordMaEdge(t, level, true, s.last_ma_edge);
+        if (level) {  // addRise()
+            f_.rises.push_back(t);
+            ++s.rises;
+            s.period = periodOfRises();
+        }
+        return true;
+    }
+    if (role != kSl || t - s.last_ma_edge > s.quiet_ticks) return false;
+    // An SL change before the next sample is due answers that sample's rise; otherwise
+    // onSl() checks whether the slave gave up.
+    if (s.scheduled >= s.rises || sampleTimeWith(s.scheduled, s.delay, s.period) < double(t))
+        return false;
+    s.sl = level;
+    refineDelayOf(t, s.scheduled, s.period, s.delay, s.delay_sum, s.delay_edges, s.quiet_ticks);
+    return true;
+}
+
+const Edge* BisscDecoder::dataRun(const Edge* e, const Edge* last, const int* role_of_line) {
+    std::size_t scheduled = f_.scheduled, rises = f_.rises.size();
+    double delay = f_.delay, period = f_.period, last_sample_t = f_.last_sample_t,
+           delay_sum = f_.delay_sum;
+    int delay_edges = f_.delay_edges;
+    Tick quiet_ticks = quiet_ticks_, last_ma_edge = last_ma_edge_;
+    bool sl = sl_;
+    Slot slot = f_.slot;
+    std::uint64_t data = f_.data;
+    int data_count = f_.data_count;
+    const DataRefs locals{scheduled, rises,       delay,       period,       last_sample_t,
+                          delay_sum, delay_edges, quiet_ticks, last_ma_edge, sl,
+                          slot,      data,        data_count};
+    for (; e != last; ++e)
+        if (!takeDataEdge(locals, e->t, role_of_line[e->line], e->level != 0)) break;
+    f_.scheduled = scheduled;
+    f_.delay = delay;
+    f_.period = period;
+    f_.last_sample_t = last_sample_t;
+    f_.delay_sum = delay_sum;
+    f_.delay_edges = delay_edges;
+    f_.slot = slot;
+    f_.data = data;
+    f_.data_count = data_count;
+    quiet_ticks_ = quiet_ticks;
+    last_ma_edge_ = last_ma_edge;
+    sl_ = sl;
+    sampler_.setLevel(sl);  // (empty throughout the run)
+    return e;
+}
+
 void BisscDecoder::onMa(Tick t, bool level) {
     ++slow_ma_edges_;
-    if (!takeDueSamples(t)) {
-        scheduleUpTo(double(t));
-        sampler_.advanceTo(t);
-        drainSamples();
-    }
+    scheduleUpTo(double(t));
+    sampler_.advanceTo(t);
+    drainSamples();
     onMaAfterSamples(t, level);
 }
 
@@ -170,7 +272,8 @@ void BisscDecoder::onMaAfterSamples(Tick t, bool level) {
     checkQuiet(t);
     recordMaEdge(t, level,
                  (state_ == State::WaitAck || state_ == State::Data) && !f_.rises.empty() &&
-                     last_ma_edge_ != kNoTick);
+                     last_ma_edge_ != kNoTick,
+                 last_ma_edge_);
 
     switch (state_) {
         case State::WaitSlaveIdle:
@@ -313,37 +416,14 @@ void BisscDecoder::drainSamples() {
 }
 
 void BisscDecoder::takeSample(int index, bool level, double t) {
+    if (takePlainSlot(f_.slot, index, level)) return;
     switch (f_.slot) {
-        case Slot::Ack:
-            if (level) addError("ack");
+        case Slot::Ack:  // high: no ACK in its slot
+            addError("ack");
             f_.slot = Slot::Busy;
-            break;
-        case Slot::Busy:
-            if (!level) {
-                ++f_.proc_cycles;
-            } else {
-                f_.start_index = index;
-                f_.slot = Slot::Cds;
-            }
-            break;
-        case Slot::Cds:
-            f_.cds = level;
-            f_.slot = s_.bits > 0 ? Slot::Data : Slot::NE;
             break;
         case Slot::Data:
             takeDataBit(level);
-            break;
-        case Slot::NE:
-            f_.ne = level;
-            f_.slot = Slot::NW;
-            break;
-        case Slot::NW:
-            f_.nw = level;
-            f_.slot = s_.crc_bits > 0 ? Slot::Crc : Slot::Stop;
-            break;
-        case Slot::Crc:
-            f_.crc_rx = (f_.crc_rx << 1) | std::uint32_t(level);
-            if (++f_.crc_count == s_.crc_bits) f_.slot = Slot::Stop;
             break;
         case Slot::Stop:
             f_.stop_index = index;
@@ -358,7 +438,7 @@ void BisscDecoder::takeSample(int index, bool level, double t) {
                 state_ = State::Timeout;
             }
             break;
-        case Slot::Done:
+        default:  // Done (the plain slots are taken above)
             break;
     }
 }

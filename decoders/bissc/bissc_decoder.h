@@ -25,16 +25,22 @@
 
 namespace busdecode {
 
-class BisscDecoder : public BlockDecoder<BisscDecoder> {
+class BisscDecoder : public Decoder {
 public:
     enum Role { kMa = 0, kSl = 1 };
 
     explicit BisscDecoder(const Options& options);
 
     void start(const DecoderContext& ctx) override;
-    // Inline, with its fast paths, so that BlockDecoder's loop takes the usual MA and SL
-    // edges without a call (defined below the class).
-    [[gnu::always_inline]] inline void edge(Tick t, int role, bool level) override;
+    // One edge: a frame's usual data edge through takeDataEdge(), any other through the
+    // general path (edgeReference()).
+    void edge(Tick t, int role, bool level) override;
+    // A block of edges: the runs of a frame's data through dataRun(), every other edge
+    // through the general path.
+    void edges(const Edge* first, const Edge* last, const int* role_of_line) override;
+    // The general path alone, for every edge: samples scheduled in the LineSampler and
+    // taken as SL's edges and time pass them. What dataRun() is tested against.
+    void edgeReference(Tick t, int role, bool level) override;
     void advance(Tick now) override;
     void finish(Tick end) override;
     void glitch(Tick t, int role) override;
@@ -97,51 +103,131 @@ private:
         std::vector<std::string> errors;
     };
 
+    // The state a frame's usual data edge reads and writes (the rest it only writes, to
+    // the members): bound to the members for one edge (edge()), or to local variables
+    // for a run of them (dataRun()), which the compiler keeps in registers, where the
+    // members would be reloaded after every store that might alias them.
+    struct DataRefs {
+        std::size_t& scheduled;  // f_.scheduled
+        std::size_t& rises;      // f_.rises.size()
+        double& delay;
+        double& period;
+        double& last_sample_t;
+        double& delay_sum;
+        int& delay_edges;
+        Tick& quiet_ticks;
+        Tick& last_ma_edge;
+        bool& sl;
+        Slot& slot;
+        std::uint64_t& data;
+        int& data_count;
+    };
+    // Only in State::Data with the sampler empty (and two rises, a period, seen).
+    bool dataEdgesNow() const {
+        return state_ == State::Data && sampler_.empty() && f_.rises.size() >= 2;
+    }
+    // One usual edge of a frame's data (dataEdgesNow()): what the general path (onMa(),
+    // onSl()) does with it, the same arithmetic in the same order, so that every sample
+    // time and delay comes out bit for bit the same, but with the samples taken as they
+    // fall due instead of through the LineSampler's buffer. False for any other edge
+    // (a clock pause, a sample pushed past its edge, a high ACK, the stop bit, an SL
+    // change after a sample due): the samples due before it that it could take are
+    // taken, and the general path goes on from there. An SL edge's level is left for the
+    // caller to give the sampler.
+    [[gnu::always_inline]] inline bool takeDataEdge(const DataRefs& s, Tick t, int role,
+                                                    bool level);
+    // Takes the edges from `first` on through takeDataEdge(), the state in locals;
+    // returns the first edge it did not take.
+    const Edge* dataRun(const Edge* first, const Edge* last, const int* role_of_line);
     void onMa(Tick t, bool level);
-    // The usual MA edge: inside a frame's data, clock running, the samples due before it
-    // taken at once. Does all of onMa()'s work for it and returns true; false for every
-    // other edge, and onMa() handles it (from the first sample not taken yet).
-    [[gnu::always_inline]] inline bool onMaInFrame(Tick t, bool level);
     void onMaAfterSamples(Tick t, bool level);  // onMa() once the due samples are taken
     // MA at `level` from tick t on; in_frame: the phase it ends was a clock phase of the
     // frame, and counts towards its longest (isClockPhase()).
-    [[gnu::always_inline]] void recordMaEdge(Tick t, bool level, bool in_frame) {
+    // last_ma_edge: last_ma_edge_, or dataRun()'s copy of it.
+    [[gnu::always_inline]] void recordMaEdge(Tick t, bool level, bool in_frame,
+                                             Tick& last_ma_edge) {
         if (in_frame) {
             Tick& longest = level ? f_.max_low : f_.max_high;
-            longest = std::max(longest, t - last_ma_edge_);
+            longest = std::max(longest, t - last_ma_edge);
         }
-        last_ma_edge_ = t;
+        last_ma_edge = t;
         ma_ = level;
     }
     void onSl(Tick t, bool level);
-    // The usual SL edge: inside a frame's data, clock running, the sampler empty and the
-    // next sample still to come. Does all of onSl()'s work for it (refining the line
-    // delay) and returns true; false, having changed nothing, for every other edge.
-    [[gnu::always_inline]] inline bool onSlInFrame(Tick t, bool level);
     void beginFrame(Tick start, bool from_hold);
-    // Per-edge helpers, inlined into edge/onMa/onSl (sampleTime and takeDueSamples are
-    // defined below the class, scheduleUpTo and drainSamples in bissc_decoder.cpp).
+    // Per-edge helpers of the general path (sampleTime is defined below the class,
+    // scheduleUpTo and drainSamples in bissc_decoder.cpp).
     [[gnu::always_inline]] inline double sampleTime(std::size_t k) const;
+    // Slot k's sample time with this line delay and mean period (sampleTime()).
+    [[gnu::always_inline]] double sampleTimeWith(std::size_t k, double delay, double period) const {
+        return double(f_.rises[k]) + delay + period / 2.0;
+    }
     [[gnu::always_inline]] inline void scheduleUpTo(double t);
-    // The usual MA edge's samples without the sampler's buffer; false: use the general
-    // path (scheduleUpTo, LineSampler::advanceTo, drainSamples).
-    [[gnu::always_inline]] inline bool takeDueSamples(Tick t);
     void startDelayEstimate(double ack_delay);
     void refineDelay(Tick t);
+    // refineDelay()'s work on the state given (the members, or dataRun()'s copies): the
+    // SL edge at t answers rise k (k < rises).
+    [[gnu::always_inline]] inline void refineDelayOf(Tick t, std::size_t k, double period,
+                                                     double& delay, double& delay_sum,
+                                                     int& delay_edges, Tick& quiet_ticks) const;
     [[gnu::always_inline]] inline void drainSamples();
     void takeSample(int index, bool level, double t);
+    // The samples that only set a field of the frame and move `slot` on: a low ACK, the
+    // busy slots, CDS, nE, nW and the CRC. False, having changed nothing, for the others
+    // (data bits, a high ACK, the stop bit), which takeSample() handles itself.
+    [[gnu::always_inline]] bool takePlainSlot(Slot& slot, int index, bool level) {
+        switch (slot) {
+            case Slot::Ack:
+                if (level) return false;  // an error to add
+                slot = Slot::Busy;
+                return true;
+            case Slot::Busy:
+                if (!level) {
+                    ++f_.proc_cycles;
+                } else {
+                    f_.start_index = index;
+                    slot = Slot::Cds;
+                }
+                return true;
+            case Slot::Cds:
+                f_.cds = level;
+                slot = s_.bits > 0 ? Slot::Data : Slot::NE;
+                return true;
+            case Slot::NE:
+                f_.ne = level;
+                slot = Slot::NW;
+                return true;
+            case Slot::NW:
+                f_.nw = level;
+                slot = s_.crc_bits > 0 ? Slot::Crc : Slot::Stop;
+                return true;
+            case Slot::Crc:
+                f_.crc_rx = (f_.crc_rx << 1) | std::uint32_t(level);
+                if (++f_.crc_count == s_.crc_bits) slot = Slot::Stop;
+                return true;
+            default:
+                return false;
+        }
+    }
     // A position bit (Slot::Data), the bulk of a frame's samples.
     [[gnu::always_inline]] void takeDataBit(bool level) {
-        f_.data = (f_.data << 1) | std::uint64_t(level);
-        if (++f_.data_count == s_.bits) f_.slot = Slot::NE;
+        takeDataBitOf(f_.data, f_.data_count, f_.slot, level);
+    }
+    [[gnu::always_inline]] void takeDataBitOf(std::uint64_t& data, int& data_count, Slot& slot,
+                                              bool level) const {
+        data = (data << 1) | std::uint64_t(level);
+        if (++data_count == s_.bits) slot = Slot::NE;
     }
     // Ticks, over the frame's rising edges so far. Asked several times per edge, worked
     // out once per rising edge.
     double meanPeriod() const { return f_.period; }
     [[gnu::always_inline]] void updatePeriod() {
+        f_.period = f_.rises.size() < 2 ? last_period_ : periodOfRises();
+    }
+    // The mean period over rises[] (two or more).
+    [[gnu::always_inline]] double periodOfRises() const {
         const auto& r = f_.rises;
-        f_.period =
-            r.size() < 2 ? last_period_ : double(r.back() - r.front()) / double(r.size() - 1);
+        return double(r.back() - r.front()) / double(r.size() - 1);
     }
     // A rising MA edge of the frame. (Inlined by force, as the helpers above: GCC's own
     // choice moved it out of the block loop when the class grew, 4 % more instructions.)
@@ -164,6 +250,8 @@ private:
     }
     // The frame's line delay changed: f_.delay and the quiet threshold that depends on it.
     void setDelay(double delay);
+    // That threshold (quiet_ticks_) for a line delay.
+    Tick quietTicksFor(double delay) const;
     void checkQuietSlow(Tick now);
     void resolveHoldStart(Tick ack);
     // Could an MA phase of this length (ending with an edge to `level`) be a clock phase?
@@ -192,67 +280,7 @@ private:
     std::uint64_t slow_ma_edges_ = 0, slow_sl_edges_ = 0;
 };
 
-void BisscDecoder::edge(Tick t, int role, bool level) {
-    if (role == kMa) {
-        if (!onMaInFrame(t, level)) onMa(t, level);
-    } else if (role == kSl) {
-        if (!onSlInFrame(t, level)) onSl(t, level);
-    }
-}
-
-bool BisscDecoder::onMaInFrame(Tick t, bool level) {
-    // onMa() for an edge that finds the frame's data being clocked and no quiet gap
-    // before it: once takeDueSamples() has taken the samples due, checkQuiet() has
-    // nothing to do, and only the phase length, the level and a rise are left to record.
-    if (state_ != State::Data || t - last_ma_edge_ > quiet_ticks_ || !takeDueSamples(t))
-        return false;
-    if (state_ != State::Data) {  // the stop bit ended the data: onMa() goes on
-        onMaAfterSamples(t, level);
-        return true;
-    }
-    recordMaEdge(t, level, true);
-    if (level) addRise(t);  // its sample is scheduled when due
-    return true;
-}
-
-bool BisscDecoder::takeDueSamples(Tick t) {
-    // What scheduleUpTo + advanceTo + drainSamples do at an MA edge when the sampler is
-    // empty: every sample due before t resolves to SL's level now (the sampler gives a
-    // newly scheduled sample the line's present level), and is taken at once, in order.
-    // Not at an SL edge: there the samples are taken after SL's new level is recorded.
-    if (state_ != State::Data || !sampler_.empty()) return false;
-    const double now = double(t);
-    while (state_ == State::Data && f_.scheduled < f_.rises.size()) {
-        double at = sampleTime(f_.scheduled);
-        if (at >= now) break;
-        at = std::max(at, f_.last_sample_t);
-        if (at >= now) return false;  // pushed to t or later: it waits in the sampler
-        f_.last_sample_t = at;
-        const std::size_t k = f_.scheduled++;
-        if (f_.slot == Slot::Data)
-            takeDataBit(sampler_.level());  // what takeSample() does with it, without a call
-        else
-            takeSample(int(k), sampler_.level(), at);
-    }
-    return true;
-}
-
-bool BisscDecoder::onSlInFrame(Tick t, bool level) {
-    // Then scheduleUpTo(), lineEdge() and drainSamples() have nothing to resolve or take,
-    // and checkQuiet() nothing to close.
-    if (state_ != State::Data || t - last_ma_edge_ > quiet_ticks_ || !sampler_.empty())
-        return false;
-    // The usual SL edge answers a rise whose sample is still to come: with every sample
-    // taken, the edge may be the slave giving up (onSl() checks).
-    if (f_.scheduled >= f_.rises.size() || sampleTime(f_.scheduled) < double(t)) return false;
-    sampler_.lineEdge(t, level);  // nothing to resolve: only the level
-    sl_ = level;
-    refineDelay(t);  // (the slot is never Done in State::Data)
-    return true;
-}
-
-inline void BisscDecoder::setDelay(double delay) {
-    f_.delay = delay;
+inline Tick BisscDecoder::quietTicksFor(double delay) const {
     // floor() by truncation and one correction (std::floor is a library call without
     // SSE4.1); clamped, so that a delay measured across an absurd gap cannot overflow.
     constexpr double kMaxTick = 9.0e18;
@@ -260,29 +288,41 @@ inline void BisscDecoder::setDelay(double delay) {
         std::clamp(std::min(min_quiet_ + delay, slave_timeout_), -kMaxTick, kMaxTick);
     Tick q = Tick(limit);
     if (double(q) > limit) --q;
-    quiet_ticks_ = q;
+    return q;
+}
+
+inline void BisscDecoder::setDelay(double delay) {
+    f_.delay = delay;
+    quiet_ticks_ = quietTicksFor(delay);
 }
 
 inline void BisscDecoder::refineDelay(Tick t) {
+    if (f_.scheduled < f_.rises.size())
+        refineDelayOf(t, f_.scheduled, meanPeriod(), f_.delay, f_.delay_sum, f_.delay_edges,
+                      quiet_ticks_);
+}
+
+void BisscDecoder::refineDelayOf(Tick t, std::size_t k, double period, double& delay,
+                                 double& delay_sum, int& delay_edges, Tick& quiet_ticks) const {
     // Every SL change in the frame is the slave answering an MA rising edge: the one
     // whose slot has not been sampled yet (all samples before t are scheduled, the next
     // slot's is after t). Its offset is one more measurement of the line delay; the mean
     // resolves the delay to a fraction of a capture sample (the ACK edge alone is
-    // quantised to a whole sample, 0.4 bit at 2.4 samples per bit).
-    const double period = meanPeriod();
-    if (period <= 0 || f_.scheduled >= f_.rises.size()) return;
-    const double offset = double(t - f_.rises[f_.scheduled]);
-    if (std::fabs(offset - f_.delay) >= period / 2) return;
-    f_.delay_sum += offset;
-    ++f_.delay_edges;
-    setDelay(f_.delay_sum / f_.delay_edges);
+    // quantised to a whole sample, 0.4 bit at 2.4 samples per bit). (setDelay()'s work.)
+    if (period <= 0) return;
+    const double offset = double(t - f_.rises[k]);
+    if (std::fabs(offset - delay) >= period / 2) return;
+    delay_sum += offset;
+    ++delay_edges;
+    delay = delay_sum / delay_edges;
+    quiet_ticks = quietTicksFor(delay);
 }
 
 double BisscDecoder::sampleTime(std::size_t k) const {
     // Slot k (k >= 1; 1 = ACK) is driven after rising edge k and valid from r_k + d to
     // r_{k+1} + d: sample its middle. T is the frame's mean period, which smooths the
     // quantisation of a capture sampled at only a few samples per bit.
-    return double(f_.rises[k]) + f_.delay + meanPeriod() / 2.0;
+    return sampleTimeWith(k, f_.delay, meanPeriod());
 }
 
 std::shared_ptr<const DecoderFactory> makeBisscFactory();

@@ -10,8 +10,11 @@
 //   start offset (varint, negated), one or two bytes per option, then edges:
 //   a byte [bits 0-2 role, bit 3 explicit level, bit 4 that level, bits 5-7 delta kind]
 //   followed by the delta's bytes.
+// The decoder is also fed the same edges directly, one at a time and in blocks: both
+// must give the same events (checkBlocksMatchEdges).
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -23,6 +26,7 @@
 #include "core/waveform.h"
 #include "fuzz_harness.h"
 #include "reader_targets.h"
+#include "sinks/event_format.h"
 
 namespace busdecode::fuzz {
 
@@ -150,6 +154,85 @@ struct CheckingSink : OutputSink {
     }
 };
 
+// The decoder fed directly the edges a session would hand it (mapped lines only, each
+// a change of its line's level), three times: one at a time through its general path
+// (Decoder::edgeReference), one at a time through edge(), and in blocks of five through
+// edges(). Every event, field for field, and the advice must be the same. BiSS-C takes
+// a frame's data in runs with the frame's state in locals (BisscDecoder::dataRun): this
+// is the oracle for that loop.
+void checkBlocksMatchEdges(const DecoderFactory& factory, const Waveform& w,
+                           const DecoderRequest& req, const std::vector<int>& line_of_role) {
+    Options options;
+    try {
+        options = Options::resolve(factory.info(), req.options);
+    } catch (const InputError&) {
+        return;  // refused up front, as decodeChecked() found
+    }
+    std::vector<int> role_of_line(w.names.size(), -1);
+    for (std::size_t r = 0; r < line_of_role.size(); ++r)
+        if (line_of_role[r] >= 0) role_of_line[std::size_t(line_of_role[r])] = int(r);
+    std::vector<Edge> edges;
+    std::vector<std::uint8_t> level(w.initial);
+    for (const Edge& e : w.edges) {
+        if (role_of_line[e.line] < 0 || level[e.line] == e.level) continue;
+        level[e.line] = e.level;
+        edges.push_back(e);
+    }
+    struct Recorder : EventSink {
+        Timebase tb;
+        std::vector<std::string> lines;
+        void onEvent(Event&& e) override {
+            std::string line;
+            appendEventJson(line, e, tb);
+            lines.push_back(std::move(line));
+        }
+    };
+    // block 0: the general path, 1: edge(), more: edges() in blocks of that many.
+    const auto decode = [&](std::size_t block) {
+        Recorder sink;
+        sink.tb = w.timebase;
+        std::unique_ptr<Decoder> decoder;
+        try {
+            decoder = factory.create(options);
+        } catch (const InputError&) {
+            return std::vector<std::string>{"refused"};
+        }
+        DecoderContext ctx;
+        ctx.timebase = w.timebase;
+        ctx.sink = &sink;
+        ctx.capture_start = w.start;
+        for (const int line : line_of_role)
+            ctx.initial_levels.push_back(line < 0 ? -1 : w.initial[std::size_t(line)]);
+        decoder->start(ctx);
+        if (block == 0) {
+            for (const Edge& e : edges)
+                decoder->edgeReference(e.t, role_of_line[e.line], e.level != 0);
+        } else if (block == 1) {
+            for (const Edge& e : edges)
+                decoder->edge(e.t, role_of_line[e.line], e.level != 0);
+        } else {
+            for (std::size_t i = 0; i < edges.size(); i += block)
+                decoder->edges(edges.data() + i, edges.data() + std::min(i + block, edges.size()),
+                               role_of_line.data());
+        }
+        decoder->finish(w.end);
+        for (const auto& a : decoder->advice())
+            sink.lines.push_back("advice: " + a);
+        return sink.lines;
+    };
+    const std::vector<std::string> reference = decode(0);
+    for (const std::size_t block : {1, 5}) {
+        const std::vector<std::string> fed = decode(block);
+        for (std::size_t i = 0; i < std::max(reference.size(), fed.size()); ++i) {
+            const std::string a = i < reference.size() ? reference[i] : "(none)";
+            const std::string b = i < fed.size() ? fed[i] : "(none)";
+            if (a != b)
+                failure(fmt::format("event {} on the general path: {}; {}: {}", i, a,
+                                    block == 1 ? "through edge()" : "in blocks", b));
+        }
+    }
+}
+
 }  // namespace
 
 void runDecoderTarget(const std::string& id, const std::uint8_t* data, std::size_t size) {
@@ -215,6 +298,7 @@ void runDecoderTarget(const std::string& id, const std::uint8_t* data, std::size
     w.end = t;
 
     decodeChecked(w, req, !((flags >> 6) & 1));
+    checkBlocksMatchEdges(*factory, w, req, line_of_role);
 }
 
 DecodeStats decodeChecked(const Waveform& w, const DecoderRequest& req, bool reads_fields) {
