@@ -32,7 +32,8 @@ BisscDecoder::BisscDecoder(const Options& options)
 void BisscDecoder::start(const DecoderContext& ctx) {
     Decoder::start(ctx);
     min_quiet_ = tb().fromNs(kMinQuietNs);
-    setDelay(0);
+    f_.delay = 0;
+    updateQuietTicks();
     ma_ = ctx.initial_levels.size() > kMa ? ctx.initial_levels[kMa] != 0 : true;
     sl_ = ctx.initial_levels.size() > kSl ? ctx.initial_levels[kSl] != 0 : true;
     sampler_.reset(sl_);
@@ -144,7 +145,7 @@ void BisscDecoder::beginFrame(Tick start, bool from_hold) {
     f_.rises = std::move(rises);
     f_.errors = std::move(errors);
     updatePeriod();  // no rises yet: the previous frame's period
-    setDelay(0);
+    f_.delay = 0;
     f_.start = start;
     f_.from_hold = from_hold;
     sampler_.reset(sl_);
@@ -225,7 +226,7 @@ bool BisscDecoder::takeDataEdge(const DataRefs& s, Tick t, int role, bool level)
     if (s.scheduled >= s.rises || sampleTimeWith(s.scheduled, s.delay, s.period) < double(t))
         return false;
     s.sl = level;
-    refineDelayOf(t, s.scheduled, s.period, s.delay, s.delay_sum, s.delay_edges, s.quiet_ticks);
+    refineDelayOf(t, s.scheduled, s.period, s.delay, s.delay_sum, s.delay_edges);
     return true;
 }
 
@@ -234,13 +235,13 @@ const Edge* BisscDecoder::dataRun(const Edge* e, const Edge* last, const int* ro
     double delay = f_.delay, period = f_.period, last_sample_t = f_.last_sample_t,
            delay_sum = f_.delay_sum;
     int delay_edges = f_.delay_edges;
-    Tick quiet_ticks = quiet_ticks_, last_ma_edge = last_ma_edge_;
+    Tick last_ma_edge = last_ma_edge_;
     bool sl = sl_;
     Slot slot = f_.slot;
     std::uint64_t data = f_.data;
     int data_count = f_.data_count;
-    const DataRefs locals{scheduled, rises,       delay,       period,       last_sample_t,
-                          delay_sum, delay_edges, quiet_ticks, last_ma_edge, sl,
+    const DataRefs locals{scheduled, rises,       delay,        period,       last_sample_t,
+                          delay_sum, delay_edges, quiet_ticks_, last_ma_edge, sl,
                           slot,      data,        data_count};
     for (; e != last; ++e)
         if (!takeDataEdge(locals, e->t, role_of_line[e->line], e->level != 0)) break;
@@ -253,7 +254,6 @@ const Edge* BisscDecoder::dataRun(const Edge* e, const Edge* last, const int* ro
     f_.slot = slot;
     f_.data = data;
     f_.data_count = data_count;
-    quiet_ticks_ = quiet_ticks;
     last_ma_edge_ = last_ma_edge;
     sl_ = sl;
     sampler_.setLevel(sl);  // (empty throughout the run)
@@ -404,7 +404,7 @@ void BisscDecoder::startDelayEstimate(double ack_delay) {
         f_.delay_sum += kPriorWeight * last_delay_;
         f_.delay_edges += kPriorWeight;
     }
-    setDelay(f_.delay_sum / f_.delay_edges);
+    f_.delay = f_.delay_sum / f_.delay_edges;
     f_.ack_delay = ack_delay;
 }
 
@@ -482,8 +482,10 @@ void BisscDecoder::closeFrame(Tick end, Tick timeout_end, const char* error, boo
         // bounds the clock pauses later frames can have (quietLimit()); never below two
         // clock periods, so that a pulse on SL during the timeout cannot make clock
         // phases look like pauses.
-        if (timeout_end > f_.rises.back())
+        if (timeout_end > f_.rises.back()) {
             slave_timeout_ = std::max(double(timeout_end - f_.rises.back()), 2.0 * meanPeriod());
+            updateQuietTicks();
+        }
     }
     const double period = meanPeriod();
     const bool clocked = f_.rises.size() >= 2 && period > 0;

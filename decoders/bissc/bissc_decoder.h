@@ -115,7 +115,7 @@ private:
         double& last_sample_t;
         double& delay_sum;
         int& delay_edges;
-        Tick& quiet_ticks;
+        Tick quiet_ticks;  // (only read)
         Tick& last_ma_edge;
         bool& sl;
         Slot& slot;
@@ -169,7 +169,7 @@ private:
     // SL edge at t answers rise k (k < rises).
     [[gnu::always_inline]] inline void refineDelayOf(Tick t, std::size_t k, double period,
                                                      double& delay, double& delay_sum,
-                                                     int& delay_edges, Tick& quiet_ticks) const;
+                                                     int& delay_edges) const;
     [[gnu::always_inline]] inline void drainSamples();
     void takeSample(int index, bool level, double t);
     // The samples that only set a field of the frame and move `slot` on: a low ACK, the
@@ -248,10 +248,8 @@ private:
              now - last_ma_edge_ > quiet_ticks_))
             checkQuietSlow(now);
     }
-    // The frame's line delay changed: f_.delay and the quiet threshold that depends on it.
-    void setDelay(double delay);
-    // That threshold (quiet_ticks_) for a line delay.
-    Tick quietTicksFor(double delay) const;
+    // quiet_ticks_ for min_quiet_ and slave_timeout_ as they are now.
+    void updateQuietTicks();
     void checkQuietSlow(Tick now);
     void resolveHoldStart(Tick ack);
     // Could an MA phase of this length (ending with an edge to `level`) be a clock phase?
@@ -272,50 +270,45 @@ private:
     // The slave's timeout (ticks, last rising MA edge to SL rising, as seen at the master)
     // measured on the last frame that ran into it; infinite until then.
     double slave_timeout_ = std::numeric_limits<double>::infinity();
-    // floor(min(min_quiet_ + f_.delay, slave_timeout_)): for whole ticks n, n > it exactly
-    // when double(n) is above that, without a conversion per edge.
+    // floor(min(min_quiet_, slave_timeout_)): no more than quietLimit() (the line delay is
+    // never negative: it is measured from an MA rise to a later SL edge), so a gap of
+    // whole ticks n can only end a frame if n > quiet_ticks_: checkQuiet()'s test per edge,
+    // without a conversion; checkQuietSlow() decides. It does not follow the delay, so
+    // that refining the delay on every SL edge need not work it out again.
     Tick quiet_ticks_ = 0;
     std::uint64_t frames_ = 0, answered_frames_ = 0, clean_frames_ = 0;
     // Edges that took the slow paths (onMa, onSl): all of them while no frame is running.
     std::uint64_t slow_ma_edges_ = 0, slow_sl_edges_ = 0;
 };
 
-inline Tick BisscDecoder::quietTicksFor(double delay) const {
-    // floor() by truncation and one correction (std::floor is a library call without
-    // SSE4.1); clamped, so that a delay measured across an absurd gap cannot overflow.
+inline void BisscDecoder::updateQuietTicks() {
+    // floor() by truncation and one correction; clamped, so that a timeout measured
+    // across an absurd gap cannot overflow.
     constexpr double kMaxTick = 9.0e18;
-    const double limit =
-        std::clamp(std::min(min_quiet_ + delay, slave_timeout_), -kMaxTick, kMaxTick);
+    const double limit = std::clamp(std::min(min_quiet_, slave_timeout_), -kMaxTick, kMaxTick);
     Tick q = Tick(limit);
     if (double(q) > limit) --q;
-    return q;
-}
-
-inline void BisscDecoder::setDelay(double delay) {
-    f_.delay = delay;
-    quiet_ticks_ = quietTicksFor(delay);
+    quiet_ticks_ = q;
 }
 
 inline void BisscDecoder::refineDelay(Tick t) {
     if (f_.scheduled < f_.rises.size())
-        refineDelayOf(t, f_.scheduled, meanPeriod(), f_.delay, f_.delay_sum, f_.delay_edges,
-                      quiet_ticks_);
+        refineDelayOf(t, f_.scheduled, meanPeriod(), f_.delay, f_.delay_sum, f_.delay_edges);
 }
 
 void BisscDecoder::refineDelayOf(Tick t, std::size_t k, double period, double& delay,
-                                 double& delay_sum, int& delay_edges, Tick& quiet_ticks) const {
+                                 double& delay_sum, int& delay_edges) const {
     // Every SL change in the frame is the slave answering an MA rising edge: the one
     // whose slot has not been sampled yet (all samples before t are scheduled, the next
     // slot's is after t). Its offset is one more measurement of the line delay; the mean
     // resolves the delay to a fraction of a capture sample (the ACK edge alone is
-    // quantised to a whole sample, 0.4 bit at 2.4 samples per bit). (setDelay()'s work.)
+    // quantised to a whole sample, 0.4 bit at 2.4 samples per bit).
     if (period <= 0) return;
     const double offset = double(t - f_.rises[k]);
     if (std::fabs(offset - delay) >= period / 2) return;
     delay_sum += offset;
     ++delay_edges;
     delay = delay_sum / delay_edges;
-    quiet_ticks = quietTicksFor(delay);
 }
 
 double BisscDecoder::sampleTime(std::size_t k) const {
