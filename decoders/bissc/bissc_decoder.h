@@ -229,8 +229,8 @@ private:
         const auto& r = f_.rises;
         return double(r.back() - r.front()) / double(r.size() - 1);
     }
-    // A rising MA edge of the frame. (Inlined by force, as the helpers above: GCC's own
-    // choice moved it out of the block loop when the class grew, 4 % more instructions.)
+    // A rising MA edge of the frame, on the general path (takeDataEdge() keeps its own
+    // count of the rises, and uses periodOfRises()).
     [[gnu::always_inline]] void addRise(Tick t) {
         f_.rises.push_back(t);
         updatePeriod();

@@ -10,8 +10,9 @@
 //   start offset (varint, negated), one or two bytes per option, then edges:
 //   a byte [bits 0-2 role, bit 3 explicit level, bit 4 that level, bits 5-7 delta kind]
 //   followed by the delta's bytes.
-// The decoder is also fed the same edges directly, one at a time and in blocks: both
-// must give the same events (checkBlocksMatchEdges).
+// The decoder is also fed the same edges directly three ways, through its general path,
+// through edge() and in blocks through edges(): all must give the same events
+// (checkBlocksMatchEdges).
 #include <fmt/format.h>
 
 #include <algorithm>

@@ -31,7 +31,7 @@ struct Recorder : EventSink {
 };
 
 // How decode() feeds the decoder: the general path one edge at a time, edge() one edge
-// at a time, or edges() blocks of kBlocks edges or more.
+// at a time, or any larger number (kBlocks and up): edges() in blocks of that many.
 constexpr std::size_t kReference = 0, kSingles = 1, kBlocks = 2;
 
 // Decodes `w` with a fresh decoder fed as `block_size` says.
