@@ -22,12 +22,12 @@
 
 #include "byte_stream.h"
 #include "capture/capture_reader.h"
+#include "core/direct_feed.h"
 #include "core/registry.h"
 #include "core/session.h"
 #include "core/waveform.h"
 #include "fuzz_harness.h"
 #include "reader_targets.h"
-#include "sinks/event_format.h"
 
 namespace busdecode::fuzz {
 
@@ -163,73 +163,22 @@ struct CheckingSink : OutputSink {
 // is the oracle for that loop.
 void checkBlocksMatchEdges(const DecoderFactory& factory, const Waveform& w,
                            const DecoderRequest& req, const std::vector<int>& line_of_role) {
-    Options options;
+    std::vector<std::string> reference, one_by_one, in_blocks;
     try {
-        options = Options::resolve(factory.info(), req.options);
+        const Options options = Options::resolve(factory.info(), req.options);
+        reference = decodeDirectly(factory, options, w, line_of_role, Feed::Reference);
+        one_by_one = decodeDirectly(factory, options, w, line_of_role, Feed::OneByOne);
+        in_blocks = decodeDirectly(factory, options, w, line_of_role, Feed::Blocks, 5);
     } catch (const InputError&) {
         return;  // refused up front, as decodeChecked() found
     }
-    std::vector<int> role_of_line(w.names.size(), -1);
-    for (std::size_t r = 0; r < line_of_role.size(); ++r)
-        if (line_of_role[r] >= 0) role_of_line[std::size_t(line_of_role[r])] = int(r);
-    std::vector<Edge> edges;
-    std::vector<std::uint8_t> level(w.initial);
-    for (const Edge& e : w.edges) {
-        if (role_of_line[e.line] < 0 || level[e.line] == e.level) continue;
-        level[e.line] = e.level;
-        edges.push_back(e);
-    }
-    struct Recorder : EventSink {
-        Timebase tb;
-        std::vector<std::string> lines;
-        void onEvent(Event&& e) override {
-            std::string line;
-            appendEventJson(line, e, tb);
-            lines.push_back(std::move(line));
-        }
-    };
-    // block 0: the general path, 1: edge(), more: edges() in blocks of that many.
-    const auto decode = [&](std::size_t block) {
-        Recorder sink;
-        sink.tb = w.timebase;
-        std::unique_ptr<Decoder> decoder;
-        try {
-            decoder = factory.create(options);
-        } catch (const InputError&) {
-            return std::vector<std::string>{"refused"};
-        }
-        DecoderContext ctx;
-        ctx.timebase = w.timebase;
-        ctx.sink = &sink;
-        ctx.capture_start = w.start;
-        for (const int line : line_of_role)
-            ctx.initial_levels.push_back(line < 0 ? -1 : w.initial[std::size_t(line)]);
-        decoder->start(ctx);
-        if (block == 0) {
-            for (const Edge& e : edges)
-                decoder->edgeReference(e.t, role_of_line[e.line], e.level != 0);
-        } else if (block == 1) {
-            for (const Edge& e : edges)
-                decoder->edge(e.t, role_of_line[e.line], e.level != 0);
-        } else {
-            for (std::size_t i = 0; i < edges.size(); i += block)
-                decoder->edges(edges.data() + i, edges.data() + std::min(i + block, edges.size()),
-                               role_of_line.data());
-        }
-        decoder->finish(w.end);
-        for (const auto& a : decoder->advice())
-            sink.lines.push_back("advice: " + a);
-        return sink.lines;
-    };
-    const std::vector<std::string> reference = decode(0);
-    for (const std::size_t block : {1, 5}) {
-        const std::vector<std::string> fed = decode(block);
-        for (std::size_t i = 0; i < std::max(reference.size(), fed.size()); ++i) {
+    for (const auto* fed : {&one_by_one, &in_blocks}) {
+        for (std::size_t i = 0; i < std::max(reference.size(), fed->size()); ++i) {
             const std::string a = i < reference.size() ? reference[i] : "(none)";
-            const std::string b = i < fed.size() ? fed[i] : "(none)";
+            const std::string b = i < fed->size() ? (*fed)[i] : "(none)";
             if (a != b)
                 failure(fmt::format("event {} on the general path: {}; {}: {}", i, a,
-                                    block == 1 ? "through edge()" : "in blocks", b));
+                                    fed == &one_by_one ? "through edge()" : "in blocks", b));
         }
     }
 }

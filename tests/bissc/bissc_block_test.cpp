@@ -5,66 +5,31 @@
 // whatever the traffic, and wherever a block boundary cuts a run.
 #include <gtest/gtest.h>
 
-#include <algorithm>
 #include <random>
 #include <string>
 #include <vector>
 
 #include "bissc_generator.h"
 #include "bissc_test_util.h"
-#include "sinks/event_format.h"
+#include "core/direct_feed.h"
 
 namespace busdecode::test {
 namespace {
-
-// Every event in full (times, fields, errors, summary), one JSON line each, and the
-// decoder's advice.
-struct Recorder : EventSink {
-    explicit Recorder(Timebase tb) : tb(tb) {}
-    void onEvent(Event&& e) override {
-        std::string line;
-        appendEventJson(line, e, tb);
-        lines.push_back(line);
-    }
-    Timebase tb;
-    std::vector<std::string> lines;
-};
 
 // How decode() feeds the decoder: the general path one edge at a time, edge() one edge
 // at a time, or any larger number (kBlocks and up): edges() in blocks of that many.
 constexpr std::size_t kReference = 0, kSingles = 1, kBlocks = 2;
 
-// Decodes `w` with a fresh decoder fed as `block_size` says.
+// Every event of `w` in full (times, fields, errors, summary), one JSON line each, and
+// the decoder's advice (decodeDirectly()), fed as `block_size` says.
 std::vector<std::string> decode(const Waveform& w, std::size_t block_size) {
     registerBissc();
     const auto* factory = Registry::instance().find("bissc");
-    auto decoder = factory->create(Options::resolve(factory->info(), {{"bits", "26"}}));
-    Recorder sink(w.timebase);
-    DecoderContext ctx;
-    ctx.timebase = w.timebase;
-    ctx.initial_levels = {w.initial[0], w.initial[1]};
-    ctx.sink = &sink;
-    decoder->start(ctx);
-    const int role_of_line[2] = {BisscDecoder::kMa, BisscDecoder::kSl};
-    const Edge* const first = w.edges.data();
-    const Edge* const last = first + w.edges.size();
-    if (block_size == kReference) {
-        for (const Edge* e = first; e != last; ++e)
-            decoder->edgeReference(e->t, role_of_line[e->line], e->level != 0);
-    } else if (block_size == kSingles) {
-        for (const Edge* e = first; e != last; ++e)
-            decoder->edge(e->t, role_of_line[e->line], e->level != 0);
-    } else {
-        for (const Edge* e = first; e != last;) {
-            const Edge* end = e + std::min<std::size_t>(block_size, std::size_t(last - e));
-            decoder->edges(e, end, role_of_line);
-            e = end;
-        }
-    }
-    decoder->finish(w.end);
-    for (const auto& a : decoder->advice())
-        sink.lines.push_back("advice: " + a);
-    return sink.lines;
+    const Options options = Options::resolve(factory->info(), {{"bits", "26"}});
+    const Feed feed = block_size == kReference ? Feed::Reference
+                      : block_size == kSingles ? Feed::OneByOne
+                                               : Feed::Blocks;
+    return decodeDirectly(*factory, options, w, {0, 1}, feed, block_size);
 }
 
 // A capture of `frames` frames with everything the generator can vary drawn at random:
