@@ -23,7 +23,8 @@ inline std::unique_ptr<CaptureReader> openSelected(const std::string& path, cons
     if (only >= 0)
         lines.push_back({only, -1});
     else
-        for (int i = 0; i < int(reader->signals().size()); ++i)
+        // Every signal, up to the most an Edge can name.
+        for (int i = 0; i < int(reader->signals().size()) && lines.size() < kMaxSelectedLines; ++i)
             lines.push_back({i, -1});
     reader->select(lines);
     return reader;

@@ -5,6 +5,7 @@
 #include <atomic>
 #include <cstdint>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -31,7 +32,8 @@ public:
     virtual const std::vector<SignalInfo>& signals() const = 0;
     virtual Timebase timebase() const = 0;
     virtual std::string formatName() const = 0;  // "vcd", "sigrok-csv", "saleae-csv", ...
-    // Chooses the lines to deliver; Edge::line indexes this list. Call once before next().
+    // Chooses the lines to deliver; Edge::line indexes this list. Call once before next(),
+    // with at most kMaxSelectedLines lines (checkSelection()).
     virtual void select(const std::vector<LineRef>& lines) = 0;
     // Level of each selected line at the capture start. May read ahead; call after select().
     virtual std::vector<std::uint8_t> initialLevels() = 0;
@@ -48,6 +50,13 @@ public:
     // itself): the session then skips its own check.
     virtual bool changesOnly() const { return false; }
 };
+
+// For select(): more lines than an Edge can name is the caller's mistake (Session refuses
+// such mappings with an InputError first).
+inline void checkSelection(const std::vector<LineRef>& lines) {
+    if (lines.size() > kMaxSelectedLines)
+        throw std::length_error("CaptureReader::select: more than kMaxSelectedLines lines");
+}
 
 struct OpenOptions {
     double rate_hz = 0;   // --rate: needed by plain CSV without a time column

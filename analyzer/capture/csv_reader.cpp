@@ -139,7 +139,7 @@ bool toTicks(const Decimal& d, int resolution, Tick& t) {
         if (2 * (r < 0 ? -r : r) >= div) q += v < 0 ? -1 : 1;
         v = q;
     }
-    if (v > INT64_MAX || v < INT64_MIN) return false;
+    if (v > kMaxEdgeTick || v < kMinEdgeTick) return false;  // what an Edge holds
     t = Tick(v);
     return true;
 }
@@ -157,6 +157,7 @@ public:
     std::string formatName() const override { return format_; }
 
     void select(const std::vector<LineRef>& lines) override {
+        checkSelection(lines);
         sel_.clear();
         for (std::size_t i = 0; i < lines.size(); ++i) {
             if (lines[i].signal < 0 || lines[i].signal >= int(signals_.size()))
@@ -485,8 +486,8 @@ private:
         if (digits == 0 || whole.digits >= 16) return false;
         std::uint64_t ticks;
         if (__builtin_mul_overflow(m, kPow10[resolution_ - frac], &ticks) ||
-            ticks > std::uint64_t(INT64_MAX))
-            return false;
+            ticks > std::uint64_t(kMaxEdgeTick))
+            return false;  // (toTicks() words the error)
         const Tick t = neg ? -Tick(ticks) : Tick(ticks);
         if (rows_ > 0 && t < cur_) return false;  // the general path words the error
         if (!plainValues(p, end, 1)) return false;

@@ -21,6 +21,7 @@ public:
     Timebase timebase() const override { return w_.timebase; }
     std::string formatName() const override { return "memory"; }
     void select(const std::vector<LineRef>& lines) override {
+        checkSelection(lines);
         map_.assign(w_.names.size(), -1);
         for (int i = 0; i < int(lines.size()); ++i)
             map_[lines[i].signal] = i;
@@ -38,7 +39,7 @@ public:
         while (pos_ < w_.edges.size() && block.edges.size() < kEdgeBlockSize) {
             const Edge& e = w_.edges[pos_++];
             if (map_[e.line] >= 0)
-                block.edges.push_back({e.t, std::uint32_t(map_[e.line]), e.level});
+                block.edges.push_back({e.t, std::uint32_t(map_[e.line]), std::uint8_t(e.level)});
         }
         block.known_until = pos_ < w_.edges.size()
                                 ? (block.edges.empty() ? kNoTick : block.edges.back().t)

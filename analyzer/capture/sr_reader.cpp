@@ -80,6 +80,7 @@ public:
     std::string formatName() const override { return "sigrok-sr"; }
 
     void select(const std::vector<LineRef>& lines) override {
+        checkSelection(lines);
         sel_.clear();
         mask_ = 0;
         for (std::size_t i = 0; i < lines.size(); ++i) {
@@ -128,6 +129,10 @@ public:
             // Scan whole words in the buffer; edges only where a selected bit changes.
             const std::uint8_t* p = buf_.data() + pos_;
             const std::size_t words = (len_ - pos_) / unit_;
+            // Sample indices are ticks, and an Edge holds 2^55 of them: centuries of
+            // decompression away, but a crafted session must not wrap them.
+            if (sample_ + words > std::uint64_t(kMaxEdgeTick))
+                throw InputError(fmt::format("{}: more than 2^55 samples", name_));
             std::size_t k = scanPacked(p, words, out, full);
             p += k * unit_;
             for (; k < words && out <= full; ++k, p += unit_) {

@@ -73,6 +73,7 @@ public:
     std::string formatName() const override { return "vcd"; }
 
     void select(const std::vector<LineRef>& lines) override {
+        checkSelection(lines);
         std::vector<std::vector<Target>> per_code(codes_.size());
         for (std::size_t i = 0; i < lines.size(); ++i) {
             const LineRef& r = lines[i];
@@ -407,10 +408,11 @@ private:
                         fail(fmt::format(
                             "expected a time after '#', found '{}'",
                             printable(std::string_view(p_, std::size_t(tokenEnd(p_) - p_)))));
-                    // Decoders add durations to edge times: 2^62 ticks leave them room
-                    // (77 minutes at 1 fs, 53 days at 1 ps).
-                    if (overflow || t > (std::uint64_t(1) << 62))
-                        fail("time beyond 2^62 ticks (4611686018427387904)");
+                    // What an Edge holds (core/edge.h), which also leaves decoders room to
+                    // add durations to edge times: 10 hours at 1 ps. Times of up to 15
+                    // digits, the fast loop's, are below it.
+                    if (overflow || t > std::uint64_t(kMaxEdgeTick))
+                        fail("time beyond 2^55 - 1 ticks (36028797018963967)");
                     p_ = q;
                     const Tick tt = Tick(t);
                     if (!seen_time_) {

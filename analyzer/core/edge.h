@@ -2,24 +2,50 @@
 // The transition-stream model: readers turn samples into level changes of the mapped
 // lines only, merged in time order and handed out in fixed-size blocks, so memory stays
 // flat whatever the capture length.
+#include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <vector>
 
 #include "time.h"
 
 namespace busdecode {
 
+// What an edge's packed fields can hold: times within +-2^55 ticks (10 hours at 1 ps,
+// 41 days at the 100 ps sigrok writes; readers refuse captures beyond) and 128 selected
+// lines (Session refuses more mappings; bench and fuzz tools select the first 128).
+inline constexpr Tick kMaxEdgeTick = (Tick(1) << 55) - 1;
+inline constexpr Tick kMinEdgeTick = -(Tick(1) << 55);
+inline constexpr std::size_t kMaxSelectedLines = 128;
+inline constexpr bool edgeTickFits(Tick t) {
+    return t >= kMinEdgeTick && t <= kMaxEdgeTick;
+}
+
+// One edge in 8 bytes, not 16: the reading thread writes every edge and the decoding
+// thread reads it on the other core, and moving the blocks between the two cores' caches
+// cost time in proportion to their bytes (bench/README.md, "Edges in 8 bytes"). Read the
+// fields as before (e.t, e.line, e.level); t sits in the top bits, so that reading it is
+// one shift.
 struct Edge {
     // Left uninitialised by default: a reader sizes a block to kEdgeBlockSize and fills
-    // it through a pointer, without first zeroing 256 KiB per block.
+    // it through a pointer, without first zeroing 128 KiB per block.
     Edge() noexcept {}  // NOLINT: deliberately not `= default` (that would zero on resize)
-    constexpr Edge(Tick t_, std::uint32_t line_, std::uint8_t level_) noexcept
-        : t(t_), line(line_), level(level_) {}
+    // t within edgeTickFits(), line below kMaxSelectedLines, level 0 or 1: the callers
+    // check (readers, Session), not this constructor on every edge. Written as one
+    // 8-byte store: three bit-field stores would each read the word first, and a reader
+    // writing into a block the other core has just read then waits for those lines to
+    // come back (4 times slower at times, as measured).
+    Edge(Tick t_, std::uint32_t line_, std::uint8_t level_) noexcept {
+        const std::uint64_t word =
+            (std::uint64_t(t_) << 8) | (std::uint64_t(line_) << 1) | std::uint64_t(level_ & 1u);
+        std::memcpy(static_cast<void*>(this), &word, sizeof word);
+    }
 
-    Tick t;
-    std::uint32_t line;  // index into the reader's selected-line list
-    std::uint8_t level;  // 0 or 1, the level *after* the edge
+    std::uint64_t level : 1;  // 0 or 1, the level *after* the edge
+    std::uint64_t line : 7;   // index into the reader's selected-line list
+    Tick t : 56;
 };
+static_assert(sizeof(Edge) == 8, "one edge in one 8-byte word");
 
 struct EdgeBlock {
     std::vector<Edge> edges;  // time ordered; ties keep reader order

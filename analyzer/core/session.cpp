@@ -331,6 +331,9 @@ Session::Session(std::vector<DecoderRequest> requests, CaptureReader& reader, st
                 if (impl_->lines[i].signal == ref->signal && impl_->lines[i].bit == ref->bit)
                     line = i;
             if (line < 0) {
+                if (impl_->lines.size() == kMaxSelectedLines)  // what an Edge can name
+                    throw InputError(fmt::format("{}: more than {} signals mapped", facts_.file,
+                                                 kMaxSelectedLines));
                 line = int(impl_->lines.size());
                 impl_->lines.push_back(*ref);
             }

@@ -9,6 +9,8 @@ namespace busdecode {
 WaveBuilder::WaveBuilder(Timebase tb, std::vector<std::string> names,
                          std::vector<std::uint8_t> initial)
     : tb_(tb), names_(std::move(names)), initial_(std::move(initial)) {
+    if (names_.size() > kMaxSelectedLines)  // an Edge names at most that many lines
+        throw std::length_error("WaveBuilder: more than kMaxSelectedLines lines");
     if (initial_.size() != names_.size()) initial_.resize(names_.size(), 1);
     levels_ = initial_;
     per_line_.resize(names_.size());
@@ -20,6 +22,7 @@ Tick WaveBuilder::ticksFromNs(double ns) const {
 
 void WaveBuilder::set(std::uint32_t line, Tick t, bool level) {
     auto& edges = per_line_.at(line);
+    if (!edgeTickFits(t)) throw std::out_of_range("WaveBuilder: a time an Edge cannot hold");
     if (!edges.empty() && t < edges.back().t)
         throw std::logic_error("WaveBuilder: time went backwards");
     if (levels_[line] == std::uint8_t(level)) return;
@@ -54,6 +57,8 @@ Waveform WaveBuilder::build(Tick end) const {
 Waveform mergeWaveforms(const Waveform& a, const Waveform& b) {
     if (a.timebase.num != b.timebase.num || a.timebase.den != b.timebase.den)
         throw std::logic_error("mergeWaveforms: different timebases");
+    if (a.names.size() + b.names.size() > kMaxSelectedLines)
+        throw std::length_error("mergeWaveforms: more than kMaxSelectedLines lines");
     Waveform w = a;
     const auto offset = std::uint32_t(a.names.size());
     w.names.insert(w.names.end(), b.names.begin(), b.names.end());

@@ -33,9 +33,9 @@ namespace busdecode::fuzz {
 
 namespace {
 
-// Times stay below 2^62 ticks: readers refuse nothing below that, and decoders add
-// timeouts to edge times.
-constexpr Tick kMaxTick = Tick(1) << 62;
+// Times stay within what an Edge holds (2^55 - 1 ticks): readers refuse nothing below
+// that, and decoders add timeouts to edge times.
+constexpr Tick kMaxTick = kMaxEdgeTick;
 
 [[noreturn]] void failure(const std::string& what) {
     throw HarnessFailure(what);

@@ -22,6 +22,7 @@ public:
 // The version goes up whenever a plugin built against older headers would break at run
 // time: Qt then refuses it ("not a busdecode plugin") instead of it crashing. 2.0:
 // Decoder::freshEvent() returns an EventPtr, and EventSink has onOwnedEvent(). 3.0:
-// Decoder has edgeReference(), a virtual before advance() (the later ones moved).
-#define BUSDECODE_PLUGIN_IID "org.busdecode.DecoderPlugin/3.0"
+// Decoder has edgeReference(), a virtual before advance() (the later ones moved). 4.0:
+// an Edge (Decoder::edges()) is one 8-byte word with packed fields (core/edge.h).
+#define BUSDECODE_PLUGIN_IID "org.busdecode.DecoderPlugin/4.0"
 Q_DECLARE_INTERFACE(busdecode::DecoderPlugin, BUSDECODE_PLUGIN_IID)

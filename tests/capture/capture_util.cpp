@@ -81,7 +81,7 @@ std::string errorOf(const std::string& path, const OpenOptions& opts) {
 std::vector<NsEdge> inNs(const Collected& c) {
     std::vector<NsEdge> out;
     for (const Edge& e : c.edges)
-        out.push_back({c.tb.toNs(e.t), e.line, e.level});
+        out.push_back({c.tb.toNs(e.t), std::uint32_t(e.line), int(e.level)});
     return out;
 }
 

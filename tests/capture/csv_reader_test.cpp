@@ -134,6 +134,28 @@ TEST(CsvReader, PlainNeedsTheRate) {
     EXPECT_EQ(c.edges, (Edges{{1, 0, 1}}));
 }
 
+// An Edge holds times within +-2^55 ticks (core/edge.h): at 1 ns, +-36028797.018963968 s.
+// The ends are read exactly, on the fast path (plain rows) and the general one (a blank
+// after the separator); one tick beyond them is refused on both.
+TEST(CsvReader, TimesUpToWhatAnEdgeHolds) {
+    for (const char* sep : {",", ", "}) {
+        SCOPED_TRACE(sep);
+        const std::string s = sep;
+        auto c = collectFile(tempCapture("ends.csv", "Time [s],A\n-36028797.018963968" + s +
+                                                         "1\n0.000000000" + s + "0\n" +
+                                                         "36028797.018963967" + s + "1\n"));
+        EXPECT_EQ(c.tb.den, 1'000'000'000);
+        EXPECT_EQ(c.start, kMinEdgeTick);
+        EXPECT_EQ(c.edges, (Edges{{0, 0, 0}, {kMaxEdgeTick, 0, 1}}));
+        const std::string late = tempCapture(
+            "late.csv", "Time [s],A\n0.000000000" + s + "1\n36028797.018963968" + s + "0\n");
+        EXPECT_EQ(errorOf(late), late + ":3: time '36028797.018963968' out of range");
+        const std::string early =
+            tempCapture("early.csv", "Time [s],A\n-36028797.018963969" + s + "1\n");
+        EXPECT_EQ(errorOf(early), early + ":2: time '-36028797.018963969' out of range");
+    }
+}
+
 TEST(CsvReaderErrors, Messages) {
     auto check = [](const std::string& name, const std::string& text, const std::string& msg) {
         auto p = tempCapture(name, text);
@@ -328,7 +350,8 @@ TEST(CsvReaderErrors, PreviousTimeAsWritten) {
     check(".5", "0.25");
     check("-.5", "-0.75");
     check("0", "-1");
-    check("123456789.012345678", "1");
+    // 18 digits, the fast path's most, and 1.2 * 10^16 ticks: within what an Edge holds.
+    check("012345678.012345678", "1");
 }
 
 // ---- real exports ----------------------------------------------------------------

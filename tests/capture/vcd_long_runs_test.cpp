@@ -164,13 +164,14 @@ TEST(VcdLongRuns, RandomDialectMixesMatchTheTruth) {
 }
 
 TEST(VcdLongRuns, TimestampsOfEveryLength) {
-    // 1 to 18 digits, each also written with leading zeros up to 20 digits, inside a
-    // run long enough that the tight loop sees every one of them.
+    // 1 to 17 digits (an Edge holds up to 2^55 - 1 ticks: 17 digits), each also written
+    // with leading zeros up to 20 digits, inside a run long enough that the tight loop
+    // sees every one of them.
     std::string text = kHeader;
     std::vector<Edge> want;
     std::uint8_t v = 0;
     Tick p10 = 1;
-    for (int digits = 1; digits <= 18; ++digits, p10 *= 10) {
+    for (int digits = 1; digits <= 17; ++digits, p10 *= 10) {
         const Tick t = p10 + digits;  // `digits` digits long, increasing
         const std::string plain = std::to_string(t);
         text += "#" + plain + " " + char('0' + v) + "!\n";
@@ -180,11 +181,12 @@ TEST(VcdLongRuns, TimestampsOfEveryLength) {
         if (digits > 1) want.push_back({t, 0, v});
         v ^= 1;
     }
+    const Tick late = kMaxEdgeTick - 999;  // 17 digits, up to the last tick an Edge holds
     for (int i = 0; i < 1000; ++i)
-        text += "#" + std::to_string(p10 + i) + "\n";  // 10^18 + i: 19 digits
+        text += "#" + std::to_string(late + i) + "\n";
     const Raw r = readRaw(tempCapture("digits.vcd", text));
     EXPECT_EQ(r.edges, want);
-    EXPECT_EQ(r.end, p10 + 999);
+    EXPECT_EQ(r.end, kMaxEdgeTick);
 }
 
 // A long valid run, then `bad` on line `kHeaderLines + 1 + lines`.
@@ -215,8 +217,10 @@ TEST(VcdLongRuns, ErrorsDeepInARunNameTheirLine) {
         {"#12a 1!", "expected a time after '#', found '#12a'"},
         {"# 1!", "expected a time after '#', found '#'"},
         {"1%", "value change for undeclared identifier '%'"},
-        {"#4611686018427387905", "time beyond 2^62 ticks (4611686018427387904)"},
-        {"#99999999999999999999999", "time beyond 2^62 ticks (4611686018427387904)"},
+        // One past the most an Edge holds (core/edge.h), and far past it.
+        {"#36028797018963968", "time beyond 2^55 - 1 ticks (36028797018963967)"},
+        {"#4611686018427387905", "time beyond 2^55 - 1 ticks (36028797018963967)"},
+        {"#99999999999999999999999", "time beyond 2^55 - 1 ticks (36028797018963967)"},
         {"1!\x01", "binary data (byte 0x01) where a value change was expected"},
         {"hello", "expected a value change, #time or $keyword, found 'hello'"},
         {"b1x0", "expected an identifier after the value 'b1x0'"},

@@ -30,6 +30,19 @@ TEST(VcdReader, SigrokDialectSeveralChangesPerLine) {
     EXPECT_EQ(c.edges, E({{10, 0, 0}, {10, 1, 1}, {25, 0, 1}}));
 }
 
+// An Edge holds times up to 2^55 - 1 ticks (core/edge.h): the last one is read exactly,
+// by the fast loop (15 digits) and by the general path (17), and one more is refused.
+TEST(VcdReader, TimesUpToWhatAnEdgeHolds) {
+    const std::string head =
+        "$timescale 1 ps $end\n$var wire 1 ! a $end\n$enddefinitions $end\n#0 0!\n";
+    auto c =
+        collectFile(tempCapture("late.vcd", head + "#999999999999999 1!\n#36028797018963967 0!\n"));
+    EXPECT_EQ(c.edges, E({{999999999999999, 0, 1}, {kMaxEdgeTick, 0, 0}}));
+    EXPECT_EQ(c.end, kMaxEdgeTick);
+    const std::string p = tempCapture("later.vcd", head + "#36028797018963968 1!\n");
+    EXPECT_EQ(errorOf(p), p + ":5: time beyond 2^55 - 1 ticks (36028797018963967)");
+}
+
 TEST(VcdReader, TimescaleForms) {
     struct Case {
         const char* text;

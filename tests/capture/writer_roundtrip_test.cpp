@@ -36,7 +36,7 @@ Waveform randomWave(Timebase tb, std::uint32_t seed, int edges_per_line, Tick ma
 std::vector<NsEdge> wantNs(const Waveform& w) {
     std::vector<NsEdge> out;
     for (const Edge& e : w.edges)
-        out.push_back({w.timebase.toNs(e.t), e.line, e.level});
+        out.push_back({w.timebase.toNs(e.t), std::uint32_t(e.line), int(e.level)});
     return out;
 }
 

@@ -314,6 +314,32 @@ TEST(Session, BadOptionNamesDecoderAndValidValues) {
     }
 }
 
+// An Edge names at most kMaxSelectedLines lines: a session mapping one more is refused
+// with an error naming the capture, not left to wrap the line numbers.
+TEST(Session, RefusesMoreMappedSignalsThanAnEdgeCanName) {
+    Waveform w;
+    w.timebase = Timebase{1, 1'000'000'000};
+    for (std::size_t i = 0; i <= kMaxSelectedLines; ++i) {
+        w.names.push_back("top.s" + std::to_string(i));
+        w.initial.push_back(0);
+    }
+    std::vector<DecoderRequest> requests;
+    for (std::size_t i = 0; i < kMaxSelectedLines; ++i)
+        requests.push_back({"rise", {{"in", "s" + std::to_string(i)}}, {}});
+    {
+        auto reader = memoryReader(w);
+        Session s(requests, *reader, "memory");  // 128: accepted
+    }
+    requests.push_back({"rise", {{"in", "s128"}}, {}});
+    auto reader = memoryReader(w);
+    try {
+        Session s(requests, *reader, "memory");
+        FAIL() << "129 mapped signals accepted";
+    } catch (const InputError& e) {
+        EXPECT_STREQ(e.what(), "memory: more than 128 signals mapped");
+    }
+}
+
 TEST(Session, BlockPathDeliversWhatThePerEdgePathDoes) {
     auto w = twoLines();
     // A repeated level (line 0 is already low at 120) is not an edge on either path.
