@@ -55,7 +55,7 @@ Waveform inRoleOrder(const Waveform& w, const DecoderInfo& info, bool by_positio
     for (const Edge& e : w.edges)
         for (std::size_t r = 0; r < src_of_role.size(); ++r)
             if (src_of_role[r] == int(e.line))
-                out.edges.push_back({e.t, std::uint32_t(r), e.level});
+                out.edges.push_back({e.t, std::uint32_t(r), std::uint8_t(e.level)});
     return out;
 }
 
