@@ -9,8 +9,8 @@
 # temporary directory (removed at the end; one large capture at a time, so that each
 # stays in the page cache), then times `decode` against `sigrok-cli`, `wc -l` and the
 # tokeniser alone on the same cached files (hyperfine, median), then decode and `wc -l`
-# again on each VCD read back into the page cache (as root: large folios, where `wc -l`
-# is fastest), records peak memory
+# again on each VCD dropped from the page cache and read back (as root; `wc -l` is
+# fastest then), records peak memory
 # (/usr/bin/time -v) on 1 GB and 5 GB captures, times the doubling curve, measures the
 # --follow latency, times `verify --jobs 1` against all cores, and prints a table of ratios. -q: a quick run (small files, no 5 GB).
 # Needs: a Release/RelWithDebInfo build (default ./build), hyperfine, sigrok-cli, python3.
@@ -169,21 +169,22 @@ for bus in spi bissc; do
         "$(fmt_s "$t_rd") s wall, $(fmt_s "$c_rd") s CPU" \
         "wc -l as above: reading alone at **$(ratio "$t_wc" "$t_rd")** (wall) of its speed" \
         "(a bound on the row above)" "-"
-    # The same file as the page cache holds a file read back from disk (or copied): in
-    # large folios, which wc -l reads about twice as fast as the freshly written file's
-    # pages, while decode barely changes (bench/README.md, "How the page cache holds the
-    # file"). The strictest reading of the wc -l target. Needs root (drop_caches).
+    # The same file dropped from the page cache and read back by cat: wc -l reads it
+    # about twice as fast as the pages its writer left (the kernel's copy out of the
+    # cache is faster; large folios are the likely reason), while decode barely changes
+    # (bench/README.md, "Edges in 8 bytes"). The strictest reading of the wc -l target.
+    # Needs root (drop_caches).
     if sync && { echo 1 >/proc/sys/vm/drop_caches; } 2>/dev/null; then
         cat "$f" >/dev/null
         pair "$runs" "$f" "$args"
         r_wc="$(ratio "$t_wc" "$t_dec")"
-        row "$bus.vcd read back (page cache in large folios): decode vs wc -l" \
+        row "$bus.vcd read back (cache dropped, then cat): decode vs wc -l" \
             "$size_mb MB ($(resident "$f") % cached after)" \
             "$(fmt_s "$t_dec") s wall, $(fmt_s "$c_dec") s CPU" \
             "wc -l $(fmt_s "$t_wc") s wall, $(fmt_s "$c_wc") s CPU: decode at **$r_wc** (wall) of its speed" \
             ">= 0.25" "$(verdict "$r_wc >= 0.25") (wall)"
     else
-        row "$bus.vcd read back (page cache in large folios): decode vs wc -l" "$size_mb MB" \
+        row "$bus.vcd read back (cache dropped, then cat): decode vs wc -l" "$size_mb MB" \
             "(not measured: dropping the page cache needs root)" "-" ">= 0.25" "-"
     fi
     rm -f "$f"
