@@ -30,8 +30,8 @@ TEST(VcdReader, SigrokDialectSeveralChangesPerLine) {
     EXPECT_EQ(c.edges, E({{10, 0, 0}, {10, 1, 1}, {25, 0, 1}}));
 }
 
-// An Edge holds times up to 2^55 - 1 ticks (core/edge.h): the last one is read exactly,
-// by the fast loop (15 digits) and by the general path (17), and one more is refused.
+// An Edge holds times up to 2^55 - 1 ticks (core/edge.h): a time of 15 digits and the
+// last one it holds (17 digits) are read exactly, and one more is refused.
 TEST(VcdReader, TimesUpToWhatAnEdgeHolds) {
     const std::string head =
         "$timescale 1 ps $end\n$var wire 1 ! a $end\n$enddefinitions $end\n#0 0!\n";

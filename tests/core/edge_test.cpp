@@ -53,19 +53,13 @@ TEST(Edge, WritingOneFieldLeavesTheOthers) {
     EXPECT_EQ(e.t, kMinEdgeTick);
 }
 
-TEST(Edge, RangeTest) {
+TEST(Edge, TimesFitWithin2To55Ticks) {
     EXPECT_TRUE(edgeTickFits(kMaxEdgeTick));
     EXPECT_TRUE(edgeTickFits(kMinEdgeTick));
     EXPECT_FALSE(edgeTickFits(kMaxEdgeTick + 1));
     EXPECT_FALSE(edgeTickFits(kMinEdgeTick - 1));
     EXPECT_EQ(kMaxEdgeTick, 36028797018963967);
 }
-
-}  // namespace
-}  // namespace busdecode
-
-namespace busdecode {
-namespace {
 
 // Generated captures obey the same limits: more lines than an Edge names, or a time it
 // cannot hold, is a generator's mistake, caught where the waveform is built.
