@@ -72,7 +72,8 @@ median() {
 # The same for decode and wc -l timed around sigrok-cli's run of the same file: N runs
 # before it and N after, median and mean over all 2N. The machine's speed drifts (this
 # VM: up to 40 % within minutes); sigrok-cli's one run spans a minute or more, so the
-# fast tools are sampled across that same stretch, not in one moment of it.
+# fast tools are sampled across that same stretch, not in one moment of it. Without
+# sigrok's arguments (""), decode and wc -l alone, N runs of each, twice.
 around() {
     local n="$1" f="$2" sargs="$3" args="$4"
     local i
@@ -83,26 +84,11 @@ around() {
         hyperfine -N --style none --warmup 1 --runs "$n" --export-json "$tmp/wc$i.json" \
             "wc -l $f" >/dev/null 2>&1
         # shellcheck disable=SC2086
-        [ $i = 1 ] && read -r t_sig c_sig < <(median 1 sigrok-cli -I vcd -i "$f" $sargs)
+        [ $i = 1 ] && [ -n "$sargs" ] && read -r t_sig c_sig < <(median 1 sigrok-cli -I vcd -i "$f" $sargs)
     done
-    read -r t_dec c_dec < <(jq -rs "$medq" "$tmp/dec1.json" "$tmp/dec2.json")
-    read -r t_wc c_wc < <(jq -rs "$medq" "$tmp/wc1.json" "$tmp/wc2.json")
-}
-# Median wall time and mean CPU time over hyperfine's JSON files.
-medq='[.[].results[0]] | [(map(.times[]) | sort | if length % 2 == 1 then .[length / 2 | floor] else (.[length / 2 - 1] + .[length / 2]) / 2 end), (map(.user + .system) | add / length)] | "\(.[0]) \(.[1])"'
-# decode and wc -l as around() times them, without sigrok-cli: N runs of each, twice.
-pair() {
-    local n="$1" f="$2" args="$3"
-    local i
-    for i in 1 2; do
-        # shellcheck disable=SC2086
-        hyperfine -N --style none --warmup 1 --runs "$n" --export-json "$tmp/dec$i.json" \
-            "$decode $f $args" >/dev/null 2>&1
-        hyperfine -N --style none --warmup 1 --runs "$n" --export-json "$tmp/wc$i.json" \
-            "wc -l $f" >/dev/null 2>&1
-    done
-    read -r t_dec c_dec < <(jq -rs "$medq" "$tmp/dec1.json" "$tmp/dec2.json")
-    read -r t_wc c_wc < <(jq -rs "$medq" "$tmp/wc1.json" "$tmp/wc2.json")
+    local q='[.[].results[0]] | [(map(.times[]) | sort | if length % 2 == 1 then .[length / 2 | floor] else (.[length / 2 - 1] + .[length / 2]) / 2 end), (map(.user + .system) | add / length)] | "\(.[0]) \(.[1])"'
+    read -r t_dec c_dec < <(jq -rs "$q" "$tmp/dec1.json" "$tmp/dec2.json")
+    read -r t_wc c_wc < <(jq -rs "$q" "$tmp/wc1.json" "$tmp/wc2.json")
 }
 peak_mb() {  # peak resident set of a command, MB
     /usr/bin/time -v "$@" >/dev/null 2>"$tmp/time.txt" || true
@@ -176,7 +162,7 @@ for bus in spi bissc; do
     # Needs root (drop_caches).
     if sync && { echo 1 >/proc/sys/vm/drop_caches; } 2>/dev/null; then
         cat "$f" >/dev/null
-        pair "$runs" "$f" "$args"
+        around "$runs" "$f" "" "$args"
         r_wc="$(ratio "$t_wc" "$t_dec")"
         row "$bus.vcd read back (cache dropped, then cat): decode vs wc -l" \
             "$size_mb MB ($(resident "$f") % cached after)" \
