@@ -16,20 +16,14 @@
 namespace busdecode::test {
 namespace {
 
-// How decode() feeds the decoder: the general path one edge at a time, edge() one edge
-// at a time, or any larger number (kBlocks and up): edges() in blocks of that many.
-constexpr std::size_t kReference = 0, kSingles = 1, kBlocks = 2;
-
 // Every event of `w` in full (times, fields, errors, summary), one JSON line each, and
-// the decoder's advice (decodeDirectly()), fed as `block_size` says.
-std::vector<std::string> decode(const Waveform& w, std::size_t block_size) {
+// the decoder's advice (decodeDirectly()), fed as `feed` says (`block`: the block size
+// for Feed::Blocks).
+std::vector<std::string> decode(const Waveform& w, Feed feed, std::size_t block = 0) {
     registerBissc();
     const auto* factory = Registry::instance().find("bissc");
     const Options options = Options::resolve(factory->info(), {{"bits", "26"}});
-    const Feed feed = block_size == kReference ? Feed::Reference
-                      : block_size == kSingles ? Feed::OneByOne
-                                               : Feed::Blocks;
-    return decodeDirectly(*factory, options, w, {0, 1}, feed, block_size);
+    return decodeDirectly(*factory, options, w, {0, 1}, feed, block);
 }
 
 // A capture of `frames` frames with everything the generator can vary drawn at random:
@@ -89,11 +83,13 @@ TEST(BisscBlocks, RunsDecodeAsEdgeByEdgeWhateverTheTraffic) {
     for (std::uint32_t seed = 1; seed <= 60; ++seed) {
         SCOPED_TRACE(::testing::Message() << "seed " << seed);
         const Waveform w = randomCapture(seed, 40);
-        const std::vector<std::string> by_edge = decode(w, kReference);
+        const std::vector<std::string> by_edge = decode(w, Feed::Reference);
         ASSERT_GT(by_edge.size(), 20u);
-        for (const std::size_t block : {kSingles, kBlocks, std::size_t(7), std::size_t(16384)}) {
+        // edge() one at a time (0), then edges() in blocks of 2, 7 and 16 384.
+        for (const std::size_t block : {0, 2, 7, 16384}) {
             SCOPED_TRACE(::testing::Message() << "fed " << block);
-            const std::vector<std::string> by_block = decode(w, block);
+            const std::vector<std::string> by_block =
+                block == 0 ? decode(w, Feed::OneByOne) : decode(w, Feed::Blocks, block);
             ASSERT_EQ(by_block.size(), by_edge.size());
             for (std::size_t i = 0; i < by_edge.size(); ++i)
                 ASSERT_EQ(by_block[i], by_edge[i]) << "event " << i;
@@ -134,12 +130,12 @@ TEST(BisscBlocks, PauseEndsTheFrameOnlyPastTwentyMicrosecondsAndTheDelay) {
     for (const Tick pause : {Tick(20'325), Tick(20'290)}) {
         SCOPED_TRACE(::testing::Message() << "pause " << pause << " ns");
         const Waveform w = pausedCapture(pause);
-        const std::vector<std::string> by_edge = decode(w, kReference);
+        const std::vector<std::string> by_edge = decode(w, Feed::Reference);
         ASSERT_GE(by_edge.size(), 3u);
         EXPECT_EQ(by_edge[0].find("short_frame") != std::string::npos, pause == 20'325)
             << by_edge[0];
-        EXPECT_EQ(decode(w, kSingles), by_edge);
-        EXPECT_EQ(decode(w, 16384), by_edge);
+        EXPECT_EQ(decode(w, Feed::OneByOne), by_edge);
+        EXPECT_EQ(decode(w, Feed::Blocks, 16384), by_edge);
     }
 }
 
@@ -153,7 +149,7 @@ TEST(BisscBlocks, RunsTakeTheDataOfCleanFrames) {
     BisscGenerator gen(cfg);
     addPlainFrames(gen, 50, 3);
     const Waveform w = gen.build();
-    const std::vector<std::string> lines = decode(w, 16384);
+    const std::vector<std::string> lines = decode(w, Feed::Blocks, 16384);
     ASSERT_EQ(lines.size(), gen.frames().size());
     for (std::size_t i = 0; i < lines.size(); ++i)
         EXPECT_NE(lines[i].find("\"position\":" + std::to_string(gen.frames()[i].spec.data)),
