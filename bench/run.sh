@@ -10,7 +10,8 @@
 # stays in the page cache), then times `decode` against `sigrok-cli`, `wc -l` and the
 # tokeniser alone on the same cached files (hyperfine, median), then decode and `wc -l`
 # again on each VCD dropped from the page cache and read back (as root; `wc -l` is
-# fastest then), records peak memory
+# fastest then), with the tokeniser handing its edges to a thread that only counts them
+# (decode's floor), records peak memory
 # (/usr/bin/time -v) on 1 GB and 5 GB captures, times the doubling curve, measures the
 # --follow latency, times `verify --jobs 1` against all cores, and prints a table of ratios. -q: a quick run (small files, no 5 GB).
 # Needs: a Release/RelWithDebInfo build (default ./build), hyperfine, sigrok-cli, python3.
@@ -169,6 +170,14 @@ for bus in spi bissc; do
             "$(fmt_s "$t_dec") s wall, $(fmt_s "$c_dec") s CPU" \
             "wc -l $(fmt_s "$t_wc") s wall, $(fmt_s "$c_wc") s CPU: decode at **$r_wc** (wall) of its speed" \
             ">= 0.25" "$(verdict "$r_wc >= 0.25") (wall)"
+        # Reading with every edge handed to a second thread that only counts them:
+        # decode's floor with a decoder that cost nothing (bench/README.md, "A decoder
+        # that costs nothing").
+        read -r t_pf c_pf < <(median "$runs" "$reader" --prefetch "$f")
+        row "$bus.vcd read back: reading and handing over (read_capture --prefetch) vs wc -l" \
+            "$size_mb MB" "$(fmt_s "$t_pf") s wall, $(fmt_s "$c_pf") s CPU" \
+            "wc -l as above: at **$(ratio "$t_wc" "$t_pf")** (wall) of its speed" \
+            "(decode's floor, a bound on the row above)" "-"
     else
         row "$bus.vcd read back (cache dropped, then cat): decode vs wc -l" "$size_mb MB" \
             "(not measured: dropping the page cache needs root)" "-" ">= 0.25" "-"
