@@ -83,17 +83,20 @@ Parsed parse(const QStringList& argv, bool verify) {
     QCommandLineOption junit("junit", "verify: write JUnit XML", "FILE");
     QCommandLineOption jobs("jobs", "verify: captures checked in parallel (0 = one per core)", "N",
                             "0");
+    QCommandLineOption threads(
+        "threads", "per capture: 1 reads and decodes on one thread, 2 reads ahead on another", "N",
+        "2");
     QCommandLineOption help({"h", "help"}, "show this help");
     QCommandLineOption version("version", "show the version");
     for (auto* o : {&proto, &map, &opt, &format, &report, &lcm, &rate, &follow, &realtime, &list,
-                    &rules, &junit, &jobs, &help, &version})
+                    &rules, &junit, &jobs, &threads, &help, &version})
         p.addOption(*o);
     if (!p.parse(argv)) throw InputError(p.errorText().toStdString());
     if (p.isSet(help)) {
         fmt::print("{}", p.helpText().toStdString());
         fmt::print(
             "\nCommands:\n  decode CAPTURE... --proto NAME [...]\n"
-            "  decode verify CAPTURE... --rules FILE [--junit FILE] [--jobs N]\n"
+            "  decode verify CAPTURE... --rules FILE [--junit FILE] [--jobs N] [--threads N]\n"
             "  decode monitor [--lcm URL]\n  decode --list\n");
         std::exit(0);
     }
@@ -129,6 +132,13 @@ Parsed parse(const QStringList& argv, bool verify) {
     if (!j || *j < 0 || *j > 256)
         throw InputError("--jobs: expected a whole number from 0 (all cores) to 256");
     a.jobs = int(*j);
+    const std::string t = p.value(threads).toStdString();
+    if (t != "1" && t != "2")
+        throw InputError(fmt::format(
+            "--threads {}: expected 1 (read and decode on one thread) or 2 (read ahead on a "
+            "second)",
+            t));
+    a.threads = t == "1" ? 1 : 2;
     if (!verify && (!a.rules.empty() || !a.junit.empty()))
         throw InputError("--rules and --junit belong to 'decode verify'");
     if (verify && a.rules.empty()) throw InputError("decode verify: --rules FILE is required");
@@ -141,6 +151,7 @@ int runDecode(const DecodeArgs& a) {
     OpenOptions open;
     open.rate_hz = a.rate_hz;
     open.follow = a.follow;
+    open.read_ahead = a.threads > 1;
     open.stop = &g_stop;
     std::signal(SIGINT, onInterrupt);
     std::signal(SIGTERM, onInterrupt);

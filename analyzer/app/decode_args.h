@@ -22,6 +22,7 @@ struct DecodeArgs {
     double rate_hz = 0;                  // --rate
     bool follow = false;                 // --follow
     bool realtime = false;               // --realtime
+    int threads = 2;                     // --threads N per capture: 1 or 2 (read ahead)
     // verify only
     std::string rules;  // --rules FILE
     std::string junit;  // --junit FILE

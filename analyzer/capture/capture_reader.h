@@ -61,6 +61,9 @@ inline void checkSelection(const std::vector<LineRef>& lines) {
 struct OpenOptions {
     double rate_hz = 0;   // --rate: needed by plain CSV without a time column
     bool follow = false;  // --follow: keep reading a growing file
+    // --threads 2 (the default): decodeCapture() reads ahead on a second thread; false
+    // (--threads 1): reads and decodes on the caller's thread alone.
+    bool read_ahead = true;
     // Set (e.g. by Ctrl-C) to make a following reader return at its next poll.
     const std::atomic<bool>* stop = nullptr;
 };

@@ -29,6 +29,7 @@ int runVerify(const DecodeArgs& args) {
 
         OpenOptions open;
         open.rate_hz = args.rate_hz > 0 ? args.rate_hz : rules.decode.rate_hz;
+        open.read_ahead = args.threads > 1;
         BatchOptions batch;
         batch.jobs = args.jobs;
         batch.progress = ::isatty(STDERR_FILENO) && args.captures.size() > 1;

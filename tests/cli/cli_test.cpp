@@ -181,6 +181,8 @@ INSTANTIATE_TEST_SUITE_P(
         BadInput{{"@", "--proto", "spi", "--map", "sclk=top.sclk,cs=top.cs"},
                  "one --map per role: --map ROLE=SIGNAL --map ROLE=SIGNAL"},
         BadInput{{"@", "--proto", "spi", "--format", "xml"}, "--format xml"},
+        BadInput{{"@", "--proto", "spi", "--threads", "3"},
+                 "--threads 3: expected 1 (read and decode on one thread) or 2"},
         BadInput{{"@"}, "no decoder chosen"}, BadInput{{"--proto", "spi"}, "no capture given"},
         BadInput{{"@", "--proto", "spi", "--bogus"}, "bogus"}));
 

@@ -1,6 +1,7 @@
 // `decode -` (standard input) with --follow: a writer feeds a capture through a pipe in
 // pieces with pauses, and decoded events come out while the writer still holds back the
-// rest; the whole output then equals decoding the complete file.
+// rest; the whole output then equals decoding the complete file. With --threads 1 as
+// well, on one thread.
 #include <fcntl.h>
 #include <gtest/gtest.h>
 #include <poll.h>
@@ -9,6 +10,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <filesystem>
 #include <fstream>
 #include <string>
 #include <thread>
@@ -43,55 +45,103 @@ std::size_t readLines(int fd, std::string& buf, std::size_t min_lines,
     return count();
 }
 
-TEST(FollowPipe, EventsComeOutBeforeTheWriterFinishes) {
-    const std::string text = "Hello, follow mode! The quick brown fox jumps.";
-    const std::size_t split = 20;
-    test::UartVcd vcd = test::uartVcd(text, split);
-    const std::vector<std::string> decode_args{"--proto",    "uart",     "--opt",
-                                               "baud=10000", "--format", "jsonl"};
+// The threads of a running process (its entries in /proc/PID/task).
+int threadsOf(pid_t pid) {
+    const std::filesystem::path tasks = "/proc/" + std::to_string(pid) + "/task";
+    std::error_code ec;
+    int n = 0;
+    for (auto it = std::filesystem::directory_iterator(tasks, ec);
+         !ec && it != std::filesystem::directory_iterator(); it.increment(ec))
+        ++n;
+    return n;
+}
 
+struct FollowRun {
+    std::size_t early = 0;  // lines out while the writer held back the second part
+    int threads = 0;        // decode's threads at that moment
+    int status = -1;
+    std::string out;
+};
+
+// Feeds `vcd` to `decode - --follow ARGS...` in pieces with pauses: the first part, then
+// (once `split` lines came out, or 20 s passed) the rest.
+FollowRun followPipe(const test::UartVcd& vcd, std::size_t split,
+                     const std::vector<std::string>& decode_args) {
+    FollowRun r;
     std::vector<std::string> args{"-", "--follow"};
     args.insert(args.end(), decode_args.begin(), decode_args.end());
     ::signal(SIGPIPE, SIG_IGN);
     test::DecodeProcess c = test::spawnDecode(args);
-    ASSERT_GT(c.pid, 0);
+    if (c.pid <= 0) return r;
     // The first part in pieces of 97 bytes (cutting lines anywhere), with pauses.
     for (std::size_t at = 0; at < vcd.head.size(); at += 97) {
-        ASSERT_TRUE(test::writeAll(c.in, vcd.head.substr(at, 97)));
+        test::writeAll(c.in, vcd.head.substr(at, 97));
         std::this_thread::sleep_for(5ms);
     }
     // The writer now waits: the bytes of the first part must come out meanwhile.
-    std::string out;
-    std::size_t early = readLines(c.out, out, split, 20s);
-    EXPECT_EQ(early, split) << "events decoded while the writer had not finished:\n" << out;
-
+    r.early = readLines(c.out, r.out, split, 20s);
+    r.threads = threadsOf(c.pid);
     for (std::size_t at = 0; at < vcd.tail.size(); at += 97) {
-        ASSERT_TRUE(test::writeAll(c.in, vcd.tail.substr(at, 97)));
+        test::writeAll(c.in, vcd.tail.substr(at, 97));
         std::this_thread::sleep_for(2ms);
     }
     ::close(c.in);
-    readLines(c.out, out, text.size() + 1000, 20s);  // until end of output
+    readLines(c.out, r.out, std::size_t(-1), 20s);  // until end of output
     ::close(c.out);
     int st = 0;
-    ASSERT_EQ(::waitpid(c.pid, &st, 0), c.pid);
-    ASSERT_TRUE(WIFEXITED(st));
-    EXPECT_EQ(WEXITSTATUS(st), 0);
+    if (::waitpid(c.pid, &st, 0) == c.pid && WIFEXITED(st)) r.status = WEXITSTATUS(st);
+    return r;
+}
 
-    // Every byte, in order, and the same output as decoding the whole file at once.
+// decode ARGS... on the whole capture in a file.
+test::RunResult decodeWhole(const test::UartVcd& vcd, const std::vector<std::string>& args) {
     std::string path = test::tempDir() + "/follow_uart.vcd";
     test::writeFile(path, vcd.head + vcd.tail);
     std::vector<std::string> file_args{path};
-    file_args.insert(file_args.end(), decode_args.begin(), decode_args.end());
-    test::RunResult whole = test::runDecode(file_args);
+    file_args.insert(file_args.end(), args.begin(), args.end());
+    return test::runDecode(file_args);
+}
+
+const std::vector<std::string> kDecodeArgs{"--proto",    "uart",     "--opt",
+                                           "baud=10000", "--format", "jsonl"};
+
+TEST(FollowPipe, EventsComeOutBeforeTheWriterFinishes) {
+    const std::string text = "Hello, follow mode! The quick brown fox jumps.";
+    const std::size_t split = 20;
+    test::UartVcd vcd = test::uartVcd(text, split);
+    FollowRun r = followPipe(vcd, split, kDecodeArgs);
+    EXPECT_EQ(r.early, split) << "events decoded while the writer had not finished:\n" << r.out;
+    EXPECT_EQ(r.threads, 2) << "reading ahead on a second thread";
+    EXPECT_EQ(r.status, 0);
+
+    // Every byte, in order, and the same output as decoding the whole file at once.
+    test::RunResult whole = decodeWhole(vcd, kDecodeArgs);
     ASSERT_EQ(whole.status, 0) << whole.err;
-    EXPECT_EQ(out, whole.out);
-    std::size_t lines = std::size_t(std::count(out.begin(), out.end(), '\n'));
+    EXPECT_EQ(r.out, whole.out);
+    std::size_t lines = std::size_t(std::count(r.out.begin(), r.out.end(), '\n'));
     EXPECT_EQ(lines, text.size());
     for (std::size_t i = 0; i < text.size(); ++i) {
         std::string value =
             "\"value\":" + std::to_string(static_cast<unsigned char>(text[i])) + ",";
-        EXPECT_NE(out.find(value), std::string::npos) << "byte " << i;
+        EXPECT_NE(r.out.find(value), std::string::npos) << "byte " << i;
     }
+}
+
+// --threads 1: the same events, as promptly, read on the decoding thread alone.
+TEST(FollowPipe, ThreadsOneReadsAndDecodesOnOneThread) {
+    const std::string text = "One thread reads and decodes.";
+    const std::size_t split = 12;
+    test::UartVcd vcd = test::uartVcd(text, split);
+    std::vector<std::string> args = kDecodeArgs;
+    args.insert(args.end(), {"--threads", "1"});
+    FollowRun r = followPipe(vcd, split, args);
+    EXPECT_EQ(r.early, split) << r.out;
+    EXPECT_EQ(r.threads, 1);
+    EXPECT_EQ(r.status, 0);
+    test::RunResult whole = decodeWhole(vcd, kDecodeArgs);
+    ASSERT_EQ(whole.status, 0) << whole.err;
+    EXPECT_EQ(r.out, whole.out);
+    EXPECT_EQ(std::size_t(std::count(r.out.begin(), r.out.end(), '\n')), text.size());
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 // `decode verify` end to end on generated captures: a clean capture passes, each kind of
 // fault fails the right rule at the time of its first faulty frame, JUnit is well-formed
-// with the right counts, --jobs 2 prints exactly what --jobs 1 prints, bad input exits 2.
+// with the right counts, --jobs 2 (and --threads 1) prints exactly what --jobs 1 prints,
+// bad input exits 2.
 #include <gtest/gtest.h>
 
 #include <QString>
@@ -177,19 +178,24 @@ JunitCounts readJunit(const std::string& xml) {
     return c;
 }
 
-TEST(VerifyCli, JunitIsWellFormedWithTheRightCountsAndJobsDoNotChangeResults) {
+TEST(VerifyCli, JunitIsWellFormedWithTheRightCountsAndJobsOrThreadsDoNotChangeResults) {
     auto caps = capturesOf("bissc");
     const std::string rules = rulesFile("bissc.toml", test::kBisscRules);
     auto args = verifyArgs(caps, rules);
     args.push_back("--junit");
-    auto one = args, two = args;
+    auto one = args, two = args, single = args;
     one.insert(one.end(), {dir() + "/j1.xml", "--jobs", "1"});
     two.insert(two.end(), {dir() + "/j2.xml", "--jobs", "2"});
+    // Two captures at once, each read and decoded on one thread.
+    single.insert(single.end(), {dir() + "/j3.xml", "--jobs", "2", "--threads", "1"});
     const auto r1 = test::runDecode(one);
     const auto r2 = test::runDecode(two);
+    const auto r3 = test::runDecode(single);
     EXPECT_EQ(r1.status, 1) << r1.err;
     EXPECT_EQ(r2.status, 1) << r2.err;
+    EXPECT_EQ(r3.status, 1) << r3.err;
     EXPECT_EQ(r1.out, r2.out);
+    EXPECT_EQ(r1.out, r3.out);
     const auto j1 = readJunit(test::readFile(dir() + "/j1.xml"));
     const auto j2 = readJunit(test::readFile(dir() + "/j2.xml"));
     ASSERT_EQ(j1.error, "");
@@ -204,6 +210,7 @@ TEST(VerifyCli, JunitIsWellFormedWithTheRightCountsAndJobsDoNotChangeResults) {
     EXPECT_EQ(j1.failures_attr, j1.failures);
     EXPECT_EQ(j1.errors, 0);
     EXPECT_EQ(j1.stripped, j2.stripped);
+    EXPECT_EQ(j1.stripped, readJunit(test::readFile(dir() + "/j3.xml")).stripped);
 }
 
 TEST(VerifyCli, LimitAboveZeroFailsAtTheEventThatPassedIt) {
