@@ -11,7 +11,8 @@
 # tokeniser alone on the same cached files (hyperfine, median), then decode and `wc -l`
 # again on each VCD dropped from the page cache and read back (as root; `wc -l` is
 # fastest then), with the tokeniser handing its edges to a thread that only counts them
-# (decode's floor), records peak memory
+# (decode's floor), and with all of decode's work on one thread (--threads 1: its CPU
+# shared over the cores bounds any split of that work), records peak memory
 # (/usr/bin/time -v) on 1 GB and 5 GB captures, times the doubling curve, measures the
 # --follow latency, times `verify --jobs 1` against all cores, and prints a table of ratios. -q: a quick run (small files, no 5 GB).
 # Needs: a Release/RelWithDebInfo build (default ./build), hyperfine, sigrok-cli, python3.
@@ -178,6 +179,17 @@ for bus in spi bissc; do
             "$size_mb MB" "$(fmt_s "$t_pf") s wall, $(fmt_s "$c_pf") s CPU" \
             "wc -l as above: at **$(ratio "$t_wc" "$t_pf")** (wall) of its speed" \
             "(decode's floor, a bound on the row above)" "-"
+        # All of decode's work on one thread (--threads 1): its CPU time shared out
+        # perfectly over every core is the least wall time any arrangement of this work
+        # could take, by stages (as decode does) or by pieces of the file (bench/README.md,
+        # "All the work on one thread").
+        # shellcheck disable=SC2086
+        read -r t_one c_one < <(median "$runs" "$decode" "$f" $args --threads 1)
+        t_share="$(echo "scale=6; $c_one / $(nproc)" | bc -l)"
+        row "$bus.vcd read back: decode --threads 1 (all the work on one thread) vs wc -l" \
+            "$size_mb MB" "$(fmt_s "$t_one") s wall, $(fmt_s "$c_one") s CPU" \
+            "its CPU shared over $(nproc) cores, $(fmt_s "$t_share") s: at **$(ratio "$t_wc" "$t_share")** of wc -l's speed" \
+            "(a bound on decode's row above)" "-"
     else
         row "$bus.vcd read back (cache dropped, then cat): decode vs wc -l" "$size_mb MB" \
             "(not measured: dropping the page cache needs root)" "-" ">= 0.25" "-"
@@ -270,6 +282,12 @@ row "verify, 4 x $(mb "${vfiles[0]}") MB BiSS-C VCD: --jobs 1 vs --jobs $(nproc)
     "--jobs $(nproc): $(fmt_s "$t_jn") s wall, $(fmt_s "$c_jn") s CPU: **$busy_n cores busy**" \
     "--jobs 1: $(fmt_s "$t_j1") s wall, $(fmt_s "$c_j1") s CPU ($busy_1 cores busy): --jobs $(nproc) **${r_jobs}x** faster" \
     "uses every core" "$(verdict "$busy_n >= 0.85 * $(nproc)")"
+# Each capture read and decoded on one thread (--threads 1), N at a time: no hand-over
+# between threads, for a batch with at least as many captures as cores.
+read -r t_j1t c_j1t < <(median 3 "$decode" verify "${vfiles[@]}" --rules "$tmp/rules.toml" --jobs "$(nproc)" --threads 1)
+row "verify, 4 x $(mb "${vfiles[0]}") MB BiSS-C VCD: --jobs $(nproc) --threads 1 vs --jobs $(nproc)" "" \
+    "--threads 1: $(fmt_s "$t_j1t") s wall, $(fmt_s "$c_j1t") s CPU ($(ratio "$c_j1t" "$t_j1t") cores busy)" \
+    "--jobs $(nproc) as above: --threads 1 **$(ratio "$t_jn" "$t_j1t")x** faster" "(none)" "-"
 rm -f "${vfiles[@]}"
 
 echo
