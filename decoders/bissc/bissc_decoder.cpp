@@ -87,6 +87,11 @@ void BisscDecoder::checkQuietSlow(Tick now) {
         return;
     }
     // checkQuiet() only calls this in WaitAck / Data with a clock edge seen.
+    if (state_ == State::WaitAck && masterGaveUp(now)) {
+        closeFrame(last_ma_edge_, kNoTick, "no_ack", true);
+        state_ = sl_ ? State::Idle : State::WaitSlaveIdle;
+        return;
+    }
     if (double(now - last_ma_edge_) <= quietLimit()) return;
     if (state_ == State::WaitAck && f_.from_hold && f_.rises.size() == 1) {
         // MA rose from low and stayed high: the master went back to idle after CDM = 1.
@@ -339,6 +344,9 @@ void BisscDecoder::onSl(Tick t, bool level) {
             }
             resolveHoldStart(t);
             f_.ack = t;
+            // The clock phases from here on (isClockPhase()); a pause before the ACK
+            // is not one.
+            f_.max_high = f_.max_low = 0;
             startDelayEstimate(double(t - f_.rises[1]));
             state_ = State::Data;
             break;

@@ -96,7 +96,10 @@ private:
         // The slave timed out while the master was still clocking past the stop bit, and
         // took the remaining clocks for a new request (the MB5U with a RESOLUTE does this).
         bool retriggered = false;
-        Tick max_high = 0, max_low = 0;  // longest MA clock phases seen in the frame (ticks)
+        // Longest MA clock phases (ticks) after LAT until the ACK (masterGaveUp()), then
+        // from the ACK on: the clock as it really runs, which a pause before the ACK (a
+        // frame whose start was missed) cannot stretch (isClockPhase()).
+        Tick max_high = 0, max_low = 0;
         // Mean clock period (ticks) over `rises`; the previous frame's until there are
         // two. Kept up to date wherever `rises` changes (updatePeriod()).
         double period = 0;
@@ -142,7 +145,8 @@ private:
     void onMa(Tick t, bool level);
     void onMaAfterSamples(Tick t, bool level);  // onMa() once the due samples are taken
     // MA at `level` from tick t on; in_frame: the phase it ends was a clock phase of the
-    // frame, and counts towards its longest (isClockPhase()).
+    // frame, and counts towards its longest (masterGaveUp() before the ACK,
+    // isClockPhase() from it on).
     // last_ma_edge: last_ma_edge_, or dataRun()'s copy of it.
     [[gnu::always_inline]] void recordMaEdge(Tick t, bool level, bool in_frame,
                                              Tick& last_ma_edge) {
@@ -241,13 +245,32 @@ private:
     void closeFrame(Tick end, Tick timeout_end, const char* error, bool feed_control);
     void addError(const std::string& e);
     // Closes a frame whose clock went quiet. Called on every edge: the inline part only
-    // rules out the usual case (clock running, well within kMinQuietNs).
+    // rules out the usual case (clock running, well within kMinQuietNs and, before the
+    // ACK, within masterGaveUp()'s pause).
     void checkQuiet(Tick now) {
         if (state_ == State::TimeoutEnded ||
             ((state_ == State::WaitAck || state_ == State::Data) && last_ma_edge_ != kNoTick &&
-             now - last_ma_edge_ > quiet_ticks_))
+             (now - last_ma_edge_ > quiet_ticks_ ||
+              (state_ == State::WaitAck && masterGaveUp(now)))))
             checkQuietSlow(now);
     }
+    // In WaitAck: has MA stayed high for many of the frame's clock phases (or, none
+    // seen yet, of the previous frame's)? Until the ACK the master clocks without a
+    // break, so such a pause is the master giving up on a slave that did not answer,
+    // however short of kMinQuietNs: frames closer together than that would otherwise
+    // run into one. MA risen from low and staying high is a return to idle instead
+    // (checkQuietSlow()). Neither phase known (a first frame, only LAT seen): the rule
+    // of quietLimit() decides alone.
+    bool masterGaveUp(Tick now) const {
+        if (!ma_ || (f_.from_hold && f_.rises.size() == 1)) return false;
+        const Tick phase = std::max(f_.max_high, f_.max_low);
+        const double limit = kGaveUpPhases * (phase > 0 ? double(phase) : last_period_ / 2);
+        return limit > 0 && double(now - last_ma_edge_) > limit;
+    }
+    // MA high this many of the frame's longest clock phases before the ACK: the master
+    // gave up. Far above a clock's jitter or an uneven duty cycle, far below the pause
+    // between frames, which is at least the slave's timeout.
+    static constexpr double kGaveUpPhases = 8.0;
     // quiet_ticks_ for min_quiet_ and slave_timeout_ as they are now.
     void updateQuietTicks();
     void checkQuietSlow(Tick now);

@@ -349,6 +349,92 @@ TEST(BisscFrames, TruncatedFrameIsShortAndTheNextDecodes) {
     }
 }
 
+// Frames closer together than the 20 us that end a quiet frame when nothing else tells
+// (10 MHz, a 2 us timeout, 3 us between frames), from a slave that answers none of the
+// first five: each is a frame of its own with no ACK, not one frame across all five,
+// and the frames it answers after them decode clean.
+TEST(BisscFrames, UnansweredFramesCloseTogetherStaySeparate) {
+    BisscGenConfig cfg;
+    cfg.clock_hz = 10e6;
+    cfg.timeout_ns = 2000;
+    cfg.idle_ns = 3000;
+    BisscGenerator gen(cfg);
+    BisscFrameSpec f;
+    for (int i = 0; i < 12; ++i) {
+        f.data = 0x100000u + std::uint64_t(i);
+        gen.addFrame(f);
+    }
+    Waveform w = gen.build();
+    const int silent = 5;
+    const Tick answered_from = gen.frames()[silent].start;
+    std::erase_if(w.edges, [&](const Edge& e) { return e.line == 1 && e.t < answered_from; });
+
+    auto frames = ofType(decodeBissc(w, {}), "frame");
+    ASSERT_EQ(frames.size(), 12u);
+    for (int i = 0; i < 12; ++i) {
+        SCOPED_TRACE(i);
+        EXPECT_EQ(frames[i].start, gen.frames()[i].start);
+        if (i < silent) {
+            EXPECT_TRUE(frames[i].hasError("no_ack"));
+            EXPECT_TRUE(nullField(frames[i], "position"));
+        } else {
+            EXPECT_TRUE(frames[i].errors.empty());
+            EXPECT_EQ(intField(frames[i], "position"), 0x100000 + i);
+        }
+    }
+}
+
+// A capture that starts anywhere inside a frame, without $dumpvars: a line's level is
+// its value on the first time line, or 1 until its first change. Whatever the frame in
+// progress comes out as, the whole frames after it decode clean. Frames 6.89 us apart (10 MHz,
+// 100 MS/s, a 2.04 us timeout), closer than the 20 us that end a quiet frame when nothing else
+// tells. Before, a start where SL was really low made MA's pause before the next frame count as a
+// clock phase of the frame; every pause between frames then looked like clocking, and the rest of
+// the capture ran into one frame.
+TEST(BisscFrames, ACaptureStartingInsideAFrameDecodesTheFramesAfterIt) {
+    BisscGenConfig cfg;
+    cfg.timebase = Timebase::fromSampleRate(100'000'000);
+    cfg.clock_hz = 10e6;
+    cfg.line_delay_ns = 40;
+    cfg.timeout_ns = 2040;
+    cfg.idle_ns = 850;
+    BisscGenerator gen(cfg);
+    BisscFrameSpec f;
+    for (int i = 0; i < 12; ++i) {
+        f.data = 0x200000u + std::uint64_t(i) * 0x1357u;
+        gen.addFrame(f);
+    }
+    const Waveform whole = gen.build();
+    const Tick from = gen.frames()[1].start, to = gen.frames()[2].start;
+    const Tick first_judged = gen.frames()[3].start;
+    for (Tick cut = from; cut < to; ++cut) {
+        SCOPED_TRACE(cut);
+        Waveform w = whole;
+        std::erase_if(w.edges, [&](const Edge& e) { return e.t < cut; });
+        w.start = cut;
+        // As a VCD reader takes it: a line's value on the first time line is its level
+        // at the start; a line with none there reads 1 until its first change.
+        for (std::uint32_t line : {0u, 1u}) {
+            auto first = std::find_if(w.edges.begin(), w.edges.end(),
+                                      [&](const Edge& e) { return e.line == line; });
+            w.initial[line] = first != w.edges.end() && first->t == cut ? first->level : 1;
+            if (first != w.edges.end() && (first->t == cut || first->level == 1))
+                w.edges.erase(first);
+        }
+        auto frames = ofType(decodeBissc(w, {}), "frame");
+        // What the frame cut became, then frames 2..11, each whole after the cut. The
+        // first of them may go with the frame cut: a pause after a lone MA pulse cannot
+        // be told from a slow clock before a first frame has shown the clock's rate.
+        std::erase_if(frames, [&](const Event& e) { return e.start < first_judged; });
+        ASSERT_EQ(frames.size(), 9u);
+        for (std::size_t i = 0; i < frames.size(); ++i) {
+            EXPECT_EQ(frames[i].start, gen.frames()[i + 3].start) << i;
+            EXPECT_TRUE(frames[i].errors.empty()) << i;
+            EXPECT_EQ(intField(frames[i], "position"), 0x200000 + int(i + 3) * 0x1357) << i;
+        }
+    }
+}
+
 TEST(BisscFrames, CaptureEndingMidFrameIsShort) {
     BisscGenConfig cfg;
     BisscGenerator gen(cfg);
