@@ -60,6 +60,7 @@ struct FollowRun {
     std::size_t early = 0;  // lines out while the writer held back the second part
     int threads = 0;        // decode's threads at that moment
     int status = -1;
+    bool written = true;  // every piece written to decode's standard input
     std::string out;
 };
 
@@ -75,14 +76,14 @@ FollowRun followPipe(const test::UartVcd& vcd, std::size_t split,
     if (c.pid <= 0) return r;
     // The first part in pieces of 97 bytes (cutting lines anywhere), with pauses.
     for (std::size_t at = 0; at < vcd.head.size(); at += 97) {
-        test::writeAll(c.in, vcd.head.substr(at, 97));
+        r.written = test::writeAll(c.in, vcd.head.substr(at, 97)) && r.written;
         std::this_thread::sleep_for(5ms);
     }
     // The writer now waits: the bytes of the first part must come out meanwhile.
     r.early = readLines(c.out, r.out, split, 20s);
     r.threads = threadsOf(c.pid);
     for (std::size_t at = 0; at < vcd.tail.size(); at += 97) {
-        test::writeAll(c.in, vcd.tail.substr(at, 97));
+        r.written = test::writeAll(c.in, vcd.tail.substr(at, 97)) && r.written;
         std::this_thread::sleep_for(2ms);
     }
     ::close(c.in);
@@ -110,6 +111,7 @@ TEST(FollowPipe, EventsComeOutBeforeTheWriterFinishes) {
     const std::size_t split = 20;
     test::UartVcd vcd = test::uartVcd(text, split);
     FollowRun r = followPipe(vcd, split, kDecodeArgs);
+    EXPECT_TRUE(r.written);
     EXPECT_EQ(r.early, split) << "events decoded while the writer had not finished:\n" << r.out;
     EXPECT_EQ(r.threads, 2) << "reading ahead on a second thread";
     EXPECT_EQ(r.status, 0);
@@ -135,6 +137,7 @@ TEST(FollowPipe, ThreadsOneReadsAndDecodesOnOneThread) {
     std::vector<std::string> args = kDecodeArgs;
     args.insert(args.end(), {"--threads", "1"});
     FollowRun r = followPipe(vcd, split, args);
+    EXPECT_TRUE(r.written);
     EXPECT_EQ(r.early, split) << r.out;
     EXPECT_EQ(r.threads, 1);
     EXPECT_EQ(r.status, 0);
