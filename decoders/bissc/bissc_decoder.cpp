@@ -86,13 +86,12 @@ void BisscDecoder::checkQuietSlow(Tick now) {
         }
         return;
     }
-    // checkQuiet() only calls this in WaitAck / Data with a clock edge seen.
-    if (state_ == State::WaitAck && masterGaveUp(now)) {
-        closeFrame(last_ma_edge_, kNoTick, "no_ack", true);
-        state_ = sl_ ? State::Idle : State::WaitSlaveIdle;
+    // checkQuiet() only calls this in WaitAck / Data with a clock edge seen. The frame
+    // ends once the clock has been quiet past quietLimit() or, before the ACK, once the
+    // master gave up (never for a lone rise from low: that case is next).
+    if (double(now - last_ma_edge_) <= quietLimit() &&
+        !(state_ == State::WaitAck && masterGaveUp(now)))
         return;
-    }
-    if (double(now - last_ma_edge_) <= quietLimit()) return;
     if (state_ == State::WaitAck && f_.from_hold && f_.rises.size() == 1) {
         // MA rose from low and stayed high: the master went back to idle after CDM = 1.
         state_ = State::Idle;
