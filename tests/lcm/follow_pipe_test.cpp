@@ -1,7 +1,7 @@
 // `decode -` (standard input) with --follow: a writer feeds a capture through a pipe in
 // pieces with pauses, and decoded events come out while the writer still holds back the
 // rest; the whole output then equals decoding the complete file. With --threads 1 as
-// well, on one thread.
+// well, on one thread; and `decode verify -` with --threads 1 on one thread.
 #include <fcntl.h>
 #include <gtest/gtest.h>
 #include <poll.h>
@@ -9,6 +9,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -145,6 +146,45 @@ TEST(FollowPipe, ThreadsOneReadsAndDecodesOnOneThread) {
     ASSERT_EQ(whole.status, 0) << whole.err;
     EXPECT_EQ(r.out, whole.out);
     EXPECT_EQ(std::size_t(std::count(r.out.begin(), r.out.end(), '\n')), text.size());
+}
+
+// `decode verify -` reads its capture through a pipe as well; it prints only at the end,
+// so its threads are watched while the first part waits for the rest: the most seen
+// within 0.5 s (a reader thread starts as soon as the header is read).
+int mostThreadsOfVerify(const test::UartVcd& vcd, const std::string& threads, int& status) {
+    const std::string rules = test::tempDir() + "/uart_rules.toml";
+    test::writeFile(rules, "[uart]\nmin_frames = 1\n");
+    ::signal(SIGPIPE, SIG_IGN);
+    test::DecodeProcess c = test::spawnDecode({"verify", "-", "--rules", rules, "--proto", "uart",
+                                               "--opt", "baud=10000", "--threads", threads});
+    if (c.pid <= 0) return 0;
+    test::writeAll(c.in, vcd.head);
+    int most = 0;
+    const auto until = std::chrono::steady_clock::now() + 500ms;
+    while (std::chrono::steady_clock::now() < until) {
+        most = std::max(most, threadsOf(c.pid));
+        std::this_thread::sleep_for(5ms);
+    }
+    test::writeAll(c.in, vcd.tail);
+    ::close(c.in);
+    std::string out;
+    readLines(c.out, out, std::size_t(-1), 20s);  // until end of output
+    ::close(c.out);
+    int st = 0;
+    status = ::waitpid(c.pid, &st, 0) == c.pid && WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+    return most;
+}
+
+// verify --threads 1: each capture read and decoded on one thread, one thread fewer
+// than by default (the reader's); verify's own workers come on top of both.
+TEST(FollowPipe, VerifyThreadsOneReadsAndDecodesOnOneThread) {
+    const test::UartVcd vcd = test::uartVcd("Verified on one thread.", 10);
+    int status = -1;
+    const int two = mostThreadsOfVerify(vcd, "2", status);
+    EXPECT_EQ(status, 0);
+    const int one = mostThreadsOfVerify(vcd, "1", status);
+    EXPECT_EQ(status, 0);
+    EXPECT_EQ(two, one + 1);
 }
 
 }  // namespace
