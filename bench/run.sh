@@ -14,7 +14,8 @@
 # (decode's floor), and with all of decode's work on one thread (--threads 1: its CPU
 # shared over the cores bounds any split of that work), records peak memory
 # (/usr/bin/time -v) on 1 GB and 5 GB captures, times the doubling curve, measures the
-# --follow latency, times `verify --jobs 1` against all cores, and prints a table of ratios. -q: a quick run (small files, no 5 GB).
+# --follow latency, times `verify --jobs 1` against all cores (and all cores with
+# --threads 1), and prints a table of ratios. -q: a quick run (small files, no 5 GB).
 # Needs: a Release/RelWithDebInfo build (default ./build), hyperfine, sigrok-cli, python3.
 set -euo pipefail
 src="$(cd "$(dirname "$0")/.." && pwd)"
