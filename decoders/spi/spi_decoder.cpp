@@ -1,6 +1,13 @@
 #include "spi_decoder.h"
 
+#include <algorithm>
+#include <bit>
+#include <cstring>
 #include <limits>
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 #include <fmt/format.h>
 
@@ -17,8 +24,7 @@ SpiDecoder::SpiDecoder(const Options& o)
       cs_active_high_(o.text("cs_polarity") == "active-high"),
       // Modes 0 and 3 sample on the rising edge, modes 1 and 2 on the falling edge.
       sample_on_rising_(cpol_ == cpha_),
-      mosi_(o.flag("lsb_first")),
-      miso_(o.flag("lsb_first")) {}
+      word_{BitWord(o.flag("lsb_first")), BitWord(o.flag("lsb_first"))} {}
 
 void SpiDecoder::start(const DecoderContext& ctx) {
     Decoder::start(ctx);
@@ -30,6 +36,7 @@ void SpiDecoder::start(const DecoderContext& ctx) {
         if (lv == 1) lines_.level |= bit(r);
     }
     lines_.settled = lines_.level;
+    std::fill(std::begin(line_of_), std::end(line_of_), -1);
     resetWord();
 }
 
@@ -45,15 +52,225 @@ void SpiDecoder::edge(Tick t, int role, bool level) {
     step(lines_, t, role, level);
 }
 
+// A fast path for the bulk of a busy bus: between chip-select changes only sclk, mosi and
+// miso change, and only the sclk edges to the sampling level do anything but keep the
+// levels. Sixty-four edges at a time become bit masks (bit i for edge i): which line
+// each is on, its level, and whether the next edge is later (the end of its tick group).
+// Edges never repeat their line's level (Decoder::edges), so a line's level after edge i
+// is its level before XOR the parity of its edges up to i, for all 64 edges in a few
+// shifts. Then only the sampling clock edges are visited. Everything else (a cs edge, an
+// edge of another role, a window the masks cannot describe) goes through step(), and
+// the decoder's tests hold the two paths to the same events (spi_block_test.cpp).
+namespace {
+
+constexpr int kWindow = 64;
+
+// Bit i of the result: the XOR of bits 0..i of x.
+inline std::uint64_t prefixXor(std::uint64_t x) {
+    x ^= x << 1;
+    x ^= x << 2;
+    x ^= x << 4;
+    x ^= x << 8;
+    x ^= x << 16;
+    x ^= x << 32;
+    return x;
+}
+
+// Bits a..b-1 (0 <= a, b <= 64; none when a >= b). No shift by 64: the sampling loop asks
+// for the bits after edge 63 (fuzz finding).
+inline std::uint64_t bitsFrom(int a, int b) {
+    if (a >= b) return 0;
+    return (~std::uint64_t(0) >> (64 - (b - a))) << a;
+}
+
+inline int highestBit(std::uint64_t x) {
+    return 63 - std::countl_zero(x);
+}
+
+}  // namespace
+
+struct SpiDecoder::Window {
+    std::uint64_t role[kSpiRoleCount];  // edges on each role's line (line_of_)
+    std::uint64_t high;                 // edges to level 1
+    std::uint64_t ends;                 // edges followed by a later one
+    std::uint64_t slow;                 // edges for step(): cs, or a line of no known role
+};
+
+// e[0..64]: 65 edges, the last only for the ends mask. False when the SSE2 masks cannot
+// tell the ticks apart (a window spanning 2^24 ticks or more).
+bool SpiDecoder::classify(const Edge* e, const int* role_of_line, Window& m) {
+#if defined(__SSE2__)
+    // Ticks within 2^24 of each other differ in their low 24 bits, which share an edge's
+    // low 32-bit half with its line and level.
+    if (e[kWindow].t - e[0].t >= (Tick(1) << 24)) return false;
+    for (;;) {
+        // Each edge's low half: level in bit 0, line in bits 1-7, tick in bits 8-31.
+        const auto low = [](const Edge* p) {
+            const __m128 x = _mm_castsi128_ps(_mm_loadu_si128(reinterpret_cast<const __m128i*>(p)));
+            const __m128 y =
+                _mm_castsi128_ps(_mm_loadu_si128(reinterpret_cast<const __m128i*>(p + 2)));
+            return _mm_castps_si128(_mm_shuffle_ps(x, y, _MM_SHUFFLE(2, 0, 2, 0)));
+        };
+        const __m128i tick_bits = _mm_set1_epi32(int(0xFFFFFF00u)), byte = _mm_set1_epi32(0xFF);
+        const __m128i line_bits = _mm_set1_epi8(char(0xFE));
+        __m128i want[kSpiRoleCount];
+        for (int r = 0; r < kSpiRoleCount; ++r)
+            want[r] = _mm_set1_epi8(char(line_of_[r] < 0 ? 0xFF : line_of_[r] << 1));
+        Window w{};
+        for (int k = 0; k < kWindow; k += 16) {
+            __m128i same[4], bytes[4];
+            for (int j = 0; j < 4; ++j) {
+                const __m128i here = low(e + k + 4 * j), next = low(e + k + 4 * j + 1);
+                same[j] = _mm_cmpeq_epi32(_mm_and_si128(_mm_xor_si128(here, next), tick_bits),
+                                          _mm_setzero_si128());
+                bytes[j] = _mm_and_si128(here, byte);
+            }
+            const __m128i same16 = _mm_packs_epi16(_mm_packs_epi32(same[0], same[1]),
+                                                   _mm_packs_epi32(same[2], same[3]));
+            const __m128i b = _mm_packus_epi16(_mm_packs_epi32(bytes[0], bytes[1]),
+                                               _mm_packs_epi32(bytes[2], bytes[3]));
+            const __m128i lines = _mm_and_si128(b, line_bits);
+            const auto bits16 = [k](__m128i v) {
+                return std::uint64_t(unsigned(_mm_movemask_epi8(v))) << k;
+            };
+            w.ends |= bits16(same16) ^ (std::uint64_t(0xFFFF) << k);
+            w.high |= bits16(_mm_slli_epi16(b, 7));
+            for (int r = 0; r < kSpiRoleCount; ++r)
+                w.role[r] |= bits16(_mm_cmpeq_epi8(lines, want[r]));
+        }
+        std::uint64_t known = 0;
+        for (int r = 0; r < kSpiRoleCount; ++r)
+            known |= w.role[r];
+        // An edge of a line not seen before: learn its role once, if it has one.
+        bool learnt = false;
+        for (std::uint64_t unknown = ~known; unknown; unknown &= unknown - 1) {
+            const unsigned line = (e[std::countr_zero(unknown)].line);
+            const int r = role_of_line[line];
+            if (r >= 0 && r < kSpiRoleCount && line_of_[r] < 0) {
+                line_of_[r] = int(line);
+                learnt = true;
+                break;
+            }
+        }
+        if (learnt) continue;
+        w.slow = ~known | w.role[kSpiCs];
+        m = w;
+        return true;
+    }
+#else
+    (void)e;
+    (void)role_of_line;
+    (void)m;
+    return false;
+#endif
+}
+
 void SpiDecoder::edges(const Edge* first, const Edge* last, const int* role_of_line) {
+    // line_of_ holds for this mapping (a caller may pass another between calls).
+    for (int r = 0; r < kSpiRoleCount; ++r)
+        if (line_of_[r] >= 0 && role_of_line[line_of_[r]] != r)
+            std::fill(std::begin(line_of_), std::end(line_of_), -1);
     Lines s = lines_;
-    for (; first != last; ++first)
-        step(s, first->t, role_of_line[first->line], first->level != 0);
+    const auto stepTo = [&](const Edge* stop) {
+        for (; first != stop; ++first)
+            step(s, first->t, role_of_line[first->line], first->level != 0);
+    };
+    Window m;
+    while (last - first > kWindow) {
+        if (!classify(first, role_of_line, m)) {
+            stepTo(first + kWindow);
+            continue;
+        }
+        const Edge* const base = first;
+        for (int a = 0; a < kWindow;) {
+            const std::uint64_t slow = m.slow & bitsFrom(a, kWindow);
+            const int b = slow ? std::countr_zero(slow) : kWindow;
+            if (b > a) run(s, base, m, a, b, role_of_line);
+            first = base + b;
+            if (b < kWindow) stepTo(first + 1);
+            a = b + 1;
+        }
+        first = base + kWindow;
+    }
+    stepTo(last);
     lines_ = s;
 }
 
+// Edges e[a..b): sclk, mosi and miso only, as classify() found.
+void SpiDecoder::run(Lines& s, const Edge* e, const Window& m, int a, int b,
+                     const int* role_of_line) {
+    // Edges at the open group's tick join it through step(); a later one settles it.
+    for (; a < b && s.open && e[a].t == s.tick; ++a)
+        step(s, e[a].t, role_of_line[e[a].line], e[a].level != 0);
+    if (a == b) return;
+    if (s.open) settle(s);
+    const std::uint64_t in = bitsFrom(a, b);
+    const std::uint64_t sclk = m.role[kSpiSclk] & in, mosi = m.role[kSpiMosi] & in,
+                        miso = m.role[kSpiMiso] & in;
+    const auto levels = [&](std::uint64_t of, int role) {
+        return prefixXor(of) ^ ((s.level & bit(role)) ? ~std::uint64_t(0) : 0);
+    };
+    const std::uint64_t sclk_at = levels(sclk, kSpiSclk), mosi_at = levels(mosi, kSpiMosi),
+                        miso_at = levels(miso, kSpiMiso);
+    if (((sclk_at ^ m.high) & sclk) | ((mosi_at ^ m.high) & mosi) | ((miso_at ^ m.high) & miso)) {
+        // A level repeated (not from a session): the masks' parity does not hold.
+        for (; a < b; ++a)
+            step(s, e[a].t, role_of_line[e[a].line], e[a].level != 0);
+        return;
+    }
+    // Groups that end inside the run (the next edge, in it or after it, is later).
+    const std::uint64_t ends = m.ends & in;
+    if (!(bound_ & bit(kSpiCs)) || csActive(s.level))
+        sampleRun(e, sclk & (sample_on_rising_ ? m.high : ~m.high), sclk, ends, a, mosi_at,
+                  miso_at);
+    const auto levelsAt = [&](int i) {
+        return (s.level & ~(bit(kSpiSclk) | bit(kSpiMosi) | bit(kSpiMiso))) |
+               unsigned((sclk_at >> i) & 1) << kSpiSclk | unsigned((mosi_at >> i) & 1) << kSpiMosi |
+               unsigned((miso_at >> i) & 1) << kSpiMiso;
+    };
+    s.settled = ends ? levelsAt(highestBit(ends)) : s.level;
+    s.level = levelsAt(b - 1);
+    s.tick = e[b - 1].t;
+    s.open = true;
+}
+
+// The samples of run(): a group samples when its last sclk edge goes to the sampling
+// level (`to`: those sclk edges) and it holds an odd number of sclk edges (sclk changed
+// across it). The word in progress is kept in registers here: through sampleBit(), each
+// sample waited for the stores of the one before (count, bits and times).
+void SpiDecoder::sampleRun(const Edge* e, std::uint64_t to, std::uint64_t sclk, std::uint64_t ends,
+                           int a, std::uint64_t mosi_at, std::uint64_t miso_at) {
+    const std::uint64_t parity = prefixXor(sclk);
+    // Nearly every group is one edge: an edge that ends its group, after an edge that
+    // ended the one before (or first in the run, the open group settled).
+    const std::uint64_t alone = ends & ((ends << 1) | (std::uint64_t(1) << a));
+    Word w = word_;
+    for (; to; to &= to - 1) {
+        const int i = std::countr_zero(to);
+        int g = i;  // the group's last edge
+        if (!((alone >> i) & 1)) {
+            const std::uint64_t later = ends >> i;
+            if (!later) break;  // in the open group
+            g = i + std::countr_zero(later);
+            if (sclk & bitsFrom(i + 1, g + 1)) continue;  // not the group's last sclk edge
+            const std::uint64_t before = ends & bitsFrom(0, i);
+            const int first = before ? highestBit(before) + 1 : a;
+            if (!(((parity >> i) ^ (first > 0 ? parity >> (first - 1) : 0)) & 1)) continue;
+        }
+        const Tick t = e[g].t;
+        if (takeBit(w, t,
+                    unsigned((mosi_at >> g) & 1) << kSpiMosi | unsigned((miso_at >> g) & 1)
+                                                                   << kSpiMiso)) {
+            word_ = w;
+            wordDone(t);
+            w = word_;
+        }
+    }
+    word_ = w;
+}
+
 Tick SpiDecoder::watermark(Tick now) const {
-    if (count_ > 0) return word_start_;
+    if (word_.count > 0) return word_.start;
     return lines_.open ? lines_.tick : now;
 }
 
@@ -67,7 +284,7 @@ void SpiDecoder::settle(Lines& s) {
     const unsigned changed = s.level ^ s.settled;
     if (changed & bound_ & bit(kSpiCs)) {
         // Any cs change ends the word in progress (sigrok resets its state likewise).
-        if (count_ > 0 && csActive(s.settled)) emitWord(t, true);
+        if (word_.count > 0 && csActive(s.settled)) emitWord(t, true);
         resetWord();
     }
     const bool sampling =
@@ -76,24 +293,28 @@ void SpiDecoder::settle(Lines& s) {
     if (sampling && (!(bound_ & bit(kSpiCs)) || csActive(s.level))) sampleBit(t, s.level);
 }
 
-void SpiDecoder::sampleBit(Tick t, unsigned level) {
-    if (count_ == 0) {
-        word_start_ = t;
-        prev_sample_ = t;
+bool SpiDecoder::takeBit(Word& w, Tick t, unsigned level) const {
+    if (w.count == 0) {
+        w.start = t;
+        w.prev_sample = t;
     } else {
-        prev_sample_ = last_sample_;
+        w.prev_sample = w.last_sample;
     }
-    last_sample_ = t;
-    if (bound_ & bit(kSpiMosi)) mosi_.push(level & bit(kSpiMosi));
-    if (bound_ & bit(kSpiMiso)) miso_.push(level & bit(kSpiMiso));
-    if (++count_ == bits_) wordDone(t);
+    w.last_sample = t;
+    if (bound_ & bit(kSpiMosi)) w.mosi.push(level & bit(kSpiMosi));
+    if (bound_ & bit(kSpiMiso)) w.miso.push(level & bit(kSpiMiso));
+    return ++w.count == bits_;
+}
+
+void SpiDecoder::sampleBit(Tick t, unsigned level) {
+    if (takeBit(word_, t, level)) wordDone(t);
 }
 
 void SpiDecoder::wordDone(Tick t) {
     // sigrok's end estimate: one bit period (the last sample interval) after the last bit.
     // Saturated: an absurd gap before the last bit must not overflow (fuzz finding;
     // period >= 0 as edges come in time order, so max - period cannot overflow).
-    const Tick period = t - prev_sample_;
+    const Tick period = t - word_.prev_sample;
     emitWord(t > std::numeric_limits<Tick>::max() - period ? std::numeric_limits<Tick>::max()
                                                            : t + period,
              false);
@@ -102,14 +323,15 @@ void SpiDecoder::wordDone(Tick t) {
 
 void SpiDecoder::emitWord(Tick end, bool short_frame) {
     ++words_;
-    if (short_frame) short_bits_ = ++short_words_ == 1 || short_bits_ == count_ ? count_ : -1;
+    if (short_frame)
+        short_bits_ = ++short_words_ == 1 || short_bits_ == word_.count ? word_.count : -1;
     EventPtr owned = freshEvent();
     Event& e = *owned;
     e.proto = "spi";
     e.type = "transfer";
-    e.start = word_start_;
-    e.end = std::max(end, word_start_);
-    const int n = count_;
+    e.start = word_.start;
+    e.end = std::max(end, word_.start);
+    const int n = word_.count;
     const int digits = (n + 3) / 4;
     ShortLine text;  // at most 64 bits: "MOSI 0x" + 16 digits, twice, and the short note
     bool first = true;
@@ -128,8 +350,8 @@ void SpiDecoder::emitWord(Tick end, bool short_frame) {
         first = false;
         text.text(label).text(" 0x").hex(v, digits);
     };
-    put("mosi", "MOSI", mosi_, bound_ & bit(kSpiMosi));
-    put("miso", "MISO", miso_, bound_ & bit(kSpiMiso));
+    put("mosi", "MOSI", word_.mosi, bound_ & bit(kSpiMosi));
+    put("miso", "MISO", word_.miso, bound_ & bit(kSpiMiso));
     if (fields) e.add("bits", std::int64_t(n));
     if (short_frame) {
         e.error("short_frame");
@@ -141,9 +363,9 @@ void SpiDecoder::emitWord(Tick end, bool short_frame) {
 }
 
 void SpiDecoder::resetWord() {
-    mosi_.clear();
-    miso_.clear();
-    count_ = 0;
+    word_.mosi.clear();
+    word_.miso.clear();
+    word_.count = 0;
     word_glitch_ = false;
 }
 
@@ -151,12 +373,12 @@ void SpiDecoder::glitch(Tick t, int role) {
     (void)t;
     // A removed pulse on a line of the word in progress makes that word doubtful.
     if (role == kSpiSclk || role == kSpiMosi || role == kSpiMiso || role == kSpiCs)
-        if (count_ > 0) word_glitch_ = true;
+        if (word_.count > 0) word_glitch_ = true;
 }
 
 void SpiDecoder::finish(Tick end) {
     if (lines_.open) settle(lines_);
-    if (count_ > 0) emitWord(end, true);
+    if (word_.count > 0) emitWord(end, true);
     resetWord();
 }
 

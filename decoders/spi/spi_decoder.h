@@ -50,6 +50,12 @@ private:
     // Applies every edge seen at s.tick at once (see the header comment).
     [[gnu::always_inline]] inline void settle(Lines& s);
     [[gnu::always_inline]] inline void sampleBit(Tick t, unsigned level);
+    // edges()'s fast path (spi_decoder.cpp): 64 edges at a time as bit masks.
+    struct Window;
+    bool classify(const Edge* e, const int* role_of_line, Window& m);
+    void run(Lines& s, const Edge* e, const Window& m, int a, int b, const int* role_of_line);
+    void sampleRun(const Edge* e, std::uint64_t to, std::uint64_t sclk, std::uint64_t ends, int a,
+                   std::uint64_t mosi_at, std::uint64_t miso_at);
     void wordDone(Tick t);
     void emitWord(Tick end, bool short_frame);
     void resetWord();
@@ -61,13 +67,22 @@ private:
     bool sample_on_rising_;
 
     unsigned bound_ = 0;  // roles bound to a line, one bit per role
+    // The line of each role as edges() has seen it (-1: none yet), for classify().
+    int line_of_[kSpiRoleCount] = {-1, -1, -1, -1};
     Lines lines_;
 
-    BitWord mosi_, miso_;
-    int count_ = 0;
-    Tick word_start_ = 0;
-    Tick last_sample_ = 0;
-    Tick prev_sample_ = 0;
+    // The word in progress. edges()'s fast path copies it into a local for its loop, so
+    // that it stays in registers (a member is stored and reloaded on every bit).
+    struct Word {
+        BitWord mosi, miso;
+        int count = 0;
+        Tick start = 0;
+        Tick last_sample = 0;
+        Tick prev_sample = 0;
+    };
+    // One sampled bit onto `w`: true when the word is complete (wordDone() then follows).
+    [[gnu::always_inline]] inline bool takeBit(Word& w, Tick t, unsigned level) const;
+    Word word_;
     bool word_glitch_ = false;
     std::int64_t words_ = 0, short_words_ = 0;
     int short_bits_ = -1;  // the bits every short word had (-1: none, or they differ)

@@ -157,28 +157,34 @@ struct CheckingSink : OutputSink {
 
 // The decoder fed directly the edges a session would hand it (mapped lines only, each
 // a change of its line's level), three times: one at a time through its general path
-// (Decoder::edgeReference), one at a time through edge(), and in blocks of five through
-// edges(). Every event, field for field, and the advice must be the same. BiSS-C takes
-// a frame's data in runs with the frame's state in locals (BisscDecoder::dataRun): this
-// is the oracle for that loop.
+// (Decoder::edgeReference), one at a time through edge(), and through edges() in blocks
+// of five and of a session's size. Every event, field for field, and the advice must be
+// the same. BiSS-C takes a frame's data in runs with the frame's state in locals
+// (BisscDecoder::dataRun), SPI 64 edges at a time as bit masks (SpiDecoder::edges): this
+// is the oracle for those loops.
 void checkBlocksMatchEdges(const DecoderFactory& factory, const Waveform& w,
                            const DecoderRequest& req, const std::vector<int>& line_of_role) {
-    std::vector<std::string> reference, one_by_one, in_blocks;
+    std::vector<std::string> reference, one_by_one, in_blocks, in_big_blocks;
     try {
         const Options options = Options::resolve(factory.info(), req.options);
         reference = decodeDirectly(factory, options, w, line_of_role, Feed::Reference);
         one_by_one = decodeDirectly(factory, options, w, line_of_role, Feed::OneByOne);
         in_blocks = decodeDirectly(factory, options, w, line_of_role, Feed::Blocks, 5);
+        in_big_blocks =
+            decodeDirectly(factory, options, w, line_of_role, Feed::Blocks, kEdgeBlockSize);
     } catch (const InputError&) {
         return;  // refused up front, as decodeChecked() found
     }
-    for (const auto* fed : {&one_by_one, &in_blocks}) {
+    for (const auto* fed : {&one_by_one, &in_blocks, &in_big_blocks}) {
         for (std::size_t i = 0; i < std::max(reference.size(), fed->size()); ++i) {
             const std::string a = i < reference.size() ? reference[i] : "(none)";
             const std::string b = i < fed->size() ? (*fed)[i] : "(none)";
             if (a != b)
                 failure(fmt::format("event {} on the general path: {}; {}: {}", i, a,
-                                    fed == &one_by_one ? "through edge()" : "in blocks", b));
+                                    fed == &one_by_one  ? "through edge()"
+                                    : fed == &in_blocks ? "in blocks of 5"
+                                                        : "in blocks of 16384",
+                                    b));
         }
     }
 }
