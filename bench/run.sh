@@ -237,7 +237,7 @@ for s in $((size / 4)) $((size / 2)) "$size" "$big"; do
     gen spi vcd "$s" "$name" >/dev/null
     echo "timing $name ..." >&2
     # shellcheck disable=SC2086
-    read -r t c < <(median 3 "$decode" "$tmp/$name" $spi_args)
+    read -r t c < <(median "$runs" "$decode" "$tmp/$name" $spi_args)
     if [ -n "$prev" ]; then curve+=" -> ${s} MB $(fmt_s "$c") s (x$(ratio "$c" "$prev"))"; else curve="${s} MB $(fmt_s "$c") s"; fi
     prev="$c"
     [ "$s" = "$big" ] && mem_big="$(peak_mb "$decode" "$tmp/$name" $spi_args)" && big_file="$tmp/$name"
@@ -271,8 +271,8 @@ for i in 1 2 3 4; do
     vfiles+=("$tmp/verify_$i.vcd")
 done
 printf '[bissc]\nmax_crc_errors = 0\nmin_frames = 1\nmax_faults = 0\n\n[decode]\nproto = ["bissc"]\n' >"$tmp/rules.toml"
-read -r t_j1 c_j1 < <(median 3 "$decode" verify "${vfiles[@]}" --rules "$tmp/rules.toml" --jobs 1)
-read -r t_jn c_jn < <(median 3 "$decode" verify "${vfiles[@]}" --rules "$tmp/rules.toml" --jobs "$(nproc)")
+read -r t_j1 c_j1 < <(median "$runs" "$decode" verify "${vfiles[@]}" --rules "$tmp/rules.toml" --jobs 1)
+read -r t_jn c_jn < <(median "$runs" "$decode" verify "${vfiles[@]}" --rules "$tmp/rules.toml" --jobs "$(nproc)")
 r_jobs="$(ratio "$t_j1" "$t_jn")"
 # One job already runs its reader on a second thread, so the speed-up of --jobs N is
 # bounded by how idle the cores were with --jobs 1; the target is that --jobs N keeps
@@ -285,7 +285,7 @@ row "verify, 4 x $(mb "${vfiles[0]}") MB BiSS-C VCD: --jobs 1 vs --jobs $(nproc)
     "uses every core" "$(verdict "$busy_n >= 0.85 * $(nproc)")"
 # Each capture read and decoded on one thread (--threads 1), N at a time: no hand-over
 # between threads, for a batch with at least as many captures as cores.
-read -r t_j1t c_j1t < <(median 3 "$decode" verify "${vfiles[@]}" --rules "$tmp/rules.toml" --jobs "$(nproc)" --threads 1)
+read -r t_j1t c_j1t < <(median "$runs" "$decode" verify "${vfiles[@]}" --rules "$tmp/rules.toml" --jobs "$(nproc)" --threads 1)
 row "verify, 4 x $(mb "${vfiles[0]}") MB BiSS-C VCD: --jobs $(nproc) --threads 1 vs --jobs $(nproc)" "" \
     "--threads 1: $(fmt_s "$t_j1t") s wall, $(fmt_s "$c_j1t") s CPU ($(ratio "$c_j1t" "$t_j1t") cores busy)" \
     "--jobs $(nproc) as above: --threads 1 **$(ratio "$t_jn" "$t_j1t")x** faster" "(none)" "-"
