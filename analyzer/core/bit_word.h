@@ -13,12 +13,14 @@ public:
         count_ = 0;
     }
     void push(bool bit) {
-        if (lsb_first_) {
-            if (count_ < 64) value_ |= std::uint64_t(bit) << count_;
-        } else {
-            value_ = (value_ << 1) | std::uint64_t(bit);
-        }
+        value_ = pushed(value_, count_, bit, lsb_first_);
         ++count_;
+    }
+    // push() on a word kept elsewhere: `value` holding `count` bits, `bit` pushed on
+    // (SPI keeps its words in plain integers, for a loop that holds them in registers).
+    static std::uint64_t pushed(std::uint64_t value, int count, bool bit, bool lsb_first) {
+        if (!lsb_first) return (value << 1) | std::uint64_t(bit);
+        return count < 64 ? value | (std::uint64_t(bit) << count) : value;
     }
     std::uint64_t value() const { return value_; }
     int count() const { return count_; }

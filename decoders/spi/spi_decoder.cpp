@@ -23,8 +23,7 @@ SpiDecoder::SpiDecoder(const Options& o)
       lsb_first_(o.flag("lsb_first")),
       cs_active_high_(o.text("cs_polarity") == "active-high"),
       // Modes 0 and 3 sample on the rising edge, modes 1 and 2 on the falling edge.
-      sample_on_rising_(cpol_ == cpha_),
-      word_{BitWord(o.flag("lsb_first")), BitWord(o.flag("lsb_first"))} {}
+      sample_on_rising_(cpol_ == cpha_) {}
 
 void SpiDecoder::start(const DecoderContext& ctx) {
     Decoder::start(ctx);
@@ -301,8 +300,10 @@ bool SpiDecoder::takeBit(Word& w, Tick t, unsigned level) const {
         w.prev_sample = w.last_sample;
     }
     w.last_sample = t;
-    if (bound_ & bit(kSpiMosi)) w.mosi.push(level & bit(kSpiMosi));
-    if (bound_ & bit(kSpiMiso)) w.miso.push(level & bit(kSpiMiso));
+    if (bound_ & bit(kSpiMosi))
+        w.mosi = BitWord::pushed(w.mosi, w.count, level & bit(kSpiMosi), lsb_first_);
+    if (bound_ & bit(kSpiMiso))
+        w.miso = BitWord::pushed(w.miso, w.count, level & bit(kSpiMiso), lsb_first_);
     return ++w.count == bits_;
 }
 
@@ -338,13 +339,13 @@ void SpiDecoder::emitWord(Tick end, bool short_frame) {
     // Fields only when a sink or another decoder reads them: text output prints the
     // summary alone (bench/README.md, stop 23).
     const bool fields = fieldsWanted();
-    auto put = [&](const char* key, const char* label, const BitWord& w, bool bound) {
+    auto put = [&](const char* key, const char* label, std::uint64_t w, bool bound) {
         if (!bound) {
             if (fields) e.add(key, Null{});
             return;
         }
         // MSB-first words keep the newest 64 bits; LSB-first words the first 64.
-        std::uint64_t v = lowBits(w.value(), n);
+        std::uint64_t v = lowBits(w, n);
         if (fields) e.add(key, v);
         if (!first) text.text(" ");
         first = false;
@@ -363,8 +364,7 @@ void SpiDecoder::emitWord(Tick end, bool short_frame) {
 }
 
 void SpiDecoder::resetWord() {
-    word_.mosi.clear();
-    word_.miso.clear();
+    word_.mosi = word_.miso = 0;
     word_.count = 0;
     word_glitch_ = false;
 }

@@ -71,10 +71,11 @@ private:
     int line_of_[kSpiRoleCount] = {-1, -1, -1, -1};
     Lines lines_;
 
-    // The word in progress. edges()'s fast path copies it into a local for its loop, so
-    // that it stays in registers (a member is stored and reloaded on every bit).
+    // The word in progress, in plain integers: edges()'s fast path copies it into a local
+    // for its loop, where the compiler keeps it in registers (a member is stored and
+    // reloaded on every bit). The bits as BitWord::pushed() pushes them.
     struct Word {
-        BitWord mosi, miso;
+        std::uint64_t mosi = 0, miso = 0;
         int count = 0;
         Tick start = 0;
         Tick last_sample = 0;
