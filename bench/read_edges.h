@@ -32,7 +32,9 @@ inline std::unique_ptr<CaptureReader> openSelected(const std::string& path, cons
 
 // Reads the whole file and returns the number of edges.
 inline std::uint64_t readEdges(const std::string& path, int only = -1) {
-    auto reader = openSelected(path, {}, only);
+    OpenOptions one_thread;  // the tokeniser alone: no thread reads the file ahead of it
+    one_thread.read_file_ahead = false;
+    auto reader = openSelected(path, one_thread, only);
     (void)reader->initialLevels();
     EdgeBlock block;
     std::uint64_t edges = 0;

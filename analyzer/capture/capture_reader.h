@@ -64,6 +64,9 @@ struct OpenOptions {
     // --threads 2 (the default): decodeCapture() reads ahead on a second thread; false
     // (--threads 1): reads and decodes on the caller's thread alone.
     bool read_ahead = true;
+    // With read_ahead: a regular file, not followed, is also read ahead into memory on a
+    // third thread (FileReadAhead), so that the kernel's copy runs beside the tokeniser.
+    bool read_file_ahead = true;
     // Set (e.g. by Ctrl-C) to make a following reader return at its next poll.
     const std::atomic<bool>* stop = nullptr;
 };

@@ -14,6 +14,7 @@
 #include <fmt/format.h>
 
 #include "core/options.h"
+#include "file_read_ahead.h"
 
 namespace busdecode {
 
@@ -42,6 +43,7 @@ TextSource::TextSource(const std::string& path, const OpenOptions& opts) : opts_
     pipe_ = !S_ISREG(st.st_mode);
     if (!pipe_) total_ = std::uint64_t(st.st_size);
     if (!pipe_ && !opts_.follow) posix_fadvise(fd_, 0, 0, POSIX_FADV_SEQUENTIAL);
+    read_file_ahead_ = !pipe_ && !opts_.follow && opts_.read_ahead && opts_.read_file_ahead;
     cap_ = kInitialBuffer;
     buf_ = static_cast<char*>(std::malloc(cap_));
     if (!buf_) throw std::bad_alloc();
@@ -49,6 +51,7 @@ TextSource::TextSource(const std::string& path, const OpenOptions& opts) : opts_
 }
 
 TextSource::~TextSource() {
+    ahead_.reset();  // its thread reads fd_
     std::free(buf_);
     if (fd_ > 0) ::close(fd_);
 }
@@ -65,8 +68,41 @@ bool TextSource::stopRequested() const {
     return opts_.stop && opts_.stop->load(std::memory_order_relaxed);
 }
 
+std::size_t TextSource::fillFromChunk() {
+    const FileReadAhead::Chunk c = ahead_->next();
+    if (c.size == 0) {
+        eof_ = true;  // the unread tail stays where it is: its chunk stays valid
+        return 0;
+    }
+    const std::size_t keep = std::size_t(end_ - pos_);
+    consumed_base_ += std::uint64_t(pos_ - base_);
+    char* start;
+    if (keep <= FileReadAhead::kHeadroom) {
+        start = c.data - keep;
+        std::memmove(start, pos_, keep);
+    } else {
+        // A long line across the chunk's start (at most kMaxLine: the callers check):
+        // it and the chunk are put together in carry_ (the tail may be in carry_ now).
+        spare_carry_.assign(pos_, end_);
+        spare_carry_.insert(spare_carry_.end(), c.data, c.data + c.size);
+        carry_.swap(spare_carry_);
+        start = carry_.data();
+    }
+    base_ = pos_ = start;
+    end_ = start + keep + c.size;
+    file_off_ += c.size;
+    return c.size;
+}
+
 std::size_t TextSource::fill() {
     if (eof_) return 0;
+    if (ahead_) return fillFromChunk();
+    // The read-ahead starts with the second read: the first (format sniffing and the
+    // header) may be all there is, or all that is wanted (a .sr goes to libzip).
+    if (read_file_ahead_ && file_off_ > 0 && file_off_ < total_) {
+        ahead_ = std::make_unique<FileReadAhead>(fd_, name_);
+        return fillFromChunk();
+    }
     // Keep the unread tail, drop what was consumed.
     if (pos_ != buf_) {
         std::size_t keep = std::size_t(end_ - pos_);

@@ -1,16 +1,22 @@
 #pragma once
-// Complete lines of a text capture, scanned in place with memchr: files, standard input
-// and pipes are read into one reusable buffer. Memory stays flat whatever the file
-// size: the buffer only grows to the longest line.
+// Complete lines of a text capture, scanned in place with memchr: standard input, pipes
+// and followed files are read into one reusable buffer; other files too, or, with
+// OpenOptions::read_file_ahead, past their first read, into the chunks a thread of their
+// own reads ahead (FileReadAhead). Memory stays flat whatever the file size: the buffer
+// only grows to the longest line, and the chunks are a ring of 8 MB.
 #include <cstdint>
 #include <cstring>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "capture_reader.h"
 
 namespace busdecode {
+
+class FileReadAhead;
 
 class TextSource {
 public:
@@ -55,7 +61,7 @@ public:
         // The line as it is in the buffer: from its start to where nextLine() left pos_.
         const char* const raw = line.data();
         const auto at = reinterpret_cast<std::uintptr_t>(raw);
-        if (at < reinterpret_cast<std::uintptr_t>(buf_) ||
+        if (at < reinterpret_cast<std::uintptr_t>(base_) ||
             at >= reinterpret_cast<std::uintptr_t>(pos_))
             return 0;
         const std::size_t len = std::size_t(pos_ - raw);
@@ -110,6 +116,8 @@ private:
     std::optional<Status> noNewline(std::string_view& rest);
     // Reads more into the buffer; returns bytes added (0 = nothing now or at the end).
     std::size_t fill();
+    // fill() from the read-ahead's next chunk: the unread tail moves in front of it.
+    std::size_t fillFromChunk();
     bool stopRequested() const;
     void skipByteOrderMark();
 
@@ -127,6 +135,11 @@ private:
     std::uint64_t file_off_ = 0;       // bytes read from the fd so far
     std::uint64_t total_ = 0;
     std::uint64_t line_no_ = 0;
+    // A regular file read ahead on its own thread (OpenOptions::read_file_ahead): the
+    // data is then in its chunks, or in carry_ when a tail did not fit the headroom.
+    bool read_file_ahead_ = false;  // start ahead_ at the second read
+    std::unique_ptr<FileReadAhead> ahead_;
+    std::vector<char> carry_, spare_carry_;
 };
 
 }  // namespace busdecode
