@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <bit>
-#include <cstring>
 #include <limits>
 
 #if defined(__SSE2__)
@@ -143,7 +142,7 @@ bool SpiDecoder::classify(const Edge* e, const int* role_of_line, Window& m) {
         // An edge of a line not seen before: learn its role once, if it has one.
         bool learnt = false;
         for (std::uint64_t unknown = ~known; unknown; unknown &= unknown - 1) {
-            const unsigned line = (e[std::countr_zero(unknown)].line);
+            const unsigned line = e[std::countr_zero(unknown)].line;
             const int r = role_of_line[line];
             if (r >= 0 && r < kSpiRoleCount && line_of_[r] < 0) {
                 line_of_[r] = int(line);
@@ -170,29 +169,28 @@ void SpiDecoder::edges(const Edge* first, const Edge* last, const int* role_of_l
         if (line_of_[r] >= 0 && role_of_line[line_of_[r]] != r)
             std::fill(std::begin(line_of_), std::end(line_of_), -1);
     Lines s = lines_;
-    const auto stepTo = [&](const Edge* stop) {
-        for (; first != stop; ++first)
-            step(s, first->t, role_of_line[first->line], first->level != 0);
-    };
     Window m;
-    while (last - first > kWindow) {
+    for (; last - first > kWindow; first += kWindow) {
         if (!classify(first, role_of_line, m)) {
-            stepTo(first + kWindow);
+            steps(s, first, first + kWindow, role_of_line);
             continue;
         }
-        const Edge* const base = first;
+        // Runs between the slow edges through run(), each slow edge through step().
         for (int a = 0; a < kWindow;) {
             const std::uint64_t slow = m.slow & bitsFrom(a, kWindow);
             const int b = slow ? std::countr_zero(slow) : kWindow;
-            if (b > a) run(s, base, m, a, b, role_of_line);
-            first = base + b;
-            if (b < kWindow) stepTo(first + 1);
+            if (b > a) run(s, first, m, a, b, role_of_line);
+            if (b < kWindow) steps(s, first + b, first + b + 1, role_of_line);
             a = b + 1;
         }
-        first = base + kWindow;
     }
-    stepTo(last);
+    steps(s, first, last, role_of_line);
     lines_ = s;
+}
+
+void SpiDecoder::steps(Lines& s, const Edge* first, const Edge* last, const int* role_of_line) {
+    for (; first != last; ++first)
+        step(s, first->t, role_of_line[first->line], first->level != 0);
 }
 
 // Edges e[a..b): sclk, mosi and miso only, as classify() found.
@@ -213,8 +211,7 @@ void SpiDecoder::run(Lines& s, const Edge* e, const Window& m, int a, int b,
                         miso_at = levels(miso, kSpiMiso);
     if (((sclk_at ^ m.high) & sclk) | ((mosi_at ^ m.high) & mosi) | ((miso_at ^ m.high) & miso)) {
         // A level repeated (not from a session): the masks' parity does not hold.
-        for (; a < b; ++a)
-            step(s, e[a].t, role_of_line[e[a].line], e[a].level != 0);
+        steps(s, e + a, e + b, role_of_line);
         return;
     }
     // Groups that end inside the run (the next edge, in it or after it, is later).

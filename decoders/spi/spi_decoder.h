@@ -50,6 +50,8 @@ private:
     // Applies every edge seen at s.tick at once (see the header comment).
     [[gnu::always_inline]] inline void settle(Lines& s);
     [[gnu::always_inline]] inline void sampleBit(Tick t, unsigned level);
+    // step() for each edge of [first, last).
+    void steps(Lines& s, const Edge* first, const Edge* last, const int* role_of_line);
     // edges()'s fast path (spi_decoder.cpp): 64 edges at a time as bit masks.
     struct Window;
     bool classify(const Edge* e, const int* role_of_line, Window& m);
