@@ -25,8 +25,9 @@ public:
 
     void start(const DecoderContext& ctx) override;
     void edge(Tick t, int role, bool level) override;
-    // The block loop keeps the line state in registers (a member copy would be stored
-    // and reloaded around every edge: Edge::t and the state's ticks may alias).
+    // Between chip-select changes 64 edges at a time as bit masks (spi_decoder.cpp), the
+    // rest through step(); the line state is kept in a local (a member copy would be
+    // stored and reloaded around every edge: Edge::t and the state's ticks may alias).
     void edges(const Edge* first, const Edge* last, const int* role_of_line) override;
     void advance(Tick now) override;
     void finish(Tick end) override;
