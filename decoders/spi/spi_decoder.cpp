@@ -74,11 +74,11 @@ inline std::uint64_t prefixXor(std::uint64_t x) {
     return x;
 }
 
-// Bits a..b-1 (0 <= a, b <= 64; none when a >= b). No shift by 64: the sampling loop asks
-// for the bits after edge 63 (fuzz finding).
+// Bits a..b-1 (0 <= a, b <= 64; none when a >= b). a < 64 whenever a < b, so no shift
+// by 64: the sampling loop asks for the bits after edge 63 (fuzz finding).
 inline std::uint64_t bitsFrom(int a, int b) {
     if (a >= b) return 0;
-    return (~std::uint64_t(0) >> (64 - (b - a))) << a;
+    return lowBits(~std::uint64_t(0), b - a) << a;
 }
 
 inline int highestBit(std::uint64_t x) {
