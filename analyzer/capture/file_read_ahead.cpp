@@ -90,18 +90,14 @@ void FileReadAhead::run() {
 
 FileReadAhead::Chunk FileReadAhead::next() {
     std::unique_lock<std::mutex> lock(m_);
-    if (read_ <= handed_) {
-        if (done_) {
-            if (!error_.empty()) throw InputError(error_);
-            return {};
-        }
+    if (read_ <= handed_ && !done_) {
         consumer_waiting_ = true;
         ready_.wait(lock, [&] { return read_ > handed_ || done_; });
         consumer_waiting_ = false;
-        if (read_ <= handed_) {
-            if (!error_.empty()) throw InputError(error_);
-            return {};
-        }
+    }
+    if (read_ <= handed_) {  // nothing left: the end, or a read error
+        if (!error_.empty()) throw InputError(error_);
+        return {};
     }
     const std::uint64_t slot = handed_ % kChunks;
     ++handed_;
