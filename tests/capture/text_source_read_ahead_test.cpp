@@ -28,34 +28,37 @@ OpenOptions withReadAhead(bool on) {
     return o;
 }
 
-// Every line through nextLine(), with its number, then the byte count; or the error.
-std::string byLine(const std::string& path, bool ahead) {
+// What `read` takes out of the file, then `sep` and the byte count; or `sep` and the
+// error.
+template <class Read>
+std::string readWith(const std::string& path, bool ahead, const char* sep, Read read) {
     std::string out;
     try {
         TextSource src(path, withReadAhead(ahead));
-        std::string_view line;
-        while (src.nextLine(line) == TextSource::Status::Line)
-            out.append(std::to_string(src.lineNo())).append(":").append(line).append("\n");
-        out += "bytes " + std::to_string(src.bytesRead());
+        read(src, out);
+        out += std::string(sep) + "bytes " + std::to_string(src.bytesRead());
     } catch (const InputError& e) {
-        out += std::string("error ") + e.what();
+        out += std::string(sep) + "error " + e.what();
     }
     return out;
 }
 
+// Every line through nextLine(), with its number, then the byte count; or the error.
+std::string byLine(const std::string& path, bool ahead) {
+    return readWith(path, ahead, "", [](TextSource& src, std::string& out) {
+        std::string_view line;
+        while (src.nextLine(line) == TextSource::Status::Line)
+            out.append(std::to_string(src.lineNo())).append(":").append(line).append("\n");
+    });
+}
+
 // The runs of nextLines(), put back together; or the error.
 std::string byRun(const std::string& path, bool ahead) {
-    std::string out;
-    try {
-        TextSource src(path, withReadAhead(ahead));
+    return readWith(path, ahead, "|", [](TextSource& src, std::string& out) {
         std::string_view text;
         while (src.nextLines(text, 1) == TextSource::Status::Line)
             out.append(text);
-        out += "|bytes " + std::to_string(src.bytesRead());
-    } catch (const InputError& e) {
-        out += std::string("|error ") + e.what();
-    }
-    return out;
+    });
 }
 
 // Lines of random lengths from 0 to `longest` bytes, some ending in CRLF.
