@@ -26,7 +26,7 @@ constexpr double kMinQuietNs = 20000.0;
 
 BisscDecoder::BisscDecoder(const Options& options)
     : s_(BisscSettings::from(options)),
-      crc_(BitCrc::fromFullPoly(s_.crc_poly, s_.crc_init, s_.crc_inverted)),
+      crc_(BitCrc::fromFullPoly(s_.crc_poly, s_.crc_init, s_.crc_inverted), s_.bits + 2),
       control_([this](Event&& e) { emit(std::move(e)); }) {}
 
 void BisscDecoder::start(const DecoderContext& ctx) {
@@ -468,11 +468,10 @@ void BisscDecoder::closeFrame(Tick end, Tick timeout_end, const char* error, boo
     if (complete) {
         pos = lowBits(f_.data, pos_bits);
         if (s_.crc_bits > 0) {
-            crc_.reset();
-            crc_.pushBits(f_.data, s_.bits);
-            crc_.push(f_.ne);
-            crc_.push(f_.nw);
-            crc_good = crc_.value() == f_.crc_rx;
+            // The message: the data bits, then nE and nW (66 bits at most).
+            const std::uint64_t low =
+                (f_.data << 2) | std::uint64_t((f_.ne & 1) << 1) | std::uint64_t(f_.nw & 1);
+            crc_good = crc_.of(low, f_.data >> 62) == f_.crc_rx;
             if (!crc_good) e.error("crc");
         }
         if (f_.ne == 0) e.error("error_bit");

@@ -279,7 +279,7 @@ private:
     bool isClockPhase(double length, bool level) const;
 
     BisscSettings s_;
-    BitCrc crc_;  // the frame CRC's polynomial and table, reset for every frame
+    FixedLengthCrc crc_;  // the frame CRC, over the data bits, nE and nW
     BisscControlReassembler control_;
     LineSampler sampler_;
     State state_ = State::Idle;

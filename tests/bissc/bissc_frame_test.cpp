@@ -8,6 +8,7 @@
 
 #include "bissc_generator.h"
 #include "bissc_test_util.h"
+#include "core/bit_word.h"
 
 using namespace busdecode;
 using namespace busdecode::test;
@@ -659,6 +660,36 @@ TEST(BisscFrames, RandomConfigurationsDecodeExactly) {
             EXPECT_NEAR(double(intField(frames[i], "line_delay_ns")), cfg.line_delay_ns,
                         cfg.timebase.nsPerTick() + cfg.jitter_ns + 1)
                 << i;
+        }
+    }
+}
+
+TEST(BisscFrames, WidestFramesCheckTheirCrc) {
+    // The CRC covers the data, nE and nW: 66 bits for 64 data bits, past one 64-bit word
+    // (FixedLengthCrc's high part). Every width from 60 up, right and corrupted CRCs.
+    std::mt19937_64 rng(33);
+    for (int bits = 60; bits <= 64; ++bits) {
+        SCOPED_TRACE(::testing::Message() << bits << " bits");
+        BisscGenConfig cfg;
+        cfg.bits = bits;
+        cfg.seed = std::uint32_t(bits);
+        BisscGenerator gen(cfg);
+        for (int i = 0; i < 8; ++i) {
+            BisscFrameSpec f;
+            f.data = lowBits(rng(), bits);
+            f.ne = int(rng() & 1);
+            f.nw = int(rng() & 1);
+            f.corrupt_crc = i % 2 == 1;
+            gen.addFrame(f);
+        }
+        const auto frames =
+            ofType(decodeBissc(gen.build(), {{"bits", std::to_string(bits)}}), "frame");
+        ASSERT_EQ(frames.size(), gen.frames().size());
+        for (std::size_t i = 0; i < frames.size(); ++i) {
+            const auto& t = gen.frames()[i];
+            EXPECT_EQ(std::get<std::uint64_t>(*frames[i].get("position")), t.spec.data) << i;
+            EXPECT_EQ(std::get<bool>(*frames[i].get("crc_ok")), t.crc_ok) << i;
+            EXPECT_EQ(t.crc_ok, i % 2 == 0) << i;
         }
     }
 }

@@ -67,3 +67,38 @@ TEST(Gray, ReferencePairs) {
     for (std::uint64_t v : {0ull, 1ull, 0xFFFFFFFFFFFFFFFFull, 0x8000000000000000ull, 123456789ull})
         EXPECT_EQ(grayToBinary(binaryToGray(v)), v);
 }
+
+TEST(FixedLengthCrc, AsBitByBit) {
+    // of() looks up one table per byte of the message; it must give what pushing the
+    // message bit by bit gives, for every width, polynomial, start value and length up to
+    // 128 bits, whatever the bits above the message hold.
+    std::mt19937_64 rng(33);
+    for (int round = 0; round < 3000; ++round) {
+        const int width = 1 + int(rng() % 32);
+        const std::uint32_t mask = width == 32 ? 0xFFFFFFFFu : (1u << width) - 1u;
+        const BitCrc crc(width, std::uint32_t(rng()) & mask, std::uint32_t(rng()) & mask,
+                         std::uint32_t(rng()) & mask);
+        const int n = 1 + int(rng() % 128);
+        const FixedLengthCrc fixed(crc, n);
+        ASSERT_EQ(fixed.length(), n);
+        for (int message = 0; message < 8; ++message) {
+            const std::uint64_t low = rng(), high = rng();
+            BitCrc bitwise = crc;
+            bitwise.reset();
+            for (int i = n - 1; i >= 0; --i)
+                bitwise.push(i >= 64 ? (high >> (i - 64)) & 1u : (low >> i) & 1u);
+            ASSERT_EQ(fixed.of(low, high), bitwise.value())
+                << "width " << width << " n " << n << " message " << message;
+        }
+    }
+}
+
+TEST(FixedLengthCrc, BissCrc6Vectors) {
+    // The published vectors, through the table form BiSS-C's frames use (data, nE, nW).
+    const BitCrc crc6 = BitCrc::fromFullPoly(0x43, 0, true);
+    EXPECT_EQ(FixedLengthCrc(crc6, 26).of((0x05AC53ull << 2) | 0b00), 0b101111u);  // V2
+    EXPECT_EQ(FixedLengthCrc(crc6, 28).of((0x3FFFFFFull << 2) | 0b11), 0x22u);     // V4
+    EXPECT_EQ(FixedLengthCrc(crc6, 34).of((0x12345678ull << 2) | 0b00), 0x00u);    // V8
+    // Bits above the message are not part of it.
+    EXPECT_EQ(FixedLengthCrc(crc6, 15).of(~0ull << 15 | (0x0A5Aull << 2) | 0b10), 0x2Bu);  // V6
+}
