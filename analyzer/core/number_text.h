@@ -1,6 +1,7 @@
 #pragma once
 // Numbers appended to a string without a format-string interpreter, for summaries and
 // lines written once per word or frame (fmt's parser costs more than the digits).
+#include <algorithm>
 #include <cstdint>
 #include <cstring>
 #include <string>
@@ -62,8 +63,8 @@ void appendDecimal(std::string& out, Int v) {
 
 // A short line built in a stack buffer, piece by piece without a capacity check and a
 // call per piece (literal pieces become plain stores), then handed over at once: for the
-// summary of every frame. Pieces that would overflow the buffer are dropped; callers'
-// lines are bounded well below kCapacity.
+// summary of every frame. Pieces that would overflow the buffer are dropped (a number
+// needs room for the longest, 24 bytes); callers' lines are bounded well below kCapacity.
 class ShortLine {
 public:
     static constexpr std::size_t kCapacity = 256;
@@ -75,29 +76,61 @@ public:
         }
         return *this;
     }
-    ShortLine& dec(std::int64_t v) {
-        const fmt::format_int digits(v);
-        return text(std::string_view(digits.data(), digits.size()));
-    }
+    // Numbers are written into a scratch buffer, then copied whole (a fixed-size copy is
+    // a few stores; one of the digits' own length is a call to memcpy) and only the
+    // digits kept: about 125 instructions fewer per BiSS-C frame by callgrind
+    // (bench/README.md, stop 33).
     ShortLine& dec(std::uint64_t v) {
-        const fmt::format_int digits(v);
-        return text(std::string_view(digits.data(), digits.size()));
+        char scratch[2 * kNumber];
+        char* const end = scratch + kNumber;
+        char* p = end;
+        while (v >= 100) {
+            p -= 2;
+            std::memcpy(p, kPairs + 2 * (v % 100), 2);
+            v /= 100;
+        }
+        if (v >= 10) {
+            p -= 2;
+            std::memcpy(p, kPairs + 2 * v, 2);
+        } else {
+            *--p = char('0' + v);
+        }
+        return number(p, std::size_t(end - p));
+    }
+    ShortLine& dec(std::int64_t v) {
+        if (v >= 0) return dec(std::uint64_t(v));
+        text("-");
+        return dec(std::uint64_t(0) - std::uint64_t(v));  // INT64_MIN included
     }
     ShortLine& dec(int v) { return dec(std::int64_t(v)); }
-    // As appendHex.
+    // As appendHex, with min_digits at most 16 (a 64-bit value's digits).
     ShortLine& hex(std::uint64_t v, int min_digits) {
-        char buf[16];
-        const char* digits = detail::hexDigits(buf + 16, v);
-        const std::size_t n = std::size_t(buf + 16 - digits);
-        if (min_digits > int(n) && std::size_t(min_digits) - n <= kCapacity - n_) {
-            std::memset(buf_ + n_, '0', std::size_t(min_digits) - n);
-            n_ += std::size_t(min_digits) - n;
-        }
-        return text(std::string_view(digits, n));
+        char scratch[2 * kNumber];
+        std::memset(scratch, '0', kNumber);  // the padding, left of the digits
+        char* const end = scratch + kNumber;
+        const std::size_t digits = std::size_t(end - detail::hexDigits(end, v));
+        const std::size_t n = std::max(digits, std::size_t(std::clamp(min_digits, 1, 16)));
+        return number(end - n, n);
     }
     std::string_view view() const { return {buf_, n_}; }
 
 private:
+    static constexpr std::size_t kNumber = 24;  // at least 20 decimal digits
+    // "00" to "99", two characters each.
+    static constexpr char kPairs[] =
+        "00010203040506070809101112131415161718192021222324252627282930313233343536373839"
+        "40414243444546474849505152535455565758596061626364656667686970717273747576777879"
+        "8081828384858687888990919293949596979899";
+    // Keeps the n characters from `first`, copying kNumber from there: `first` lies in
+    // the first half of a scratch buffer of 2 * kNumber.
+    ShortLine& number(const char* first, std::size_t n) {
+        if (kNumber <= kCapacity - n_) {
+            std::memcpy(buf_ + n_, first, kNumber);
+            n_ += n;
+        }
+        return *this;
+    }
+
     char buf_[kCapacity];
     std::size_t n_ = 0;
 };

@@ -3,6 +3,7 @@
 // write what the string forms return.
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <random>
 
 #include <fmt/format.h>
@@ -135,11 +136,22 @@ TEST(NumberText, ShortLineAsTheFormatStringHad) {
     for (int i = 0; i < 20000; ++i) {
         const std::uint64_t u = rng() >> (rng() % 64);
         const auto s = std::int64_t(rng()) >> (rng() % 64);
-        const int width = int(rng() % 20);
+        const int width = int(rng() % 17);  // ShortLine::hex() pads to 16 digits at most
         ShortLine line;
         line.text("pos=").dec(u).text(" (0x").hex(u, width).text(") d=").dec(s).dec(int(s));
         ASSERT_EQ(line.view(), fmt::format("pos={} (0x{:0{}X}) d={}{}", u, u, width, s, int(s)));
     }
+    // The ends of the ranges, and the numbers where a digit is added.
+    for (const std::uint64_t u :
+         {std::uint64_t(0), std::uint64_t(9), std::uint64_t(10), std::uint64_t(99),
+          std::uint64_t(100), std::uint64_t(101), ~std::uint64_t(0)}) {
+        ShortLine line;
+        line.dec(u).text(" ").hex(u, 16).text(" ").dec(-std::int64_t(u % 1000));
+        ASSERT_EQ(line.view(), fmt::format("{} {:016X} {}", u, u, -std::int64_t(u % 1000)));
+    }
+    ShortLine extremes;
+    extremes.dec(std::numeric_limits<std::int64_t>::min()).text(" ").dec(std::int64_t(-1));
+    EXPECT_EQ(extremes.view(), fmt::format("{} -1", std::numeric_limits<std::int64_t>::min()));
 }
 
 TEST(NumberText, ShortLineDropsWhatWouldOverflow) {
