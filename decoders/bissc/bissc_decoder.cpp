@@ -173,7 +173,7 @@ void BisscDecoder::edge(Tick t, int role, bool level) {
             return;
         }
     }
-    edgeReference(t, role, level);
+    if (!takeAckWaitEdge(t, role, level)) edgeReference(t, role, level);
 }
 
 void BisscDecoder::edges(const Edge* first, const Edge* last, const int* role_of_line) {
@@ -185,7 +185,9 @@ void BisscDecoder::edges(const Edge* first, const Edge* last, const int* role_of
             first = dataRun(first, last, role_of_line);
             if (first == last) break;
         }
-        edgeReference(first->t, role_of_line[first->line], first->level != 0);
+        const int role = role_of_line[first->line];
+        if (!takeAckWaitEdge(first->t, role, first->level != 0))
+            edgeReference(first->t, role, first->level != 0);
         ++first;
     }
 }
@@ -231,6 +233,21 @@ bool BisscDecoder::takeDataEdge(const DataRefs& s, Tick t, int role, bool level)
         return false;
     s.sl = level;
     refineDelayOf(t, s.scheduled, s.period, s.delay, s.delay_sum, s.delay_edges);
+    return true;
+}
+
+bool BisscDecoder::takeAckWaitEdge(Tick t, int role, bool level) {
+    if (role != kMa || state_ != State::WaitAck || !sampler_.empty()) return false;
+    // onMa() with no sample to take (none is scheduled before the ACK), checkQuiet()
+    // finding nothing to do, then onMaAfterSamples()'s WaitAck case.
+    if (last_ma_edge_ != kNoTick && (t - last_ma_edge_ > quiet_ticks_ || masterGaveUp(t)))
+        return false;
+    ++slow_ma_edges_;
+    recordMaEdge(t, level, !f_.rises.empty() && last_ma_edge_ != kNoTick, last_ma_edge_);
+    if (level)
+        addRise(t);
+    else if (f_.from_hold && f_.rises.size() == 1)
+        f_.hold_fall = t;
     return true;
 }
 

@@ -139,6 +139,11 @@ private:
     // caller to give the sampler.
     [[gnu::always_inline]] inline bool takeDataEdge(const DataRefs& s, Tick t, int role,
                                                     bool level);
+    // Before the ACK (State::WaitAck) with the sampler empty: an MA edge that onMa() would
+    // only record (a clock phase, a rise), taken without the sampler and the state switch:
+    // four edges of every frame. False for any other edge (an SL edge, a pause that
+    // checkQuiet() acts on), which the general path takes.
+    [[gnu::always_inline]] inline bool takeAckWaitEdge(Tick t, int role, bool level);
     // Takes the edges from `first` on through takeDataEdge(), the state in locals;
     // returns the first edge it did not take.
     const Edge* dataRun(const Edge* first, const Edge* last, const int* role_of_line);
@@ -300,7 +305,8 @@ private:
     // that refining the delay on every SL edge need not work it out again.
     Tick quiet_ticks_ = 0;
     std::uint64_t frames_ = 0, answered_frames_ = 0, clean_frames_ = 0;
-    // Edges that took the slow paths (onMa, onSl): all of them while no frame is running.
+    // Edges outside a frame's data (onMa, onSl, takeAckWaitEdge()): all of them while no
+    // frame is running.
     std::uint64_t slow_ma_edges_ = 0, slow_sl_edges_ = 0;
 };
 

@@ -5,6 +5,8 @@
 
 #include <random>
 
+#include <fmt/format.h>
+
 #include "bissc_generator.h"
 #include "bissc_test_util.h"
 #include "capture/capture_reader.h"
@@ -108,6 +110,23 @@ TEST(BisscAdvice, SwappedLinesAreNamed) {
     // The width finder passes it on: no width helps there.
     const auto automatic = adviceFor(frames18(5), {{"bits", "auto"}}, "SLO", "MA");
     EXPECT_EQ(automatic, advice);
+}
+
+TEST(BisscAdvice, TheHintCountsEveryChangeOfBothLines) {
+    // With no frame answered, every edge is outside a frame's data, whichever path took
+    // it (onMa(), onSl(), or the clocks before an ACK, takeAckWaitEdge()): the hint's
+    // counts are the lines' own.
+    const Waveform w = frames18(5);
+    std::size_t changes[2] = {0, 0};
+    for (const Edge& e : w.edges)
+        ++changes[e.line];
+    ASSERT_GT(changes[0], 100u);
+    const auto advice = adviceFor(w, {{"bits", "18"}}, "SLO", "MA");
+    ASSERT_EQ(advice.size(), 1u);
+    // Swapped: the decoder's MA is the slave's line (line 1), its SL the clock (line 0).
+    EXPECT_TRUE(
+        has(advice[0], fmt::format("MA changed {} times, SL {} times", changes[1], changes[0])))
+        << advice[0];
 }
 
 TEST(BisscAdvice, NoWidthFitsWithoutACrc) {
