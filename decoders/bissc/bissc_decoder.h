@@ -32,11 +32,11 @@ public:
     explicit BisscDecoder(const Options& options);
 
     void start(const DecoderContext& ctx) override;
-    // One edge: a frame's usual data edge through takeDataEdge(), any other through the
-    // general path (edgeReference()).
+    // One edge: a frame's usual data edge through takeDataEdge(), a clock edge before the
+    // ACK through takeAckWaitEdge(), any other through the general path (edgeReference()).
     void edge(Tick t, int role, bool level) override;
-    // A block of edges: the runs of a frame's data through dataRun(), every other edge
-    // through the general path.
+    // A block of edges: the runs of a frame's data through dataRun(), the clock edges
+    // before the ACK through takeAckWaitEdge(), every other edge through the general path.
     void edges(const Edge* first, const Edge* last, const int* role_of_line) override;
     // The general path alone, for every edge: samples scheduled in the LineSampler and
     // taken as SL's edges and time pass them. What dataRun() is tested against.
