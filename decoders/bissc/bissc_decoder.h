@@ -141,7 +141,7 @@ private:
                                                     bool level);
     // Before the ACK (State::WaitAck) with the sampler empty: an MA edge that onMa() would
     // only record (a clock phase, a rise), taken without the sampler and the state switch:
-    // four edges of every frame. False for any other edge (an SL edge, a pause that
+    // three edges of a usual frame. False for any other edge (an SL edge, a pause that
     // checkQuiet() acts on), which the general path takes.
     [[gnu::always_inline]] inline bool takeAckWaitEdge(Tick t, int role, bool level);
     // Takes the edges from `first` on through takeDataEdge(), the state in locals;
