@@ -182,7 +182,8 @@ void BisscDecoder::edges(const Edge* first, const Edge* last, const int* role_of
         // edge that needs more than the usual (takeDataEdge()), which the general path
         // then takes.
         if (dataEdgesNow()) {
-            first = dataRun(first, last, role_of_line);
+            first = context().lines_are_roles ? dataRun<true>(first, last, role_of_line)
+                                              : dataRun<false>(first, last, role_of_line);
             if (first == last) break;
         }
         const int role = role_of_line[first->line];
@@ -251,6 +252,7 @@ bool BisscDecoder::takeAckWaitEdge(Tick t, int role, bool level) {
     return true;
 }
 
+template <bool kLinesAreRoles>
 const Edge* BisscDecoder::dataRun(const Edge* e, const Edge* last, const int* role_of_line) {
     std::size_t scheduled = f_.scheduled, rises = f_.rises.size();
     double delay = f_.delay, period = f_.period, last_sample_t = f_.last_sample_t,
@@ -264,8 +266,10 @@ const Edge* BisscDecoder::dataRun(const Edge* e, const Edge* last, const int* ro
     const DataRefs locals{scheduled, rises,       delay,        period,       last_sample_t,
                           delay_sum, delay_edges, quiet_ticks_, last_ma_edge, sl,
                           slot,      data,        data_count};
-    for (; e != last; ++e)
-        if (!takeDataEdge(locals, e->t, role_of_line[e->line], e->level != 0)) break;
+    for (; e != last; ++e) {
+        const int role = kLinesAreRoles ? int(e->line) : role_of_line[e->line];
+        if (!takeDataEdge(locals, e->t, role, e->level != 0)) break;
+    }
     f_.scheduled = scheduled;
     f_.delay = delay;
     f_.period = period;

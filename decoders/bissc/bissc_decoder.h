@@ -145,7 +145,9 @@ private:
     // checkQuiet() acts on), which the general path takes.
     [[gnu::always_inline]] inline bool takeAckWaitEdge(Tick t, int role, bool level);
     // Takes the edges from `first` on through takeDataEdge(), the state in locals;
-    // returns the first edge it did not take.
+    // returns the first edge it did not take. kLinesAreRoles: the role is the edge's line
+    // (DecoderContext::lines_are_roles), not looked up.
+    template <bool kLinesAreRoles>
     const Edge* dataRun(const Edge* first, const Edge* last, const int* role_of_line);
     void onMa(Tick t, bool level);
     void onMaAfterSamples(Tick t, bool level);  // onMa() once the due samples are taken

@@ -19,11 +19,22 @@ namespace {
 // Every event of `w` in full (times, fields, errors, summary), one JSON line each, and
 // the decoder's advice (decodeDirectly()), fed as `feed` says (`block`: the block size
 // for Feed::Blocks).
-std::vector<std::string> decode(const Waveform& w, Feed feed, std::size_t block = 0) {
+std::vector<std::string> decode(const Waveform& w, Feed feed, std::size_t block = 0,
+                                const std::vector<int>& line_of_role = {0, 1}) {
     registerBissc();
     const auto* factory = Registry::instance().find("bissc");
     const Options options = Options::resolve(factory->info(), {{"bits", "26"}});
-    return decodeDirectly(*factory, options, w, {0, 1}, feed, block);
+    return decodeDirectly(*factory, options, w, line_of_role, feed, block);
+}
+
+// `w` with its two lines swapped: SL on line 0, MA on line 1 (bound as {1, 0}), so that
+// a line is not its role and the runs look the role up (DecoderContext::lines_are_roles).
+Waveform swapLines(Waveform w) {
+    std::swap(w.names[0], w.names[1]);
+    std::swap(w.initial[0], w.initial[1]);
+    for (Edge& e : w.edges)
+        e = Edge(e.t, 1u - std::uint32_t(e.line), std::uint8_t(e.level));
+    return w;
 }
 
 // A capture of `frames` frames with everything the generator can vary drawn at random:
@@ -94,6 +105,11 @@ TEST(BisscBlocks, RunsDecodeAsEdgeByEdgeWhateverTheTraffic) {
             for (std::size_t i = 0; i < by_edge.size(); ++i)
                 ASSERT_EQ(by_block[i], by_edge[i]) << "event " << i;
         }
+        // The lines swapped: blocks whose roles are looked up, not read from the lines.
+        const std::vector<std::string> swapped = decode(swapLines(w), Feed::Blocks, 16384, {1, 0});
+        ASSERT_EQ(swapped.size(), by_edge.size());
+        for (std::size_t i = 0; i < by_edge.size(); ++i)
+            ASSERT_EQ(swapped[i], by_edge[i]) << "swapped lines, event " << i;
     }
 }
 

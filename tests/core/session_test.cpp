@@ -102,11 +102,17 @@ public:
         bool operator==(const Seen&) const = default;
     };
     explicit TraceDecoder(const Options&) {}
+    void start(const DecoderContext& ctx) override {
+        Decoder::start(ctx);
+        lines_are_roles.push_back(ctx.lines_are_roles);
+    }
     void edge(Tick t, int role, bool level) override { trace.push_back({t, role, level}); }
     void finish(Tick) override {}
     static std::vector<Seen> trace;
+    static std::vector<bool> lines_are_roles;  // DecoderContext::lines_are_roles, per start()
 };
 std::vector<TraceDecoder::Seen> TraceDecoder::trace;
+std::vector<bool> TraceDecoder::lines_are_roles;
 
 DecoderInfo traceInfo() {
     DecoderInfo d;
@@ -354,6 +360,24 @@ TEST(Session, BlockPathDeliversWhatThePerEdgePathDoes) {
     TraceDecoder::trace.clear();
     decodeWaveform(w, {trace, {"rise", {{"in", "a"}}, {}}});  // two decoders: edge by edge
     EXPECT_EQ(TraceDecoder::trace, want);
+}
+
+TEST(Session, LinesAreRolesWhenTheBlocksHandEachRoleItsOwnLine) {
+    const Waveform w = twoLines();
+    const auto seen = [&w](const std::vector<DecoderRequest>& requests) {
+        TraceDecoder::lines_are_roles.clear();
+        decodeWaveform(w, requests);
+        return TraceDecoder::lines_are_roles;
+    };
+    // The only decoder, both roles bound: the session selects the lines in role order,
+    // whatever their order in the capture.
+    EXPECT_EQ(seen({{"trace", {{"p", "input"}, {"q", "a"}}, {}}}), std::vector<bool>{true});
+    EXPECT_EQ(seen({{"trace", {{"p", "a"}, {"q", "input"}}, {}}}), std::vector<bool>{true});
+    // Its first role unbound: the one line selected carries role 1.
+    EXPECT_EQ(seen({{"trace", {{"q", "a"}}, {}}}), std::vector<bool>{false});
+    // Beside another decoder: edge by edge, no blocks.
+    EXPECT_EQ(seen({{"trace", {{"p", "input"}, {"q", "a"}}, {}}, {"rise", {{"in", "a"}}, {}}}),
+              std::vector<bool>{false});
 }
 
 TEST(Session, RecycledEventsCarryNothingOfTheirLastUse) {
