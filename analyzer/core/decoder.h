@@ -30,8 +30,9 @@ struct DecoderContext {
     // Every edge handed to edges() has its role for its line (role_of_line maps each line
     // that carries edges to itself): a decoder may take the role from Edge::line and skip
     // the look-up, which sits on the way to the branch on the role (mispredicted at
-    // random where the data is random: BiSS-C 5 % faster without it, bench/README.md,
-    // stop 33). The session's usual case: one decoder, its roles bound in order.
+    // random where the data is random: BiSS-C's `decode/bissc` micro-benchmark 3-4 %
+    // faster without it, bench/README.md, stop 33). The session's usual case: one
+    // decoder, its roles bound in order.
     bool lines_are_roles = false;
 };
 

@@ -147,8 +147,11 @@ private:
     // Takes the edges from `first` on through takeDataEdge(), the state in locals;
     // returns the first edge it did not take. kLinesAreRoles: the role is the edge's line
     // (DecoderContext::lines_are_roles), not looked up.
+    // Out of line, as it was before it became a template: the function perf and
+    // bench/README.md name, and the code the micro-benchmark compared.
     template <bool kLinesAreRoles>
-    const Edge* dataRun(const Edge* first, const Edge* last, const int* role_of_line);
+    [[gnu::noinline]] const Edge* dataRun(const Edge* first, const Edge* last,
+                                          const int* role_of_line);
     void onMa(Tick t, bool level);
     void onMaAfterSamples(Tick t, bool level);  // onMa() once the due samples are taken
     // MA at `level` from tick t on; in_frame: the phase it ends was a clock phase of the
