@@ -63,8 +63,8 @@ void appendDecimal(std::string& out, Int v) {
 
 // A short line built in a stack buffer, piece by piece without a capacity check and a
 // call per piece (literal pieces become plain stores), then handed over at once: for the
-// summary of every frame. Pieces that would overflow the buffer are dropped (a number
-// needs room for the longest, 24 bytes); callers' lines are bounded well below kCapacity.
+// summary of every frame. Pieces that would overflow the buffer are dropped; callers'
+// lines are bounded well below kCapacity.
 class ShortLine {
 public:
     static constexpr std::size_t kCapacity = 256;
@@ -81,21 +81,12 @@ public:
     // digits kept: about 125 instructions fewer per BiSS-C frame by callgrind
     // (bench/README.md, stop 33).
     ShortLine& dec(std::uint64_t v) {
-        char scratch[2 * kNumber];
-        char* const end = scratch + kNumber;
-        char* p = end;
-        while (v >= 100) {
-            p -= 2;
-            std::memcpy(p, kPairs + 2 * (v % 100), 2);
-            v /= 100;
+        // One digit (nE, nW, CDS, CDM: four of a BiSS-C frame's six numbers) is one store.
+        if (v < 10 && n_ < kCapacity) [[likely]] {
+            buf_[n_++] = char('0' + v);
+            return *this;
         }
-        if (v >= 10) {
-            p -= 2;
-            std::memcpy(p, kPairs + 2 * v, 2);
-        } else {
-            *--p = char('0' + v);
-        }
-        return number(p, std::size_t(end - p));
+        return decDigits(v);
     }
     ShortLine& dec(std::int64_t v) {
         if (v >= 0) return dec(std::uint64_t(v));
@@ -115,6 +106,23 @@ public:
     std::string_view view() const { return {buf_, n_}; }
 
 private:
+    ShortLine& decDigits(std::uint64_t v) {
+        char scratch[2 * kNumber];
+        char* const end = scratch + kNumber;
+        char* p = end;
+        while (v >= 100) {
+            p -= 2;
+            std::memcpy(p, kPairs + 2 * (v % 100), 2);
+            v /= 100;
+        }
+        if (v >= 10) {
+            p -= 2;
+            std::memcpy(p, kPairs + 2 * v, 2);
+        } else {
+            *--p = char('0' + v);
+        }
+        return number(p, std::size_t(end - p));
+    }
     static constexpr std::size_t kNumber = 24;  // at least 20 decimal digits
     // "00" to "99", two characters each.
     static constexpr char kPairs[] =
@@ -122,16 +130,17 @@ private:
         "40414243444546474849505152535455565758596061626364656667686970717273747576777879"
         "8081828384858687888990919293949596979899";
     // Keeps the n characters from `first`, copying kNumber from there: `first` lies in
-    // the first half of a scratch buffer of 2 * kNumber.
+    // the first half of a scratch buffer of 2 * kNumber, and buf_ has kNumber bytes
+    // beyond kCapacity for the copy's tail.
     ShortLine& number(const char* first, std::size_t n) {
-        if (kNumber <= kCapacity - n_) {
+        if (n <= kCapacity - n_) {
             std::memcpy(buf_ + n_, first, kNumber);
             n_ += n;
         }
         return *this;
     }
 
-    char buf_[kCapacity];
+    char buf_[kCapacity + kNumber];
     std::size_t n_ = 0;
 };
 

@@ -159,6 +159,11 @@ TEST(NumberText, ShortLineDropsWhatWouldOverflow) {
     const std::string piece(100, 'a');
     line.text(piece).text(piece).text(piece).text("end");
     EXPECT_EQ(line.view(), piece + piece + "end");  // the third piece did not fit
+    // Numbers up to the last byte: kept while their digits fit, whatever they copy.
+    ShortLine full;
+    const std::string pad(ShortLine::kCapacity - 7, 'p');
+    full.text(pad).dec(std::uint64_t(123456)).hex(0xA, 1).dec(std::uint64_t(42)).dec(7);
+    EXPECT_EQ(full.view(), pad + "123456A");
 }
 
 TEST(HexText, AsTheFormatStringHad) {
