@@ -81,7 +81,8 @@ public:
     // digits kept: about 125 instructions fewer per BiSS-C frame by callgrind
     // (bench/README.md, stop 33).
     ShortLine& dec(std::uint64_t v) {
-        // One digit (nE, nW, CDS, CDM: four of a BiSS-C frame's six numbers) is one store.
+        // One digit (nE, nW, CDS, CDM: four of a BiSS-C frame's six decimal numbers) is
+        // one store.
         if (v < 10 && n_ < kCapacity) [[likely]] {
             buf_[n_++] = char('0' + v);
             return *this;
