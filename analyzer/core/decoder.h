@@ -36,6 +36,14 @@ struct DecoderContext {
     bool lines_are_roles = false;
 };
 
+// Whether role_of_line maps every line that carries edges (those with a role, >= 0) to
+// itself: DecoderContext::lines_are_roles for edges() handed that table.
+inline bool linesAreRoles(const std::vector<int>& role_of_line) {
+    for (std::size_t line = 0; line < role_of_line.size(); ++line)
+        if (role_of_line[line] >= 0 && role_of_line[line] != int(line)) return false;
+    return true;
+}
+
 class Decoder {
 public:
     virtual ~Decoder() = default;

@@ -43,10 +43,7 @@ std::vector<std::string> decodeDirectly(const DecoderFactory& factory, const Opt
     ctx.timebase = w.timebase;
     ctx.sink = &sink;
     ctx.capture_start = w.start;
-    ctx.lines_are_roles = true;  // the lines that carry edges: those bound to a role
-    for (int line = 0; line < int(role_of_line.size()); ++line)
-        ctx.lines_are_roles &=
-            role_of_line[std::size_t(line)] < 0 || role_of_line[std::size_t(line)] == line;
+    ctx.lines_are_roles = linesAreRoles(role_of_line);
     for (const int line : line_of_role)
         ctx.initial_levels.push_back(line < 0 ? -1 : w.initial[std::size_t(line)]);
     decoder->start(ctx);

@@ -397,9 +397,7 @@ void Session::run() {
     for (int s = 0; s < int(im.slots.size()); ++s) {
         auto& slot = im.slots[s];
         slot.ctx.fields_wanted = fields_wanted;
-        slot.ctx.lines_are_roles = im.block_path;
-        for (int line = 0; line < int(im.role_of_line.size()); ++line)
-            slot.ctx.lines_are_roles &= im.role_of_line[std::size_t(line)] == line;
+        slot.ctx.lines_are_roles = im.block_path && linesAreRoles(im.role_of_line);
         slot.ctx.timebase = reader.timebase();
         slot.ctx.capture_start = facts_.start;
         for (int line : slot.role_line)
