@@ -241,14 +241,10 @@ bool BisscDecoder::takeAckWaitEdge(Tick t, int role, bool level) {
     if (role != kMa || state_ != State::WaitAck || !sampler_.empty()) return false;
     // onMa() with no sample to take (none is scheduled before the ACK), checkQuiet()
     // finding nothing to do, then onMaAfterSamples()'s WaitAck case.
-    if (last_ma_edge_ != kNoTick && (t - last_ma_edge_ > quiet_ticks_ || masterGaveUp(t)))
-        return false;
+    if (quietMayEnd(t)) return false;
     ++slow_ma_edges_;
     recordMaEdge(t, level, !f_.rises.empty() && last_ma_edge_ != kNoTick, last_ma_edge_);
-    if (level)
-        addRise(t);
-    else if (f_.from_hold && f_.rises.size() == 1)
-        f_.hold_fall = t;
+    clockBeforeAck(t, level);
     return true;
 }
 
@@ -312,10 +308,7 @@ void BisscDecoder::onMaAfterSamples(Tick t, bool level) {
             }
             break;
         case State::WaitAck:
-            if (level)
-                addRise(t);
-            else if (f_.from_hold && f_.rises.size() == 1)
-                f_.hold_fall = t;
+            clockBeforeAck(t, level);
             break;
         case State::Data:
             if (level) addRise(t);  // its sample is scheduled when due

@@ -144,6 +144,14 @@ private:
     // three edges of a usual frame. False for any other edge (an SL edge, a pause that
     // checkQuiet() acts on), which the general path takes.
     [[gnu::always_inline]] inline bool takeAckWaitEdge(Tick t, int role, bool level);
+    // What an MA edge before the ACK does to the frame, once recorded (recordMaEdge()): a
+    // rise is a clock, a fall after a first rise from low may end Hold-CDM's LAT phase.
+    void clockBeforeAck(Tick t, bool level) {
+        if (level)
+            addRise(t);
+        else if (f_.from_hold && f_.rises.size() == 1)
+            f_.hold_fall = t;
+    }
     // Takes the edges from `first` on through takeDataEdge(), the state in locals;
     // returns the first edge it did not take. kLinesAreRoles: the role is the edge's line
     // (DecoderContext::lines_are_roles), not looked up.
@@ -258,11 +266,15 @@ private:
     // rules out the usual case (clock running, well within kMinQuietNs and, before the
     // ACK, within masterGaveUp()'s pause).
     void checkQuiet(Tick now) {
-        if (state_ == State::TimeoutEnded ||
-            ((state_ == State::WaitAck || state_ == State::Data) && last_ma_edge_ != kNoTick &&
-             (now - last_ma_edge_ > quiet_ticks_ ||
-              (state_ == State::WaitAck && masterGaveUp(now)))))
-            checkQuietSlow(now);
+        if (quietMayEnd(now)) checkQuietSlow(now);
+    }
+    // checkQuiet()'s inline test: false in the usual case, where checkQuietSlow() would
+    // do nothing (takeAckWaitEdge() asks it too).
+    bool quietMayEnd(Tick now) const {
+        return state_ == State::TimeoutEnded ||
+               ((state_ == State::WaitAck || state_ == State::Data) && last_ma_edge_ != kNoTick &&
+                (now - last_ma_edge_ > quiet_ticks_ ||
+                 (state_ == State::WaitAck && masterGaveUp(now))));
     }
     // In WaitAck: has MA stayed high for many of the frame's clock phases (or, none
     // seen yet, of the previous frame's)? Until the ACK the master clocks without a
