@@ -41,6 +41,14 @@ struct Edge {
         std::memcpy(static_cast<void*>(this), &word, sizeof word);
     }
 
+    // line * 2 + level: the word's low byte, read in one load (a decoder's dispatch on
+    // line and level together, BisscDecoder::dataRun()).
+    std::uint32_t lineAndLevel() const noexcept {
+        std::uint64_t word;
+        std::memcpy(&word, static_cast<const void*>(this), sizeof word);
+        return std::uint32_t(word & 0xff);
+    }
+
     std::uint64_t level : 1;  // 0 or 1, the level *after* the edge
     std::uint64_t line : 7;   // index into the reader's selected-line list
     Tick t : 56;

@@ -132,7 +132,7 @@ void BisscDecoder::resolveHoldStart(Tick ack) {
         idle_return = high > kIdleReturnRatio * low;
     }
     if (!idle_return) return;
-    f_.rises.erase(f_.rises.begin());
+    f_.rises.eraseFirst();
     updatePeriod();  // the first rise changed
     f_.start = f_.hold_fall;
     f_.from_hold = false;
@@ -141,7 +141,7 @@ void BisscDecoder::resolveHoldStart(Tick ack) {
 
 void BisscDecoder::beginFrame(Tick start, bool from_hold) {
     // A fresh frame, keeping the vectors' storage (one frame every few microseconds).
-    std::vector<Tick> rises = std::move(f_.rises);
+    RiseList rises = std::move(f_.rises);
     std::vector<std::string> errors = std::move(f_.errors);
     rises.clear();
     errors.clear();
@@ -163,15 +163,11 @@ void BisscDecoder::beginFrame(Tick start, bool from_hold) {
 
 void BisscDecoder::edge(Tick t, int role, bool level) {
     if (dataEdgesNow()) {
-        std::size_t rises = f_.rises.size();
-        const DataRefs members{f_.scheduled,     rises,        f_.delay,       f_.period,
-                               f_.last_sample_t, f_.delay_sum, f_.delay_edges, quiet_ticks_,
-                               last_ma_edge_,    sl_,          f_.slot,        f_.data,
-                               f_.data_count};
-        if (takeDataEdge(members, t, role, level)) {
-            if (role == kSl) sampler_.setLevel(level);  // (empty)
-            return;
-        }
+        f_.rises.reserve(f_.rises.size() + 1);
+        RunState s = loadRun();
+        const bool taken = takeDataEdge(s, t, edgeKey(role, level));
+        storeRun(s);  // also the samples it took before an edge it leaves
+        if (taken) return;
     }
     if (!takeAckWaitEdge(t, role, level)) edgeReference(t, role, level);
 }
@@ -200,40 +196,62 @@ void BisscDecoder::edgeReference(Tick t, int role, bool level) {
         onSl(t, level);
 }
 
-bool BisscDecoder::takeDataEdge(const DataRefs& s, Tick t, int role, bool level) {
-    if (role == kMa) {
-        if (t - s.last_ma_edge > s.quiet_ticks) return false;  // a clock pause: checkQuiet()
-        // Every sample due before t sees SL's level now (scheduleUpTo() and
-        // LineSampler::advanceTo() would resolve it so), taken in order, its time pushed
-        // past the last sample's as scheduleUpTo() does.
-        const double now = double(t);
-        while (s.scheduled < s.rises) {
-            double at = sampleTimeWith(s.scheduled, s.delay, s.period);
-            if (at >= now) break;
-            at = std::max(at, s.last_sample_t);
-            if (at >= now) return false;  // pushed to t or later: the sampler holds it
-            if (s.slot == Slot::Data)
-                takeDataBitOf(s.data, s.data_count, s.slot, s.sl);
-            else if (!takePlainSlot(s.slot, int(s.scheduled), s.sl))
-                return false;  // takeSample() takes it
-            s.last_sample_t = at;
-            ++s.scheduled;
-        }
-        recordMaEdge(t, level, true, s.last_ma_edge);
-        if (level) {  // addRise()
-            f_.rises.push_back(t);
-            ++s.rises;
-            s.period = periodOfRises();
-        }
-        return true;
+bool BisscDecoder::takeDataEdge(RunState& s, Tick t, unsigned key) {
+    // One case per role and level, each with its level a constant: no branch on the level
+    // after the one on the role.
+    switch (key) {
+        case kMa * 2 + 0:
+            return takeMaEdge<false>(s, t);
+        case kMa * 2 + 1:
+            return takeMaEdge<true>(s, t);
+        case kSl * 2 + 0:
+            return takeSlEdge(s, t, false);
+        case kSl * 2 + 1:
+            return takeSlEdge(s, t, true);
+        default:
+            return false;
     }
-    if (role != kSl || t - s.last_ma_edge > s.quiet_ticks) return false;
+}
+
+template <bool kLevel>
+bool BisscDecoder::takeMaEdge(RunState& s, Tick t) {
+    if (t - s.last_ma_edge > s.quiet_ticks) return false;  // a clock pause: checkQuiet()
+    // Every sample due before t sees SL's level now (scheduleUpTo() and
+    // LineSampler::advanceTo() would resolve it so), taken in order, its time pushed
+    // past the last sample's as scheduleUpTo() does.
+    const double now = double(t);
+    while (s.scheduled < s.nrises) {
+        double at = sampleAt(s.rises[s.scheduled], s.delay, s.half_period);
+        if (at >= now) break;
+        at = std::max(at, s.last_sample_t);
+        if (at >= now) return false;  // pushed to t or later: the sampler holds it
+        if (s.slot == Slot::Data)
+            takeDataBitOf(s.data, s.data_count, s.slot, s.sl);
+        else if (!takePlainSlot(s.slot, int(s.scheduled), s.sl != 0))
+            return false;  // takeSample() takes it
+        s.last_sample_t = at;
+        ++s.scheduled;
+    }
+    recordMaEdgeOf(t, kLevel, true, s.last_ma_edge, s.max_high, s.max_low, s.ma);
+    if constexpr (kLevel) {  // addRise(): periodOfRises() with the divisor kept as a double
+        s.rises[s.nrises++] = t;
+        s.gaps += 1.0;
+        s.period = double(t - s.rises[0]) / s.gaps;
+        s.half_period = s.period / 2.0;
+    }
+    return true;
+}
+
+bool BisscDecoder::takeSlEdge(RunState& s, Tick t, bool level) {
+    if (t - s.last_ma_edge > s.quiet_ticks) return false;
     // An SL change before the next sample is due answers that sample's rise; otherwise
     // onSl() checks whether the slave gave up.
-    if (s.scheduled >= s.rises || sampleTimeWith(s.scheduled, s.delay, s.period) < double(t))
+    if (s.scheduled >= s.nrises ||
+        sampleAt(s.rises[s.scheduled], s.delay, s.half_period) < double(t))
         return false;
     s.sl = level;
-    refineDelayOf(t, s.scheduled, s.period, s.delay, s.delay_sum, s.delay_edges);
+    refineDelayOf(double(t - s.rises[s.scheduled]), s.period, s.half_period, s.delay, s.delay_sum,
+                  s.delay_edges);
     return true;
 }
 
@@ -243,41 +261,23 @@ bool BisscDecoder::takeAckWaitEdge(Tick t, int role, bool level) {
     // finding nothing to do, then onMaAfterSamples()'s WaitAck case.
     if (quietMayEnd(t)) return false;
     ++slow_ma_edges_;
-    recordMaEdge(t, level, !f_.rises.empty() && last_ma_edge_ != kNoTick, last_ma_edge_);
+    recordMaEdge(t, level, !f_.rises.empty() && last_ma_edge_ != kNoTick);
     clockBeforeAck(t, level);
     return true;
 }
 
 template <bool kLinesAreRoles>
 const Edge* BisscDecoder::dataRun(const Edge* e, const Edge* last, const int* role_of_line) {
-    std::size_t scheduled = f_.scheduled, rises = f_.rises.size();
-    double delay = f_.delay, period = f_.period, last_sample_t = f_.last_sample_t,
-           delay_sum = f_.delay_sum;
-    int delay_edges = f_.delay_edges;
-    Tick last_ma_edge = last_ma_edge_;
-    bool sl = sl_;
-    Slot slot = f_.slot;
-    std::uint64_t data = f_.data;
-    int data_count = f_.data_count;
-    const DataRefs locals{scheduled, rises,       delay,        period,       last_sample_t,
-                          delay_sum, delay_edges, quiet_ticks_, last_ma_edge, sl,
-                          slot,      data,        data_count};
+    // Room for the rises the run may write: MA rises and falls alternate (edges() is
+    // handed no edge that repeats its line's level).
+    f_.rises.reserve(f_.rises.size() + std::size_t(last - e) / 2 + 1);
+    RunState s = loadRun();
     for (; e != last; ++e) {
-        const int role = kLinesAreRoles ? int(e->line) : role_of_line[e->line];
-        if (!takeDataEdge(locals, e->t, role, e->level != 0)) break;
+        const unsigned key =
+            kLinesAreRoles ? e->lineAndLevel() : edgeKey(role_of_line[e->line], e->level != 0);
+        if (!takeDataEdge(s, e->t, key)) break;
     }
-    f_.scheduled = scheduled;
-    f_.delay = delay;
-    f_.period = period;
-    f_.last_sample_t = last_sample_t;
-    f_.delay_sum = delay_sum;
-    f_.delay_edges = delay_edges;
-    f_.slot = slot;
-    f_.data = data;
-    f_.data_count = data_count;
-    last_ma_edge_ = last_ma_edge;
-    sl_ = sl;
-    sampler_.setLevel(sl);  // (empty throughout the run)
+    storeRun(s);
     return e;
 }
 
@@ -293,8 +293,7 @@ void BisscDecoder::onMaAfterSamples(Tick t, bool level) {
     checkQuiet(t);
     recordMaEdge(t, level,
                  (state_ == State::WaitAck || state_ == State::Data) && !f_.rises.empty() &&
-                     last_ma_edge_ != kNoTick,
-                 last_ma_edge_);
+                     last_ma_edge_ != kNoTick);
 
     switch (state_) {
         case State::WaitSlaveIdle:

@@ -22,6 +22,7 @@
 #include "core/decoder.h"
 #include "core/line_sampler.h"
 #include "core/registry.h"
+#include "rise_list.h"
 
 namespace busdecode {
 
@@ -73,7 +74,7 @@ private:
         Tick start = 0;
         bool from_hold = false;    // started from MA low (Hold-CDM)
         Tick hold_fall = kNoTick;  // first MA fall after a start from MA low
-        std::vector<Tick> rises;   // MA rising edges; rises[0] = LAT
+        RiseList rises;            // MA rising edges; rises[0] = LAT
         Tick ack = kNoTick;
         double delay = 0;      // line delay in ticks: mean over the SL edges so far
         double ack_delay = 0;  // 2nd MA rising edge -> ACK, as measured
@@ -106,25 +107,70 @@ private:
         std::vector<std::string> errors;
     };
 
-    // The state a frame's usual data edge reads and writes (the rest it only writes, to
-    // the members): bound to the members for one edge (edge()), or to local variables
-    // for a run of them (dataRun()), which the compiler keeps in registers, where the
-    // members would be reloaded after every store that might alias them.
-    struct DataRefs {
-        std::size_t& scheduled;  // f_.scheduled
-        std::size_t& rises;      // f_.rises.size()
-        double& delay;
-        double& period;
-        double& last_sample_t;
-        double& delay_sum;
-        int& delay_edges;
-        Tick quiet_ticks;  // (only read)
-        Tick& last_ma_edge;
-        bool& sl;
-        Slot& slot;
-        std::uint64_t& data;
-        int& data_count;
+    // The state a frame's usual data edge reads and writes, copied from the members
+    // (loadRun()) into locals, which the compiler keeps in registers, and back
+    // (storeRun()): for one edge (edge()) or a run of them (dataRun()). As members, they
+    // would be reloaded after every store that might alias them.
+    struct RunState {
+        std::size_t scheduled;  // f_.scheduled
+        Tick* rises;            // f_.rises' storage, with room reserved for the run's rises
+        std::size_t nrises;     // f_.rises.size()
+        double gaps;            // nrises - 1: the period's divisor (periodOfRises())
+        double delay;
+        double period;
+        double half_period;  // period / 2.0, as sampleTimeWith() adds it
+        double last_sample_t;
+        double delay_sum;
+        double delay_edges;  // f_.delay_edges, converted once, not at every division
+        Tick quiet_ticks;    // (only read)
+        Tick last_ma_edge;
+        Tick max_high, max_low;  // f_.max_high, f_.max_low
+        bool ma;
+        std::uint64_t sl;  // 0 or 1: shifted into the data as it is
+        Slot slot;
+        std::uint64_t data;
+        int data_count;
     };
+    RunState loadRun() {
+        const std::size_t n = f_.rises.size();
+        return RunState{.scheduled = f_.scheduled,
+                        .rises = f_.rises.data(),
+                        .nrises = n,
+                        .gaps = double(n - 1),
+                        .delay = f_.delay,
+                        .period = f_.period,
+                        .half_period = f_.period / 2.0,
+                        .last_sample_t = f_.last_sample_t,
+                        .delay_sum = f_.delay_sum,
+                        .delay_edges = double(f_.delay_edges),
+                        .quiet_ticks = quiet_ticks_,
+                        .last_ma_edge = last_ma_edge_,
+                        .max_high = f_.max_high,
+                        .max_low = f_.max_low,
+                        .ma = ma_,
+                        .sl = std::uint64_t(sl_),
+                        .slot = f_.slot,
+                        .data = f_.data,
+                        .data_count = f_.data_count};
+    }
+    void storeRun(const RunState& s) {
+        f_.scheduled = s.scheduled;
+        f_.rises.setSize(s.nrises);
+        f_.delay = s.delay;
+        f_.period = s.period;
+        f_.last_sample_t = s.last_sample_t;
+        f_.delay_sum = s.delay_sum;
+        f_.delay_edges = int(s.delay_edges);
+        f_.max_high = s.max_high;
+        f_.max_low = s.max_low;
+        f_.slot = s.slot;
+        f_.data = s.data;
+        f_.data_count = s.data_count;
+        last_ma_edge_ = s.last_ma_edge;
+        ma_ = s.ma;
+        sl_ = s.sl != 0;
+        sampler_.setLevel(sl_);  // (empty throughout)
+    }
     // Only in State::Data with the sampler empty (and two rises, a period, seen).
     bool dataEdgesNow() const {
         return state_ == State::Data && sampler_.empty() && f_.rises.size() >= 2;
@@ -135,10 +181,14 @@ private:
     // fall due instead of through the LineSampler's buffer. False for any other edge
     // (a clock pause, a sample pushed past its edge, a high ACK, the stop bit, an SL
     // change after a sample due): the samples due before it that it could take are
-    // taken, and the general path goes on from there. An SL edge's level is left for the
-    // caller to give the sampler.
-    [[gnu::always_inline]] inline bool takeDataEdge(const DataRefs& s, Tick t, int role,
-                                                    bool level);
+    // taken, and the general path goes on from there (after storeRun()). `key`: edgeKey().
+    [[gnu::always_inline]] inline bool takeDataEdge(RunState& s, Tick t, unsigned key);
+    // takeDataEdge()'s key: role * 2 + level, the low byte of an Edge whose line is its
+    // role (DecoderContext::lines_are_roles); beyond kSl * 2 + 1 for any other role.
+    static unsigned edgeKey(int role, bool level) { return unsigned(role) * 2u + unsigned(level); }
+    template <bool kLevel>
+    [[gnu::always_inline]] inline bool takeMaEdge(RunState& s, Tick t);
+    [[gnu::always_inline]] inline bool takeSlEdge(RunState& s, Tick t, bool level);
     // Before the ACK (State::WaitAck) with the sampler empty: an MA edge that onMa() would
     // only record (a clock phase, a rise), taken without the sampler and the state switch:
     // three edges of a usual frame. False for any other edge (an SL edge, a pause that
@@ -165,15 +215,23 @@ private:
     // MA at `level` from tick t on; in_frame: the phase it ends was a clock phase of the
     // frame, and counts towards its longest (masterGaveUp() before the ACK,
     // isClockPhase() from it on).
-    // last_ma_edge: last_ma_edge_, or dataRun()'s copy of it.
-    [[gnu::always_inline]] void recordMaEdge(Tick t, bool level, bool in_frame,
-                                             Tick& last_ma_edge) {
+    [[gnu::always_inline]] void recordMaEdge(Tick t, bool level, bool in_frame) {
+        recordMaEdgeOf(t, level, in_frame, last_ma_edge_, f_.max_high, f_.max_low, ma_);
+    }
+    // recordMaEdge()'s work on the state given (the members, or a RunState's). A branch
+    // on the level, not a reference chosen by it: a RunState whose field had its address
+    // taken would live in memory, not in registers.
+    [[gnu::always_inline]] static void recordMaEdgeOf(Tick t, bool level, bool in_frame,
+                                                      Tick& last_ma_edge, Tick& max_high,
+                                                      Tick& max_low, bool& ma) {
         if (in_frame) {
-            Tick& longest = level ? f_.max_low : f_.max_high;
-            longest = std::max(longest, t - last_ma_edge);
+            if (level)
+                max_low = std::max(max_low, t - last_ma_edge);
+            else
+                max_high = std::max(max_high, t - last_ma_edge);
         }
         last_ma_edge = t;
-        ma_ = level;
+        ma = level;
     }
     void onSl(Tick t, bool level);
     void beginFrame(Tick start, bool from_hold);
@@ -182,16 +240,23 @@ private:
     [[gnu::always_inline]] inline double sampleTime(std::size_t k) const;
     // Slot k's sample time with this line delay and mean period (sampleTime()).
     [[gnu::always_inline]] double sampleTimeWith(std::size_t k, double delay, double period) const {
-        return double(f_.rises[k]) + delay + period / 2.0;
+        return sampleAt(f_.rises[k], delay, period / 2.0);
+    }
+    // The sample time of the slot driven after `rise`: the same sum in the same order on
+    // every path, so that the samples come out bit for bit the same.
+    [[gnu::always_inline]] static double sampleAt(Tick rise, double delay, double half_period) {
+        return double(rise) + delay + half_period;
     }
     [[gnu::always_inline]] inline void scheduleUpTo(double t);
     void startDelayEstimate(double ack_delay);
     void refineDelay(Tick t);
-    // refineDelay()'s work on the state given (the members, or dataRun()'s copies): the
-    // SL edge at t answers rise k (k < rises).
-    [[gnu::always_inline]] inline void refineDelayOf(Tick t, std::size_t k, double period,
-                                                     double& delay, double& delay_sum,
-                                                     int& delay_edges) const;
+    // refineDelay()'s work on the state given (the members, or a RunState): an SL edge
+    // `offset` ticks after the rise it answers. Count: the members' int, or the
+    // RunState's double (the same quotient).
+    template <class Count>
+    [[gnu::always_inline]] static inline void refineDelayOf(double offset, double period,
+                                                            double half_period, double& delay,
+                                                            double& delay_sum, Count& delay_edges);
     [[gnu::always_inline]] inline void drainSamples();
     void takeSample(int index, bool level, double t);
     // The samples that only set a field of the frame and move `slot` on: a low ACK, the
@@ -236,8 +301,8 @@ private:
         takeDataBitOf(f_.data, f_.data_count, f_.slot, level);
     }
     [[gnu::always_inline]] void takeDataBitOf(std::uint64_t& data, int& data_count, Slot& slot,
-                                              bool level) const {
-        data = (data << 1) | std::uint64_t(level);
+                                              std::uint64_t level) const {
+        data = (data << 1) | level;
         if (++data_count == s_.bits) slot = Slot::NE;
     }
     // Ticks, over the frame's rising edges so far. Asked several times per edge, worked
@@ -338,20 +403,22 @@ inline void BisscDecoder::updateQuietTicks() {
 }
 
 inline void BisscDecoder::refineDelay(Tick t) {
-    if (f_.scheduled < f_.rises.size())
-        refineDelayOf(t, f_.scheduled, meanPeriod(), f_.delay, f_.delay_sum, f_.delay_edges);
-}
-
-void BisscDecoder::refineDelayOf(Tick t, std::size_t k, double period, double& delay,
-                                 double& delay_sum, int& delay_edges) const {
     // Every SL change in the frame is the slave answering an MA rising edge: the one
     // whose slot has not been sampled yet (all samples before t are scheduled, the next
-    // slot's is after t). Its offset is one more measurement of the line delay; the mean
-    // resolves the delay to a fraction of a capture sample (the ACK edge alone is
-    // quantised to a whole sample, 0.4 bit at 2.4 samples per bit).
+    // slot's is after t).
+    if (f_.scheduled < f_.rises.size())
+        refineDelayOf(double(t - f_.rises[f_.scheduled]), meanPeriod(), meanPeriod() / 2.0,
+                      f_.delay, f_.delay_sum, f_.delay_edges);
+}
+
+template <class Count>
+inline void BisscDecoder::refineDelayOf(double offset, double period, double half_period,
+                                        double& delay, double& delay_sum, Count& delay_edges) {
+    // The offset is one more measurement of the line delay; the mean resolves the delay
+    // to a fraction of a capture sample (the ACK edge alone is quantised to a whole
+    // sample, 0.4 bit at 2.4 samples per bit).
     if (period <= 0) return;
-    const double offset = double(t - f_.rises[k]);
-    if (std::fabs(offset - delay) >= period / 2) return;
+    if (std::fabs(offset - delay) >= half_period) return;
     delay_sum += offset;
     ++delay_edges;
     delay = delay_sum / delay_edges;

@@ -37,6 +37,17 @@ TEST(Edge, FieldsReadBackAsWrittenAtTheEndsOfTheirRanges) {
             }
 }
 
+TEST(Edge, LineAndLevelIsTheLineTwiceAndTheLevel) {
+    // BiSS-C's runs dispatch on it (BisscDecoder::takeDataEdge()): role * 2 + level.
+    for (const Tick t : {Tick(0), Tick(-1), kMaxEdgeTick, kMinEdgeTick, Tick(0xff)})
+        for (std::uint32_t line = 0; line < kMaxSelectedLines; ++line)
+            for (std::uint8_t level = 0; level < 2; ++level)
+                ASSERT_EQ(Edge(t, line, level).lineAndLevel(), line * 2 + level) << t;
+    Edge e(12345, 3, 0);
+    e.level = 1;  // written through the fields, read as the word
+    EXPECT_EQ(e.lineAndLevel(), 7u);
+}
+
 TEST(Edge, WritingOneFieldLeavesTheOthers) {
     Edge e(kMaxEdgeTick - 40, 127, 1);
     e.t += 40;  // as tests shift edges in time
