@@ -164,10 +164,11 @@ void BisscDecoder::beginFrame(Tick start, bool from_hold) {
 void BisscDecoder::edge(Tick t, int role, bool level) {
     if (dataEdgesNow()) {
         f_.rises.reserve(f_.rises.size() + 1);
-        RunState s = loadRun();
-        const bool taken = takeDataEdge(s, t, edgeKey(role, level));
-        storeRun(s);  // also the samples it took before an edge it leaves
-        if (taken) return;
+        MemberRefs members = memberRefs();
+        if (takeDataEdge(members, t, edgeKey(role, level))) {
+            if (role == kSl) sampler_.setLevel(level);  // (empty)
+            return;
+        }
     }
     if (!takeAckWaitEdge(t, role, level)) edgeReference(t, role, level);
 }
@@ -196,14 +197,15 @@ void BisscDecoder::edgeReference(Tick t, int role, bool level) {
         onSl(t, level);
 }
 
-bool BisscDecoder::takeDataEdge(RunState& s, Tick t, unsigned key) {
+template <class DataState>
+bool BisscDecoder::takeDataEdge(DataState& s, Tick t, unsigned key) {
     // One case per role and level, each with its level a constant: no branch on the level
     // after the one on the role.
     switch (key) {
         case kMa * 2 + 0:
-            return takeMaEdge<false>(s, t);
+            return takeMaEdge<false, DataState>(s, t);
         case kMa * 2 + 1:
-            return takeMaEdge<true>(s, t);
+            return takeMaEdge<true, DataState>(s, t);
         case kSl * 2 + 0:
             return takeSlEdge(s, t, false);
         case kSl * 2 + 1:
@@ -213,8 +215,8 @@ bool BisscDecoder::takeDataEdge(RunState& s, Tick t, unsigned key) {
     }
 }
 
-template <bool kLevel>
-bool BisscDecoder::takeMaEdge(RunState& s, Tick t) {
+template <bool kLevel, class DataState>
+bool BisscDecoder::takeMaEdge(DataState& s, Tick t) {
     if (t - s.last_ma_edge > s.quiet_ticks) return false;  // a clock pause: checkQuiet()
     // Every sample due before t sees SL's level now (scheduleUpTo() and
     // LineSampler::advanceTo() would resolve it so), taken in order, its time pushed
@@ -242,7 +244,8 @@ bool BisscDecoder::takeMaEdge(RunState& s, Tick t) {
     return true;
 }
 
-bool BisscDecoder::takeSlEdge(RunState& s, Tick t, bool level) {
+template <class DataState>
+bool BisscDecoder::takeSlEdge(DataState& s, Tick t, bool level) {
     if (t - s.last_ma_edge > s.quiet_ticks) return false;
     // An SL change before the next sample is due answers that sample's rise; otherwise
     // onSl() checks whether the slave gave up.

@@ -109,8 +109,8 @@ private:
 
     // The state a frame's usual data edge reads and writes, copied from the members
     // (loadRun()) into locals, which the compiler keeps in registers, and back
-    // (storeRun()): for one edge (edge()) or a run of them (dataRun()). As members, they
-    // would be reloaded after every store that might alias them.
+    // (storeRun()), for a run of edges (dataRun()). As members, they would be reloaded
+    // after every store that might alias them.
     struct RunState {
         std::size_t scheduled;  // f_.scheduled
         Tick* rises;            // f_.rises' storage, with room reserved for the run's rises
@@ -171,6 +171,52 @@ private:
         sl_ = s.sl != 0;
         sampler_.setLevel(sl_);  // (empty throughout)
     }
+    // The same state bound to the members, for one edge (edge()): copying a RunState in
+    // and out for each edge would cost more than the edge (the glitch filter's path,
+    // where the session hands over one edge at a time). Only the two values derived from
+    // others are copies: the period's divisor and half the period.
+    struct MemberRefs {
+        std::size_t& scheduled;
+        Tick* rises;  // with room reserved for one more
+        std::size_t& nrises;
+        double gaps;
+        double& delay;
+        double& period;
+        double half_period;
+        double& last_sample_t;
+        double& delay_sum;
+        int& delay_edges;
+        Tick quiet_ticks;
+        Tick& last_ma_edge;
+        Tick& max_high;
+        Tick& max_low;
+        bool& ma;
+        bool& sl;
+        Slot& slot;
+        std::uint64_t& data;
+        int& data_count;
+    };
+    MemberRefs memberRefs() {
+        return MemberRefs{.scheduled = f_.scheduled,
+                          .rises = f_.rises.data(),
+                          .nrises = f_.rises.sizeRef(),
+                          .gaps = double(f_.rises.size() - 1),
+                          .delay = f_.delay,
+                          .period = f_.period,
+                          .half_period = f_.period / 2.0,
+                          .last_sample_t = f_.last_sample_t,
+                          .delay_sum = f_.delay_sum,
+                          .delay_edges = f_.delay_edges,
+                          .quiet_ticks = quiet_ticks_,
+                          .last_ma_edge = last_ma_edge_,
+                          .max_high = f_.max_high,
+                          .max_low = f_.max_low,
+                          .ma = ma_,
+                          .sl = sl_,
+                          .slot = f_.slot,
+                          .data = f_.data,
+                          .data_count = f_.data_count};
+    }
     // Only in State::Data with the sampler empty (and two rises, a period, seen).
     bool dataEdgesNow() const {
         return state_ == State::Data && sampler_.empty() && f_.rises.size() >= 2;
@@ -182,13 +228,16 @@ private:
     // (a clock pause, a sample pushed past its edge, a high ACK, the stop bit, an SL
     // change after a sample due): the samples due before it that it could take are
     // taken, and the general path goes on from there (after storeRun()). `key`: edgeKey().
-    [[gnu::always_inline]] inline bool takeDataEdge(RunState& s, Tick t, unsigned key);
+    // DataState: a RunState or MemberRefs.
+    template <class DataState>
+    [[gnu::always_inline]] inline bool takeDataEdge(DataState& s, Tick t, unsigned key);
     // takeDataEdge()'s key: role * 2 + level, the low byte of an Edge whose line is its
     // role (DecoderContext::lines_are_roles); beyond kSl * 2 + 1 for any other role.
     static unsigned edgeKey(int role, bool level) { return unsigned(role) * 2u + unsigned(level); }
-    template <bool kLevel>
-    [[gnu::always_inline]] inline bool takeMaEdge(RunState& s, Tick t);
-    [[gnu::always_inline]] inline bool takeSlEdge(RunState& s, Tick t, bool level);
+    template <bool kLevel, class DataState>
+    [[gnu::always_inline]] inline bool takeMaEdge(DataState& s, Tick t);
+    template <class DataState>
+    [[gnu::always_inline]] inline bool takeSlEdge(DataState& s, Tick t, bool level);
     // Before the ACK (State::WaitAck) with the sampler empty: an MA edge that onMa() would
     // only record (a clock phase, a rise), taken without the sampler and the state switch:
     // three edges of a usual frame. False for any other edge (an SL edge, a pause that

@@ -40,6 +40,9 @@ public:
     }
     Tick* data() { return buf_.data(); }
     void setSize(std::size_t n) { size_ = n; }
+    // The size itself, for a one-edge run bound to the members (BisscDecoder::edge()),
+    // which counts its rise in place.
+    std::size_t& sizeRef() { return size_; }
 
 private:
     void grow() { buf_.resize(buf_.empty() ? 64 : 2 * buf_.size()); }
