@@ -271,9 +271,10 @@ bool BisscDecoder::takeAckWaitEdge(Tick t, int role, bool level) {
 
 template <bool kLinesAreRoles>
 const Edge* BisscDecoder::dataRun(const Edge* e, const Edge* last, const int* role_of_line) {
-    // Room for the rises the run may write: MA rises and falls alternate (edges() is
-    // handed no edge that repeats its line's level).
-    f_.rises.reserve(f_.rises.size() + std::size_t(last - e) / 2 + 1);
+    // Room for the rises the run may write: one per edge at most. (Half that if MA's
+    // rises and falls alternate, as edges()'s callers promise; the room must not depend
+    // on a promise: a rise past it would be written past the storage.)
+    f_.rises.reserve(f_.rises.size() + std::size_t(last - e));
     RunState s = loadRun();
     for (; e != last; ++e) {
         const unsigned key =
