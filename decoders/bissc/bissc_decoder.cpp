@@ -235,10 +235,10 @@ bool BisscDecoder::takeMaEdge(DataState& s, Tick t) {
         ++s.scheduled;
     }
     recordMaEdgeOf(t, kLevel, true, s.last_ma_edge, s.max_high, s.max_low, s.ma);
-    if constexpr (kLevel) {  // addRise(): periodOfRises() with the divisor kept as a double
+    if constexpr (kLevel) {  // addRise(), with the divisor kept as a double
         s.rises[s.nrises++] = t;
         s.gaps += 1.0;
-        s.period = double(t - s.rises[0]) / s.gaps;
+        s.period = periodOver(s.rises[0], t, s.gaps);
         s.half_period = s.period / 2.0;
     }
     return true;

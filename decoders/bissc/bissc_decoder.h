@@ -115,7 +115,7 @@ private:
         std::size_t scheduled;  // f_.scheduled
         Tick* rises;            // f_.rises' storage, with room reserved for the run's rises
         std::size_t nrises;     // f_.rises.size()
-        double gaps;            // nrises - 1: the period's divisor (periodOfRises())
+        double gaps;            // nrises - 1: the period's divisor (periodOver())
         double delay;
         double period;
         double half_period;  // period / 2.0, as sampleTimeWith() adds it
@@ -363,10 +363,16 @@ private:
     // The mean period over rises[] (two or more).
     [[gnu::always_inline]] double periodOfRises() const {
         const auto& r = f_.rises;
-        return double(r.back() - r.front()) / double(r.size() - 1);
+        return periodOver(r.front(), r.back(), double(r.size() - 1));
     }
-    // A rising MA edge of the frame, on the general path (takeDataEdge() keeps its own
-    // count of the rises, and uses periodOfRises()).
+    // The mean period from the first rise to the last, `gaps` periods apart: the one
+    // formula of the general path (periodOfRises()) and the runs (takeMaEdge(), which keep
+    // the divisor as a double), so that both give the same period bit for bit.
+    [[gnu::always_inline]] static double periodOver(Tick first, Tick last, double gaps) {
+        return double(last - first) / gaps;
+    }
+    // A rising MA edge of the frame, on the general path (takeMaEdge() appends its rises
+    // from its own state, through periodOver() too).
     [[gnu::always_inline]] void addRise(Tick t) {
         f_.rises.push_back(t);
         updatePeriod();
