@@ -5,10 +5,10 @@
 //                                            how much of decode's time is reading
 //     read_capture --edges [--rate HZ] FILE  prints every edge (read_edges.h: printEdges),
 //                                            to compare two builds' readers line for line
-//     read_capture --prefetch FILE           the same count, read ahead on a second thread
-//                                            as decode reads (prefetchReader), this thread
-//                                            reading every edge: what handing the edges
-//                                            between two cores costs the reading thread
+//     read_capture --prefetch FILE           the same count, read on two threads as decode
+//                                            reads (a VCD in pieces on both, other formats
+//                                            ahead on a second: read_edges.h), this thread
+//                                            reading every edge: decode's floor
 //
 // Errors (unreadable or broken captures) are printed as one line, with exit status 2; with
 // --edges also on stdout, so that two builds' outputs compare errors too.

@@ -48,10 +48,13 @@ struct Touched {
     std::uint64_t checksum = 0;  // of every edge's fields, so that each one is read
 };
 
-// Reads the whole file on a second thread, as decode does (prefetchReader with decode's
+// Reads the whole file as decode does, with two threads (a VCD in pieces on both,
+// SegmentedVcdReader; other formats on a second thread, prefetchReader with decode's
 // read-ahead), and reads every edge handed over.
 inline Touched readEdgesAhead(const std::string& path) {
-    auto reader = prefetchReader(openSelected(path, {}), kReadAheadBlocks, kWholeFileBatch);
+    auto reader = openSelected(path, {});
+    if (!reader->readsAhead())
+        reader = prefetchReader(std::move(reader), kReadAheadBlocks, kWholeFileBatch);
     (void)reader->initialLevels();
     EdgeBlock block;
     Touched out;

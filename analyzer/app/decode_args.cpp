@@ -206,7 +206,7 @@ CaptureFacts decodeCapture(const std::string& path, const std::vector<DecoderReq
     // time: one whose size the reader knows (a regular file; a pipe's is unknown), not
     // followed.
     std::unique_ptr<CaptureReader> reader = openCapture(path, open);
-    if (open.read_ahead) {
+    if (open.read_ahead && !reader->readsAhead()) {
         const bool whole_file = !open.follow && reader->bytesTotal() > 0;
         reader =
             prefetchReader(std::move(reader), kReadAheadBlocks, whole_file ? kWholeFileBatch : 1);

@@ -49,6 +49,9 @@ public:
     // True if every edge changes its line's level (the reader drops repeated values
     // itself): the session then skips its own check.
     virtual bool changesOnly() const { return false; }
+    // True if next() already reads ahead on a thread of its own (a reader that is not
+    // to be wrapped in prefetchReader()).
+    virtual bool readsAhead() const { return false; }
 };
 
 // For select(): more lines than an Edge can name is the caller's mistake (Session refuses

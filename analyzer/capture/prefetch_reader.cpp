@@ -74,6 +74,7 @@ public:
     std::uint64_t bytesRead() const override { return bytes_read_.load(std::memory_order_relaxed); }
     std::uint64_t bytesTotal() const override { return in_->bytesTotal(); }
     bool changesOnly() const override { return in_->changesOnly(); }
+    bool readsAhead() const override { return true; }
 
 private:
     void produce() {

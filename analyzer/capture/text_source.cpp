@@ -64,6 +64,17 @@ std::string TextSource::at(std::uint64_t line, const std::string& what) const {
     return fmt::format("{}:{}: {}", name_, line, what);
 }
 
+void TextSource::restartAt(std::uint64_t offset) {
+    ahead_.reset();
+    read_file_ahead_ = false;
+    carry_.clear();
+    if (::lseek(fd_, off_t(offset), SEEK_SET) < 0)
+        throw InputError(fmt::format("{}: cannot seek: {}", name_, std::strerror(errno)));
+    base_ = pos_ = end_ = buf_;
+    consumed_base_ = file_off_ = offset;
+    eof_ = false;
+}
+
 bool TextSource::stopRequested() const {
     return opts_.stop && opts_.stop->load(std::memory_order_relaxed);
 }

@@ -97,6 +97,18 @@ public:
     // (a seekable copy of standard input for formats that need one).
     void drainTo(int out_fd);
 
+    // A regular file named on the command line (not standard input, whose offset need
+    // not start at 0; not a pipe), not followed: one that can be read at any offset with
+    // pread() (SegmentedVcdReader).
+    bool seekable() const { return !pipe_ && !opts_.follow && fd_ != 0; }
+    int fd() const { return fd_; }
+    // Reads on the caller's thread only, never with a FileReadAhead: for a reader that
+    // reads the body itself, on threads of its own.
+    void keepReadsOnThisThread() { read_file_ahead_ = false; }
+    // Drops what is buffered and goes on from `offset` of a seekable() file (a line
+    // start): nextLine() and nextLines() read from there.
+    void restartAt(std::uint64_t offset);
+
     std::uint64_t bytesRead() const { return consumed_base_ + std::uint64_t(pos_ - base_); }
     std::uint64_t bytesTotal() const { return total_; }
 

@@ -33,6 +33,8 @@
 #include "core/own_cache_lines.h"
 #include "decimal_scan.h"
 #include "readers.h"
+#include "segmented_vcd_reader.h"
+#include "vcd_tokeniser.h"
 
 namespace busdecode {
 
@@ -57,10 +59,10 @@ struct StringHash {
 };
 
 // In cache lines of its own: its state is written as it reads (own_cache_lines.h).
-class alignas(kOwnLineBytes) VcdReader : public CaptureReader {
+class alignas(kOwnLineBytes) VcdReader : public VcdTokeniser {
 public:
     VcdReader(std::unique_ptr<TextSource> src, const OpenOptions& opts)
-        : src_(std::move(src)), opts_(opts) {
+        : src_(std::move(src)), name_(src_->name()), opts_(opts) {
         short1_.assign(94, -1);
         short2_.assign(94 * 94, -1);
         scalar1_.assign(256, kNotScalar);  // select() fills them
@@ -148,7 +150,121 @@ public:
     std::uint64_t bytesTotal() const override { return src_->bytesTotal(); }
     bool changesOnly() const override { return true; }  // see set()
 
+    // ---- pieces, for SegmentedVcdReader (vcd_tokeniser.h) ----------------------
+
+    std::unique_ptr<VcdTokeniser> clone() const override {
+        return std::unique_ptr<VcdTokeniser>(new VcdReader(*this, CloneTag{}));
+    }
+
+    void tokenise(const char* b, const char* e, VcdTokenState& state,
+                  std::vector<EdgeBlock>& blocks, std::size_t& used) override {
+        piece_ = true;
+        piece_next_ = b;
+        piece_end_ = e;
+        p_ = e_ = b;
+        in_runs_ = true;
+        initial_done_ = true;
+        done_ = false;
+        for (std::size_t i = 0; i < level_.size(); ++i)
+            level_[i] = state.level[i];
+        cur_ = state.cur;
+        seen_time_ = state.seen_time;
+        in_block_ = state.in_block;
+        line_ = state.line;
+        const bool seen_before = seen_time_;
+        for (;;) {
+            if (used == blocks.size()) blocks.emplace_back().edges.reserve(kEdgeBlockSize);
+            EdgeBlock& block = blocks[used];
+            block.clear();
+            const Stop why = pump(&block);
+            block.known_until = cur_;
+            if (why != Stop::Full) {  // the end of the piece (Eof)
+                if (!block.edges.empty()) ++used;
+                break;
+            }
+            ++used;
+        }
+        state.level = level_.toVector();
+        state.cur = cur_;
+        state.in_block = in_block_;
+        state.line = line_;
+        if (!seen_before && seen_time_) state.first_time = start_;
+        state.seen_time = seen_time_;
+    }
+
+    std::uint64_t resumeOffset() const override {
+        // p_ lies in the run of lines the source handed out last, which ends where the
+        // source has read to. In the header's last line (no run yet), the line's end
+        // was trimmed: not known here.
+        if (!in_runs_) return kNoOffset;
+        return src_->bytesRead() - std::uint64_t(e_ - p_);
+    }
+    VcdTokenState resumeState() const override {
+        VcdTokenState s;
+        s.level = level_.toVector();
+        s.cur = cur_;
+        s.seen_time = seen_time_;
+        s.in_block = in_block_;
+        s.line = line_;
+        return s;
+    }
+    void resumeAt(std::uint64_t offset, const VcdTokenState& state) override {
+        src_->restartAt(offset);
+        piece_ = false;
+        p_ = e_ = nullptr;
+        in_runs_ = true;
+        initial_done_ = true;
+        done_ = false;
+        for (std::size_t i = 0; i < level_.size(); ++i)
+            level_[i] = state.level[i];
+        cur_ = state.cur;
+        seen_time_ = state.seen_time;
+        in_block_ = state.in_block;
+        line_ = state.line;
+    }
+    int fileDescriptor() const override { return src_->fd(); }
+    const std::string& fileName() const override { return name_; }
+
 private:
+    struct CloneTag {};
+    // clone(): the header and the selection's tables, a state of its own, no source.
+    VcdReader(const VcdReader& o, CloneTag)
+        : name_(o.name_),
+          opts_(o.opts_),
+          tb_(o.tb_),
+          signals_(o.signals_),
+          sig_code_(o.sig_code_),
+          codes_(o.codes_),
+          targets_(o.targets_),
+          max_targets_(o.max_targets_),
+          short1_(o.short1_),
+          short2_(o.short2_),
+          long_(o.long_),
+          start_(o.start_),
+          time_digits_(o.time_digits_) {
+        scalar1_.assign(o.scalar1_.size(), 0);
+        std::copy_n(o.scalar1_.data(), o.scalar1_.size(), scalar1_.data());
+        scalar2_.assign(o.scalar2_.size(), 0);
+        std::copy_n(o.scalar2_.data(), o.scalar2_.size(), scalar2_.data());
+        level_.assign(o.level_.size(), 1);
+    }
+
+    // tokenise()'s source: the piece in runs of whole lines, as TextSource::nextLines()
+    // hands out a file's (at most kMaxLine + 1 bytes, the same error past that). False at
+    // the end of the piece.
+    bool nextPieceLines(std::string_view& text) {
+        const std::size_t left = std::size_t(piece_end_ - piece_next_);
+        if (left == 0) return false;
+        const std::size_t window = std::min(left, TextSource::kMaxLine + 1);
+        const char* nl = static_cast<const char*>(memrchr(piece_next_, '\n', window));
+        const char* end = nl ? nl + 1 : piece_end_;
+        if (!nl && left > TextSource::kMaxLine)
+            fail("line longer than 1 MiB (not a text capture?)");
+        text = std::string_view(piece_next_, std::size_t(end - piece_next_));
+        piece_next_ = end;
+        return true;
+    }
+
     struct Code {
         int width = 1;
         bool real = false;
@@ -161,11 +277,9 @@ private:
     enum class Stop { Full, Eof, NoData, FirstDone };
 
     // Messages name line_: the line being parsed, in the header and in the value changes.
-    [[noreturn]] void fail(const std::string& what) const {
-        throw InputError(src_->at(line_, what));
-    }
+    [[noreturn]] void fail(const std::string& what) const { failAt(line_, what); }
     [[noreturn]] void failAt(std::uint64_t line, const std::string& what) const {
-        throw InputError(src_->at(line, what));
+        throw InputError(fmt::format("{}:{}: {}", name_, line, what));
     }
 
     // ---- header -------------------------------------------------------------
@@ -378,6 +492,12 @@ private:
                     ++line_;
                 }
                 std::string_view text;
+                if (piece_) {
+                    if (!nextPieceLines(text)) return Stop::Eof;
+                    p_ = text.data();
+                    e_ = text.data() + text.size();
+                    continue;
+                }
                 auto st = src_->nextLines(text, line_);
                 if (st == TextSource::Status::Eof) return Stop::Eof;
                 if (st == TextSource::Status::NoData) return Stop::NoData;
@@ -653,7 +773,8 @@ private:
                          printable(std::string_view(id, std::size_t(q - id)))));
     }
 
-    std::unique_ptr<TextSource> src_;
+    std::unique_ptr<TextSource> src_;  // null in a clone()
+    std::string name_;                 // the file, for messages
     OpenOptions opts_;
     Timebase tb_{1, 1'000'000'000};
     std::vector<SignalInfo> signals_;
@@ -685,11 +806,28 @@ private:
     bool done_ = false;
     Tick start_ = 0, cur_ = 0, end_ = 0;
     int time_digits_ = 1;  // fastRun()'s loop: for times of this many digits
+    // tokenise(): the piece's bytes not yet handed to pump() (piece_ set).
+    bool piece_ = false;
+    const char* piece_next_ = nullptr;
+    const char* piece_end_ = nullptr;
 };
 
 }  // namespace
 
 std::unique_ptr<CaptureReader> openVcd(std::unique_ptr<TextSource> src, const OpenOptions& opts) {
+    // A regular file read to its end on two threads: its pieces tokenised on both
+    // (segmented_vcd_reader.h), where they would otherwise take turns, one reading ahead
+    // of the other decoding (prefetchReader()).
+    if (opts.read_ahead && opts.read_file_ahead && src->seekable() && src->bytesTotal() > 0) {
+        src->keepReadsOnThisThread();
+        const std::uint64_t size = src->bytesTotal();
+        return segmentedVcdReader(openVcdTokeniser(std::move(src), opts), size);
+    }
+    return openVcdTokeniser(std::move(src), opts);
+}
+
+std::unique_ptr<VcdTokeniser> openVcdTokeniser(std::unique_ptr<TextSource> src,
+                                               const OpenOptions& opts) {
     return std::make_unique<VcdReader>(std::move(src), opts);
 }
 

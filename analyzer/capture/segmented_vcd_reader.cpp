@@ -1,0 +1,359 @@
+#include "segmented_vcd_reader.h"
+
+#include <algorithm>
+#include <cerrno>
+#include <condition_variable>
+#include <cstring>
+#include <mutex>
+#include <thread>
+#include <utility>
+#include <vector>
+
+#include <pthread.h>
+#include <unistd.h>
+
+namespace busdecode {
+
+namespace {
+
+// One piece of the value changes: its bytes, and what tokenising them gave.
+struct Piece {
+    enum class State { Free, Working, Done };
+    State state = State::Free;
+    std::uint64_t index = 0;
+    std::unique_ptr<char[]> text;  // the bytes read: from text_offset, text_size of them
+    std::size_t text_capacity = 0;
+    std::uint64_t text_offset = 0;
+    std::uint64_t begin = 0, end = 0;  // the piece: file offsets [begin, end)
+    bool ok = false;                   // bounds found, tokenised without a fault
+    VcdTokenState run;
+    std::vector<EdgeBlock> blocks;
+    std::size_t used = 0;  // blocks[0, used) hold its edges
+    // Per line, where its first edge is (block * kEdgeBlockSize + index), or kNoEdge.
+    std::vector<std::uint32_t> first_edge;
+};
+constexpr std::uint32_t kNoEdge = ~std::uint32_t(0);
+
+class SegmentedVcdReader final : public CaptureReader {
+public:
+    SegmentedVcdReader(std::unique_ptr<VcdTokeniser> vcd, std::uint64_t size,
+                       std::uint64_t piece_bytes, std::uint64_t boundary_search)
+        : vcd_(std::move(vcd)),
+          size_(size),
+          piece_bytes_(std::max<std::uint64_t>(piece_bytes, 1)),
+          search_(std::max<std::uint64_t>(boundary_search, 1)),
+          pieces_(kPiecesAhead) {}
+    ~SegmentedVcdReader() override { stopHelper(); }
+
+    const std::vector<SignalInfo>& signals() const override { return vcd_->signals(); }
+    Timebase timebase() const override { return vcd_->timebase(); }
+    std::string formatName() const override { return vcd_->formatName(); }
+    void select(const std::vector<LineRef>& lines) override { vcd_->select(lines); }
+    std::vector<std::uint8_t> initialLevels() override {
+        auto levels = vcd_->initialLevels();
+        if (!planned_) plan();
+        return levels;
+    }
+    Tick startTick() const override { return vcd_->startTick(); }
+
+    bool next(EdgeBlock& block) override {
+        if (!planned_) initialLevels();
+        if (sequential_) return vcd_->next(block);
+        for (;;) {
+            if (head_open_) {
+                Piece& h = slot(head_);
+                while (handing_ < h.used) {
+                    EdgeBlock& b = h.blocks[handing_++];
+                    if (b.edges.empty()) continue;  // its one edge dropped (accept())
+                    std::swap(block, b);
+                    return true;
+                }
+                release();
+            }
+            if (head_ == count_) {
+                block.clear();
+                end_ = x_.seen_time ? x_.cur : vcd_->startTick();
+                return false;
+            }
+            if (!awaitHead()) {
+                fallBack();
+                return vcd_->next(block);
+            }
+            head_open_ = true;
+            handing_ = 0;
+        }
+    }
+    Tick endTick() const override { return sequential_ ? vcd_->endTick() : end_; }
+    std::uint64_t bytesRead() const override {
+        return sequential_ ? vcd_->bytesRead() : expected_begin_;
+    }
+    std::uint64_t bytesTotal() const override { return size_; }
+    bool changesOnly() const override { return true; }
+    bool readsAhead() const override { return true; }
+
+private:
+    Piece& slot(std::uint64_t k) { return pieces_[std::size_t(k % pieces_.size())]; }
+
+    // After the initial levels: where the pieces start, how many there are, their state.
+    void plan() {
+        planned_ = true;
+        const std::uint64_t at = vcd_->resumeOffset();
+        if (at == VcdTokeniser::kNoOffset || at >= size_) {
+            sequential_ = true;  // nothing left to cut, or not known where to
+            return;
+        }
+        start_ = expected_begin_ = at;
+        x_ = initial_ = vcd_->resumeState();
+        count_ = (size_ - at + piece_bytes_ - 1) / piece_bytes_;
+        main_tok_ = vcd_->clone();
+        helper_tok_ = vcd_->clone();
+        lines_ = x_.level.size();
+    }
+
+    bool claimable() const { return next_claim_ < count_ && next_claim_ < head_ + pieces_.size(); }
+
+    // Waits for the head piece, tokenising pieces ahead meanwhile, and completes it with
+    // the state before it. False: it cannot be completed (read on sequentially).
+    bool awaitHead() {
+        std::unique_lock<std::mutex> lock(m_);
+        if (!helper_.joinable() && !quit_) helper_ = std::thread([this] { help(); });
+        Piece& h = slot(head_);
+        while (!(h.state == Piece::State::Done && h.index == head_)) {
+            if (claimable()) {
+                const std::uint64_t k = next_claim_++;
+                Piece& p = slot(k);
+                p.state = Piece::State::Working;
+                lock.unlock();
+                work(k, *main_tok_, p);
+                lock.lock();
+                p.state = Piece::State::Done;
+                continue;
+            }
+            consumer_waiting_ = true;
+            ready_.wait(lock);
+            consumer_waiting_ = false;
+        }
+        lock.unlock();
+        return accept(h);
+    }
+
+    // The helper thread: tokenises the pieces ahead, up to kPiecesAhead.
+    void help() {
+        // Named as the reading thread always was: top -H and perf tell the threads apart.
+        pthread_setname_np(pthread_self(), "decode-read");
+        std::unique_lock<std::mutex> lock(m_);
+        for (;;) {
+            if (quit_) return;
+            if (!claimable()) {
+                helper_waiting_ = true;
+                space_.wait(lock);
+                helper_waiting_ = false;
+                continue;
+            }
+            const std::uint64_t k = next_claim_++;
+            Piece& p = slot(k);
+            p.state = Piece::State::Working;
+            lock.unlock();
+            work(k, *helper_tok_, p);
+            lock.lock();
+            p.state = Piece::State::Done;
+            if (consumer_waiting_ && k == head_) ready_.notify_one();
+        }
+    }
+
+    // Frees the head piece's slot for a piece ahead.
+    void release() {
+        head_open_ = false;
+        std::unique_lock<std::mutex> lock(m_);
+        slot(head_).state = Piece::State::Free;
+        ++head_;
+        // A helper waiting for room is woken when half the slots are free, not at every
+        // one: fewer wake-ups on the decoding thread when it is the slower one.
+        const bool wake =
+            helper_waiting_ && head_ + pieces_.size() >= next_claim_ + pieces_.size() / 2;
+        lock.unlock();
+        if (wake) space_.notify_one();
+    }
+
+    void stopHelper() {
+        {
+            std::lock_guard<std::mutex> lock(m_);
+            quit_ = true;
+        }
+        space_.notify_all();
+        if (helper_.joinable()) helper_.join();
+    }
+
+    // The rest of the file sequentially, from the head piece's start, in the state the
+    // pieces before it left.
+    void fallBack() {
+        stopHelper();
+        sequential_ = true;
+        vcd_->resumeAt(expected_begin_, x_);
+    }
+
+    // Reads bytes [from, to) of the file into the piece's buffer. False on a read error
+    // or a file that shrank (the sequential reader then reports what it finds).
+    bool readText(Piece& p, std::uint64_t from, std::uint64_t to) {
+        const std::size_t n = std::size_t(to - from);
+        if (p.text_capacity < n) {
+            p.text.reset(new char[n]);
+            p.text_capacity = n;
+        }
+        p.text_offset = from;
+        std::size_t got = 0;
+        while (got < n) {
+            const ssize_t r =
+                ::pread(vcd_->fileDescriptor(), p.text.get() + got, n - got, off_t(from + got));
+            if (r < 0 && errno == EINTR) continue;
+            if (r <= 0) return false;
+            got += std::size_t(r);
+        }
+        return true;
+    }
+
+    // The first `#time` line starting at or after `x` and before x + search_ (the file's
+    // end if that comes first and has none): where the pieces cut at x meet. kNoOffset if
+    // there is none in reach.
+    std::uint64_t boundary(const Piece& p, std::uint64_t x) const {
+        if (x >= size_) return size_;
+        const std::uint64_t stop = std::min(x + search_, size_);
+        const char* const t = p.text.get() - p.text_offset;  // indexed by file offset
+        for (std::uint64_t i = x; i < stop; ++i) {
+            const char* nl = static_cast<const char*>(std::memchr(t + i - 1, '\n', stop - i + 1));
+            if (!nl) break;
+            i = std::uint64_t(nl - t) + 1;
+            if (i < stop && t[i] == '#') return i;
+        }
+        return stop == size_ ? size_ : VcdTokeniser::kNoOffset;
+    }
+
+    // Reads and tokenises piece k (any thread; no lock held). The first piece goes on
+    // from the initial levels' state; the others start from nothing known.
+    void work(std::uint64_t k, VcdTokeniser& tok, Piece& p) {
+        p.index = k;
+        p.ok = false;
+        p.used = 0;
+        const std::uint64_t x0 = start_ + k * piece_bytes_;
+        const std::uint64_t x1 = std::min(start_ + (k + 1) * piece_bytes_, size_);
+        // From the byte before x0 (is x0 a line start?) to the end of both searches.
+        const std::uint64_t from = k == 0 ? x0 : x0 - 1;
+        const std::uint64_t to = std::min(std::max(x0, x1) + search_, size_);
+        try {
+            if (!readText(p, from, to)) return;
+            p.begin = k == 0 ? x0 : boundary(p, x0);
+            p.end = boundary(p, x1);
+            if (p.begin == VcdTokeniser::kNoOffset || p.end == VcdTokeniser::kNoOffset) return;
+            if (k == 0) {
+                p.run = initial_;  // the exact state: no fix-up
+            } else {
+                p.run.level.assign(lines_, kUnknownLevel);
+                p.run.cur = 0;
+                p.run.seen_time = false;
+                p.run.in_block = false;
+                p.run.line = 0;
+            }
+            p.run.first_time = kNoTick;
+            const char* t = p.text.get() - p.text_offset;
+            tok.tokenise(t + p.begin, t + p.end, p.run, p.blocks, p.used);
+            if (k > 0) findFirstEdges(p);
+            p.ok = true;
+        } catch (...) {
+            // A fault in the traffic (InputError) or no memory: the sequential reader,
+            // reading the same bytes on the decoding thread, meets it again and reports it.
+            p.ok = false;
+        }
+    }
+
+    // Where each line's first edge in the piece is: the edges accept() may drop.
+    void findFirstEdges(Piece& p) {
+        p.first_edge.assign(lines_, kNoEdge);
+        std::size_t left = 0;
+        for (std::uint8_t l : p.run.level)
+            left += l != kUnknownLevel;
+        for (std::size_t b = 0; b < p.used && left > 0; ++b) {
+            const auto& edges = p.blocks[b].edges;
+            for (std::size_t i = 0; i < edges.size(); ++i) {
+                std::uint32_t& first = p.first_edge[edges[i].line];
+                if (first != kNoEdge) continue;
+                first = std::uint32_t(b * kEdgeBlockSize + i);
+                if (--left == 0) break;
+            }
+        }
+    }
+
+    // Completes the head piece with the state before it (x_), and moves x_ past it.
+    bool accept(Piece& p) {
+        if (!p.ok || p.begin != expected_begin_) return false;
+        if (p.index == 0) {
+            x_ = p.run;
+        } else {
+            if (x_.in_block) return false;  // the piece's start was inside a $comment
+            if (p.run.seen_time && p.run.first_time < x_.cur) return false;  // backwards
+            // A first change to the level the line had is not an edge.
+            std::vector<std::uint32_t> drop;
+            for (std::size_t l = 0; l < lines_; ++l) {
+                const std::uint32_t at = p.first_edge[l];
+                if (at == kNoEdge) continue;
+                const Edge& e = p.blocks[at / kEdgeBlockSize].edges[at % kEdgeBlockSize];
+                if (e.level == x_.level[l]) drop.push_back(at);
+            }
+            std::sort(drop.rbegin(), drop.rend());
+            for (std::uint32_t at : drop) {
+                auto& edges = p.blocks[at / kEdgeBlockSize].edges;
+                edges.erase(edges.begin() + std::ptrdiff_t(at % kEdgeBlockSize));
+            }
+            for (std::size_t l = 0; l < lines_; ++l)
+                if (p.run.level[l] != kUnknownLevel) x_.level[l] = p.run.level[l];
+            if (p.run.seen_time) {
+                x_.cur = p.run.cur;
+                x_.seen_time = true;
+            }
+            x_.in_block = p.run.in_block;
+            x_.line += p.run.line;
+        }
+        expected_begin_ = p.end;
+        return true;
+    }
+
+    std::unique_ptr<VcdTokeniser> vcd_;  // header, initial levels, and the fallback
+    const std::uint64_t size_;
+    const std::uint64_t piece_bytes_;
+    const std::uint64_t search_;
+    bool planned_ = false;
+    bool sequential_ = false;  // next() is vcd_'s
+    std::uint64_t start_ = 0;  // where piece 0 starts
+    std::uint64_t count_ = 0;  // pieces
+    std::size_t lines_ = 0;
+    std::unique_ptr<VcdTokeniser> main_tok_, helper_tok_;
+    VcdTokenState initial_;  // where piece 0 starts (read by either thread)
+
+    // The decoding thread's: the state after the pieces handed out, and the head piece.
+    VcdTokenState x_;
+    std::uint64_t expected_begin_ = 0;  // where the head piece must start
+    bool head_open_ = false;            // the head piece is being handed out
+    std::size_t handing_ = 0;           // its next block
+    Tick end_ = 0;
+
+    std::vector<Piece> pieces_;  // piece k in pieces_[k % kPiecesAhead]
+    std::mutex m_;
+    std::condition_variable ready_, space_;
+    std::uint64_t head_ = 0;        // the piece being decoded (or next to be)
+    std::uint64_t next_claim_ = 0;  // the next piece to tokenise
+    bool quit_ = false;
+    bool helper_waiting_ = false;
+    bool consumer_waiting_ = false;
+    std::thread helper_;
+};
+
+}  // namespace
+
+std::unique_ptr<CaptureReader> segmentedVcdReader(std::unique_ptr<VcdTokeniser> vcd,
+                                                  std::uint64_t file_size,
+                                                  std::uint64_t piece_bytes,
+                                                  std::uint64_t boundary_search) {
+    return std::make_unique<SegmentedVcdReader>(std::move(vcd), file_size, piece_bytes,
+                                                boundary_search);
+}
+
+}  // namespace busdecode

@@ -1,0 +1,243 @@
+// A VCD file tokenised in pieces on two threads (SegmentedVcdReader) must read exactly as
+// the sequential reader reads it: the same initial levels, the same edges in the same
+// order (a repeated value is never an edge, across a cut too), the same end, the same
+// error at the same line after the same edges. Pieces of a few bytes cut the file
+// everywhere: inside comments that hold `#` lines, between a `$dumpall` and the values it
+// repeats, inside CRLF line ends; a short search for the next `#time` line makes most
+// pieces fall back to sequential reading, a long one makes none.
+#include <gtest/gtest.h>
+
+#include <fmt/format.h>
+
+#include <filesystem>
+#include <memory>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "capture/segmented_vcd_reader.h"
+#include "capture/text_source.h"
+#include "capture/vcd_tokeniser.h"
+#include "capture_util.h"
+#include "core/options.h"
+
+namespace busdecode::test {
+namespace {
+
+OpenOptions sequentialOptions() {
+    OpenOptions o;
+    o.read_ahead = false;
+    o.read_file_ahead = false;
+    return o;
+}
+
+// Everything a reader hands out, edges as they come (repeats kept), then its end and
+// byte count; or, where it throws, the error after the edges before it. Selects every
+// scalar, and bits 0 and 3 of vectors.
+template <class Open>
+std::string transcript(Open open) {
+    std::string out;
+    try {
+        std::unique_ptr<CaptureReader> r = open();
+        std::vector<LineRef> lines;
+        for (std::size_t i = 0; i < r->signals().size(); ++i) {
+            if (r->signals()[i].width == 1) {
+                lines.push_back({int(i), -1});
+            } else {
+                lines.push_back({int(i), 0});
+                lines.push_back({int(i), 3});
+            }
+        }
+        r->select(lines);
+        out += "initial ";
+        for (std::uint8_t l : r->initialLevels())
+            out += char('0' + l);
+        out += fmt::format(" from {}\n", r->startTick());
+        EdgeBlock block;
+        while (r->next(block)) {
+            for (const Edge& e : block.edges)
+                out += fmt::format("{} {} {}\n", Tick(e.t), unsigned(e.line), unsigned(e.level));
+            if (!block.edges.empty() && block.known_until < block.edges.back().t)
+                out += "known_until before the block's last edge\n";
+        }
+        out += fmt::format("end {} bytes {}\n", r->endTick(), r->bytesRead());
+    } catch (const InputError& e) {
+        out += fmt::format("error {}\n", e.what());
+    }
+    return out;
+}
+
+std::string sequential(const std::string& path) {
+    return transcript([&] { return openCapture(path, sequentialOptions()); });
+}
+
+std::string segmented(const std::string& path, std::uint64_t piece, std::uint64_t search) {
+    return transcript([&]() -> std::unique_ptr<CaptureReader> {
+        auto src = std::make_unique<TextSource>(path, sequentialOptions());
+        const std::uint64_t size = src->bytesTotal();
+        return segmentedVcdReader(openVcdTokeniser(std::move(src), sequentialOptions()), size,
+                                  piece, search);
+    });
+}
+
+// `got` reads as `want`. Where `want` ends in an error, `got` ends in the same one, and
+// the edges before it may go further: the sequential reader does not hand out the block
+// it was filling when it met the fault, the pieces before the fault's are handed out whole.
+void expectSameReading(const std::string& got, const std::string& want, const std::string& what) {
+    const auto error_at = want.rfind("error ");
+    if (error_at == std::string::npos) {
+        ASSERT_EQ(got, want) << what;
+        return;
+    }
+    const std::string edges = want.substr(0, error_at);
+    const auto got_error_at = got.rfind("error ");
+    ASSERT_NE(got_error_at, std::string::npos) << what << "\n" << got;
+    EXPECT_EQ(got.substr(got_error_at), want.substr(error_at)) << what;
+    ASSERT_EQ(got.substr(0, edges.size()), edges) << what;
+}
+
+// Every cut: pieces of 1 byte to 4 KiB, searches of 1 byte to 64 KiB.
+void expectSameEverywhere(const std::string& path) {
+    const std::string want = sequential(path);
+    for (std::uint64_t piece : {1, 2, 3, 7, 16, 61, 256, 4096})
+        for (std::uint64_t search : {1, 8, 64, 65536})
+            ASSERT_NO_FATAL_FAILURE(expectSameReading(
+                segmented(path, piece, search), want,
+                fmt::format("{} in pieces of {} bytes, search {}", path, piece, search)));
+}
+
+enum class Fault { None, Backwards, BadTime, Garbage, NoLastNewline };
+
+// A VCD with what real writers put in one: times on lines of their own or with the
+// changes after them (sigrok), repeated times, values repeated (so not edges), x and z,
+// vectors with short values, a real, a two-character identifier starting with '#',
+// comments with `#` lines in them, $dumpall repeating every value, blank lines; CRLF or
+// LF. `fault` puts an error (or a missing last newline) near the end. Without
+// `hash_comments`, no comment holds a `#` line: every piece can then be taken as it was
+// tokenised, none falls back (the search permitting).
+std::string randomVcd(std::mt19937& rng, int times, bool crlf, Fault fault,
+                      bool hash_comments = true) {
+    auto pick = [&](int n) { return int(rng() % unsigned(n)); };
+    std::string s;
+    s += "$date today $end\n$timescale 1ns $end\n$scope module top $end\n";
+    s += "$var wire 1 ! a $end\n$var wire 1 \" b $end\n$var wire 1 #x c $end\n";
+    s += "$var wire 4 % bus [3:0] $end\n$var real 1 & r $end\n$upscope $end\n";
+    s += "$enddefinitions $end\n$dumpvars 1! 0\" x#x b0000 % r0 & $end\n";
+    const char* ids[] = {"!", "\"", "#x"};
+    const char levels[] = {'0', '1', '0', '1', '0', '1', 'x', 'z'};
+    std::uint64_t t = 0;
+    for (int i = 0; i < times; ++i) {
+        if (fault != Fault::None && fault != Fault::NoLastNewline && i == times - 3) {
+            if (fault == Fault::Backwards) s += fmt::format("#{}\n", t / 2);
+            if (fault == Fault::BadTime) s += "#12abc\n";
+            if (fault == Fault::Garbage) s += "q! what\n";
+        }
+        t += std::uint64_t(pick(4));  // 0: the same time again
+        s += fmt::format("#{}", t);
+        if (pick(3) == 0) s += fmt::format(" {}{}", levels[pick(8)], ids[pick(3)]);
+        s += "\n";
+        for (int c = pick(4); c > 0; --c) {
+            switch (pick(6)) {
+                case 0:
+                    s += fmt::format("b{}{}{}{} %\n", pick(2), pick(2), pick(2), pick(2));
+                    break;
+                case 1:
+                    s += pick(2) ? "b1 %\n" : "bx %\n";  // extended: 0001, xxxx
+                    break;
+                case 2:
+                    s += pick(2) ? "r1.5 &\n" : "r0 &\n";
+                    break;
+                default:
+                    s += fmt::format("{}{}\n", levels[pick(8)], ids[pick(3)]);
+            }
+        }
+        switch (pick(25)) {
+            case 0:
+                s += hash_comments ? "$comment\n#999999 is no time here\n1! nor a change\n$end\n"
+                                   : "$comment\n999999 is no time here\n$end\n";
+                break;
+            case 1:
+                s += "$comment one line $end\n";
+                break;
+            case 2:
+                s += "$dumpall 1! 1\" 1#x b1111 % r1 & $end\n";
+                break;
+            case 3:
+                s += "$dumpall\n0!\n0\"\n0#x\n$end\n";
+                break;
+            case 4:
+                s += "\n\n";
+                break;
+            default:
+                break;
+        }
+    }
+    if (fault == Fault::NoLastNewline) s += fmt::format("#{}\n1!", t + 1);
+    if (crlf) {
+        std::string w;
+        for (char c : s) {
+            if (c == '\n') w += '\r';
+            w += c;
+        }
+        s = w;
+    }
+    return s;
+}
+
+TEST(SegmentedVcdReader, ReadsRandomCapturesAsTheSequentialReaderDoes) {
+    std::mt19937 rng(20261125);
+    for (int k = 0; k < 6; ++k) {
+        const std::string path =
+            tempCapture(fmt::format("random{}.vcd", k),
+                        randomVcd(rng, 300, k % 3 == 2, Fault::None, /*hash_comments=*/k >= 3));
+        expectSameEverywhere(path);
+    }
+}
+
+TEST(SegmentedVcdReader, ReportsFaultsAtTheSameLineAfterTheSameEdges) {
+    std::mt19937 rng(7);
+    for (Fault f : {Fault::Backwards, Fault::BadTime, Fault::Garbage, Fault::NoLastNewline}) {
+        const std::string path = tempCapture(fmt::format("fault{}.vcd", int(f)),
+                                             randomVcd(rng, 200, f == Fault::BadTime, f, false));
+        const std::string want = sequential(path);
+        if (f != Fault::NoLastNewline) {
+            ASSERT_NE(want.find("error "), std::string::npos) << want;
+        }
+        expectSameEverywhere(path);
+    }
+}
+
+TEST(SegmentedVcdReader, LongLinesFallBackOrFailAsTheSequentialReaderDoes) {
+    // A comment line longer than the search (pieces after it cannot find their start),
+    // then a line longer than 1 MiB (an error).
+    std::string body = "$timescale 1 ns $end\n$var wire 1 ! a $end\n$enddefinitions $end\n";
+    body += "#0\n1!\n#5\n0!\n$comment " + std::string(200'000, 'c') + " $end\n#10\n1!\n#20\n0!\n";
+    const std::string path = tempCapture("long_comment.vcd", body);
+    const std::string want = sequential(path);
+    for (std::uint64_t piece : {100, 4096, 65536})
+        expectSameReading(segmented(path, piece, 1024), want, std::to_string(piece));
+
+    const std::string too_long =
+        tempCapture("too_long.vcd", body + "$comment " + std::string(1 << 20, 'c') + " $end\n");
+    const std::string error = sequential(too_long);
+    ASSERT_NE(error.find("line longer than 1 MiB"), std::string::npos) << error.substr(0, 200);
+    for (std::uint64_t piece : {4096, 65536, 1 << 20})
+        expectSameReading(segmented(too_long, piece, 1 << 20), error, std::to_string(piece));
+}
+
+TEST(SegmentedVcdReader, TakesOverRegularFilesReadOnTwoThreads) {
+    std::mt19937 rng(3);
+    const std::string path =
+        tempCapture("two_threads.vcd", randomVcd(rng, 60000, false, Fault::None));
+    ASSERT_GT(std::filesystem::file_size(path), 2 * kPieceBytes);  // several pieces
+    OpenOptions two_threads;                                       // the defaults: --threads 2
+    EXPECT_TRUE(openCapture(path, two_threads)->readsAhead());
+    EXPECT_FALSE(openCapture(path, sequentialOptions())->readsAhead());
+    EXPECT_EQ(transcript([&] { return openCapture(path, two_threads); }), sequential(path));
+    OpenOptions followed = two_threads;
+    followed.follow = true;
+    EXPECT_FALSE(openCapture(path, followed)->readsAhead());
+}
+
+}  // namespace
+}  // namespace busdecode::test
