@@ -55,6 +55,9 @@ seed_corpus() {  # TARGET
     [ -d "$src/tests/robustness/regressions/$t" ] && cp -n "$src/tests/robustness/regressions/$t"/* "$c/" 2>/dev/null || true
     case "$t" in
         vcd) copy_small "$c" "$src/captures" "$shared" -name '*.vcd' ;;
+        vcd_pieces) for f in "$seeds/vcd"/*; do  # pieces of 7 bytes, search 64 KiB
+            [ -f "$f" ] && { printf '\x07\x80'; cat "$f"; } > "$c/$(basename "$f")"
+        done ;;
         csv_sigrok) copy_small "$c" "$src/captures" "$shared/biss-renishaw/sigrok-csv" -name '*.csv' ;;
         csv_saleae) copy_small "$c" "$shared/sigrok-dumps" -name '*.csv' ;;
         sr) copy_small "$c" "$shared" -name '*.sr' -size -64k ;;
@@ -62,7 +65,7 @@ seed_corpus() {  # TARGET
 }
 options_for() {  # TARGET -> libFuzzer options
     case "$1" in
-        vcd) echo "-dict=$src/fuzz/dict/vcd.dict -max_len=4096" ;;
+        vcd | vcd_pieces) echo "-dict=$src/fuzz/dict/vcd.dict -max_len=4096" ;;
         csv_*) echo "-dict=$src/fuzz/dict/csv.dict -max_len=4096" ;;
         sr) echo "-dict=$src/fuzz/dict/sr.dict -max_len=8192" ;;
         rules) echo "-dict=$src/fuzz/dict/rules.dict -max_len=2048" ;;

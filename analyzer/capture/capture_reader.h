@@ -70,6 +70,11 @@ struct OpenOptions {
     // With read_ahead: a regular file, not followed, is also read ahead into memory on a
     // third thread (FileReadAhead), so that the kernel's copy runs beside the tokeniser.
     bool read_file_ahead = true;
+    // With both: a VCD file is read in pieces on two threads (segmented_vcd_reader.h) of
+    // this nominal length, the next `#time` line looked for this far past it; 0: the
+    // defaults there. Tests and the vcd_pieces fuzz target cut files finer.
+    std::uint64_t vcd_piece_bytes = 0;
+    std::uint64_t vcd_boundary_search = 0;
     // Set (e.g. by Ctrl-C) to make a following reader return at its next poll.
     const std::atomic<bool>* stop = nullptr;
 };

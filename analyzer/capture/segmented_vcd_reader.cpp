@@ -212,18 +212,23 @@ private:
         return true;
     }
 
+    // The byte at file offset `off` in the piece's buffer (or just past its end).
+    static const char* at(const Piece& p, std::uint64_t off) {
+        return p.text.get() + (off - p.text_offset);
+    }
+
     // The first `#time` line starting at or after `x` and before x + search_ (the file's
     // end if that comes first and has none): where the pieces cut at x meet. kNoOffset if
     // there is none in reach.
     std::uint64_t boundary(const Piece& p, std::uint64_t x) const {
         if (x >= size_) return size_;
         const std::uint64_t stop = std::min(x + search_, size_);
-        const char* const t = p.text.get() - p.text_offset;  // indexed by file offset
         for (std::uint64_t i = x; i < stop; ++i) {
-            const char* nl = static_cast<const char*>(std::memchr(t + i - 1, '\n', stop - i + 1));
+            const char* nl =
+                static_cast<const char*>(std::memchr(at(p, i - 1), '\n', stop - i + 1));
             if (!nl) break;
-            i = std::uint64_t(nl - t) + 1;
-            if (i < stop && t[i] == '#') return i;
+            i = p.text_offset + std::uint64_t(nl - p.text.get()) + 1;
+            if (i < stop && *at(p, i) == '#') return i;
         }
         return stop == size_ ? size_ : VcdTokeniser::kNoOffset;
     }
@@ -254,8 +259,7 @@ private:
                 p.run.line = 0;
             }
             p.run.first_time = kNoTick;
-            const char* t = p.text.get() - p.text_offset;
-            tok.tokenise(t + p.begin, t + p.end, p.run, p.blocks, p.used);
+            tok.tokenise(at(p, p.begin), at(p, p.end), p.run, p.blocks, p.used);
             if (k > 0) findFirstEdges(p);
             p.ok = true;
         } catch (...) {

@@ -158,19 +158,11 @@ public:
 
     void tokenise(const char* b, const char* e, VcdTokenState& state,
                   std::vector<EdgeBlock>& blocks, std::size_t& used) override {
+        loadState(state);
         piece_ = true;
         piece_next_ = b;
         piece_end_ = e;
         p_ = e_ = b;
-        in_runs_ = true;
-        initial_done_ = true;
-        done_ = false;
-        for (std::size_t i = 0; i < level_.size(); ++i)
-            level_[i] = state.level[i];
-        cur_ = state.cur;
-        seen_time_ = state.seen_time;
-        in_block_ = state.in_block;
-        line_ = state.line;
         const bool seen_before = seen_time_;
         for (;;) {
             if (used == blocks.size()) blocks.emplace_back().edges.reserve(kEdgeBlockSize);
@@ -184,12 +176,9 @@ public:
             }
             ++used;
         }
-        state.level = level_.toVector();
-        state.cur = cur_;
-        state.in_block = in_block_;
-        state.line = line_;
-        if (!seen_before && seen_time_) state.first_time = start_;
-        state.seen_time = seen_time_;
+        const Tick first_time = !seen_before && seen_time_ ? start_ : state.first_time;
+        state = resumeState();
+        state.first_time = first_time;
     }
 
     std::uint64_t resumeOffset() const override {
@@ -199,7 +188,7 @@ public:
         if (!in_runs_) return kNoOffset;
         return src_->bytesRead() - std::uint64_t(e_ - p_);
     }
-    VcdTokenState resumeState() const override {
+    VcdTokenState resumeState() const override {  // the state tokenise() leaves too
         VcdTokenState s;
         s.level = level_.toVector();
         s.cur = cur_;
@@ -210,17 +199,9 @@ public:
     }
     void resumeAt(std::uint64_t offset, const VcdTokenState& state) override {
         src_->restartAt(offset);
+        loadState(state);
         piece_ = false;
         p_ = e_ = nullptr;
-        in_runs_ = true;
-        initial_done_ = true;
-        done_ = false;
-        for (std::size_t i = 0; i < level_.size(); ++i)
-            level_[i] = state.level[i];
-        cur_ = state.cur;
-        seen_time_ = state.seen_time;
-        in_block_ = state.in_block;
-        line_ = state.line;
     }
     int fileDescriptor() const override { return src_->fd(); }
     const std::string& fileName() const override { return name_; }
@@ -247,6 +228,20 @@ private:
         scalar2_.assign(o.scalar2_.size(), 0);
         std::copy_n(o.scalar2_.data(), o.scalar2_.size(), scalar2_.data());
         level_.assign(o.level_.size(), 1);
+    }
+
+    // Sets the value changes' state (tokenise(), resumeAt()): past the header and the
+    // initial levels, between lines.
+    void loadState(const VcdTokenState& state) {
+        in_runs_ = true;
+        initial_done_ = true;
+        done_ = false;
+        for (std::size_t i = 0; i < level_.size(); ++i)
+            level_[i] = state.level[i];
+        cur_ = state.cur;
+        seen_time_ = state.seen_time;
+        in_block_ = state.in_block;
+        line_ = state.line;
     }
 
     // tokenise()'s source: the piece in runs of whole lines, as TextSource::nextLines()
@@ -821,7 +816,10 @@ std::unique_ptr<CaptureReader> openVcd(std::unique_ptr<TextSource> src, const Op
     if (opts.read_ahead && opts.read_file_ahead && src->seekable() && src->bytesTotal() > 0) {
         src->keepReadsOnThisThread();
         const std::uint64_t size = src->bytesTotal();
-        return segmentedVcdReader(openVcdTokeniser(std::move(src), opts), size);
+        return segmentedVcdReader(
+            openVcdTokeniser(std::move(src), opts), size,
+            opts.vcd_piece_bytes ? opts.vcd_piece_bytes : kPieceBytes,
+            opts.vcd_boundary_search ? opts.vcd_boundary_search : kBoundarySearch);
     }
     return openVcdTokeniser(std::move(src), opts);
 }

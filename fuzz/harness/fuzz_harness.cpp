@@ -4,6 +4,7 @@
 
 #include "core/registry.h"
 #include "reader_targets.h"
+#include "vcd_pieces.h"
 
 namespace busdecode {
 // The decoders' factories (each decoder's own header declares its one).
@@ -59,7 +60,8 @@ void registerDecoders() {
 }
 
 std::vector<std::string> targetNames() {
-    std::vector<std::string> out = {"vcd", "csv_sigrok", "csv_saleae", "csv_plain", "sr"};
+    std::vector<std::string> out = {"vcd",        "vcd_pieces", "csv_sigrok",
+                                    "csv_saleae", "csv_plain",  "sr"};
 #ifdef FUZZ_HAVE_RULES
     out.push_back("rules");
 #endif
@@ -72,6 +74,7 @@ std::vector<std::string> targetNames() {
 void runTarget(const std::string& target, const std::uint8_t* data, std::size_t size) {
     if (target == "vcd" || target == "csv_sigrok" || target == "csv_saleae")
         return runReaderTarget(ReaderKind::Text, data, size);
+    if (target == "vcd_pieces") return runVcdPiecesTarget(data, size);
     if (target == "csv_plain") return runReaderTarget(ReaderKind::PlainCsv, data, size);
     if (target == "sr") return runReaderTarget(ReaderKind::Sr, data, size);
     if (target == "rules") return runRulesTarget(data, size);

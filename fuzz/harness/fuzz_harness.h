@@ -25,8 +25,8 @@ public:
     using std::logic_error::logic_error;
 };
 
-// Target names: "vcd", "csv_sigrok", "csv_saleae", "csv_plain", "sr", "rules", and one
-// "decoder_<id>" per decoder built in.
+// Target names: "vcd", "vcd_pieces" (vcd_pieces.h), "csv_sigrok", "csv_saleae", "csv_plain", "sr",
+// "rules", and one "decoder_<id>" per decoder built in.
 std::vector<std::string> targetNames();
 // Runs one input through a target; throws HarnessFailure (or crashes) on a finding.
 void runTarget(const std::string& target, const std::uint8_t* data, std::size_t size);

@@ -3,43 +3,19 @@
 // what the session relies on: edges in time order, levels 0/1, line indices in range,
 // known_until never behind the last edge, an InputError naming the file for anything
 // unreadable, and nothing else thrown.
-#include <sys/mman.h>
-#include <unistd.h>
-
 #include <algorithm>
 
 #include "byte_stream.h"
 #include "capture/capture_reader.h"
 #include "core/options.h"
 #include "fuzz_harness.h"
+#include "mem_file.h"
 #include "reader_targets.h"
 #include "zip_builder.h"
 
 namespace busdecode::fuzz {
 
 namespace {
-
-// The fuzz input as a file: memfd pages, no disk.
-class MemFile {
-public:
-    explicit MemFile(const std::string& bytes) {
-        fd_ = memfd_create("busdecode-fuzz", 0);
-        if (fd_ < 0) throw std::runtime_error("memfd_create failed");
-        std::size_t done = 0;
-        while (done < bytes.size()) {
-            ssize_t n = write(fd_, bytes.data() + done, bytes.size() - done);
-            if (n <= 0) throw std::runtime_error("write to memfd failed");
-            done += std::size_t(n);
-        }
-        path_ = "/proc/self/fd/" + std::to_string(fd_);
-    }
-    ~MemFile() { close(fd_); }
-    const std::string& path() const { return path_; }
-
-private:
-    int fd_ = -1;
-    std::string path_;
-};
 
 [[noreturn]] void failure(const std::string& what) {
     throw HarnessFailure(what);
