@@ -10,8 +10,8 @@
 # stays in the page cache), then times `decode` against `sigrok-cli`, `wc -l` and the
 # tokeniser alone on the same cached files (hyperfine, median), then decode and `wc -l`
 # again on each VCD dropped from the page cache and read back (as root; `wc -l` is
-# fastest then), with the tokeniser handing its edges to a thread that only counts them
-# (decode's floor), and with all of decode's work on one thread (--threads 1: its CPU
+# fastest then), read as decode reads it (in pieces on both threads) by a thread that
+# only counts the edges (decode's floor), and with all of decode's work on one thread (--threads 1: its CPU
 # shared over the cores bounds any split of that work), records peak memory
 # (/usr/bin/time -v) on 1 GB and 5 GB captures, times the doubling curve, measures the
 # --follow latency, times `verify --jobs 1` against all cores (and all cores with
@@ -172,11 +172,11 @@ for bus in spi bissc; do
             "$(fmt_s "$t_dec") s wall, $(fmt_s "$c_dec") s CPU" \
             "wc -l $(fmt_s "$t_wc") s wall, $(fmt_s "$c_wc") s CPU: decode at **$r_wc** (wall) of its speed" \
             ">= 0.25" "$(verdict "$r_wc >= 0.25") (wall)"
-        # Reading with every edge handed to a second thread that only counts them:
-        # decode's floor with a decoder that cost nothing (bench/README.md, "A decoder
-        # that costs nothing").
+        # Reading as decode reads (in pieces on both threads), every edge handed to a
+        # thread that only counts them: decode's floor with a decoder that cost nothing
+        # (bench/README.md, "A decoder that costs nothing", "A VCD file in pieces").
         read -r t_pf c_pf < <(median "$runs" "$reader" --prefetch "$f")
-        row "$bus.vcd read back: reading and handing over (read_capture --prefetch) vs wc -l" \
+        row "$bus.vcd read back: reading on two threads, handing over (read_capture --prefetch) vs wc -l" \
             "$size_mb MB" "$(fmt_s "$t_pf") s wall, $(fmt_s "$c_pf") s CPU" \
             "wc -l as above: at **$(ratio "$t_wc" "$t_pf")** (wall) of its speed" \
             "(decode's floor, a bound on the row above)" "-"
