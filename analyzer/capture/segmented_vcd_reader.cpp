@@ -1,6 +1,7 @@
 #include "segmented_vcd_reader.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cerrno>
 #include <condition_variable>
 #include <cstring>
@@ -10,7 +11,10 @@
 #include <vector>
 
 #include <pthread.h>
+#include <sys/stat.h>
 #include <unistd.h>
+
+#include "guarded_mapping.h"
 
 namespace busdecode {
 
@@ -21,9 +25,14 @@ struct Piece {
     enum class State { Free, Working, Done };
     State state = State::Free;
     std::uint64_t index = 0;
-    std::unique_ptr<char[]> text;  // the bytes read: from text_offset, text_size of them
-    std::size_t text_capacity = 0;
+    // Its bytes from file offset text_offset: mapped (GuardedMapping), or where the file
+    // cannot be mapped, copied into `copy`.
+    const char* text = nullptr;
     std::uint64_t text_offset = 0;
+    GuardedMapping mapping;
+    bool mapped = false;  // text is the mapping's
+    std::unique_ptr<char[]> copy;
+    std::size_t copy_capacity = 0;
     std::uint64_t begin = 0, end = 0;  // the piece: file offsets [begin, end)
     bool ok = false;                   // bounds found, tokenised without a fault
     VcdTokenState run;
@@ -112,6 +121,19 @@ private:
 
     bool claimable() const { return next_claim_ < count_ && next_claim_ < head_ + pieces_.size(); }
 
+    // Claims the next piece (claimable(), `lock` held) and tokenises it with `tok`, the
+    // lock released meanwhile. Returns its index.
+    std::uint64_t tokeniseNext(std::unique_lock<std::mutex>& lock, VcdTokeniser& tok) {
+        const std::uint64_t k = next_claim_++;
+        Piece& p = slot(k);
+        p.state = Piece::State::Working;
+        lock.unlock();
+        work(k, tok, p);
+        lock.lock();
+        p.state = Piece::State::Done;
+        return k;
+    }
+
     // Waits for the head piece, tokenising pieces ahead meanwhile, and completes it with
     // the state before it. False: it cannot be completed (read on sequentially).
     bool awaitHead() {
@@ -120,13 +142,7 @@ private:
         Piece& h = slot(head_);
         while (!(h.state == Piece::State::Done && h.index == head_)) {
             if (claimable()) {
-                const std::uint64_t k = next_claim_++;
-                Piece& p = slot(k);
-                p.state = Piece::State::Working;
-                lock.unlock();
-                work(k, *main_tok_, p);
-                lock.lock();
-                p.state = Piece::State::Done;
+                tokeniseNext(lock, *main_tok_);
                 continue;
             }
             consumer_waiting_ = true;
@@ -150,13 +166,7 @@ private:
                 helper_waiting_ = false;
                 continue;
             }
-            const std::uint64_t k = next_claim_++;
-            Piece& p = slot(k);
-            p.state = Piece::State::Working;
-            lock.unlock();
-            work(k, *helper_tok_, p);
-            lock.lock();
-            p.state = Piece::State::Done;
+            const std::uint64_t k = tokeniseNext(lock, *helper_tok_);
             if (consumer_waiting_ && k == head_) ready_.notify_one();
         }
     }
@@ -192,19 +202,26 @@ private:
         vcd_->resumeAt(expected_begin_, x_);
     }
 
-    // Reads bytes [from, to) of the file into the piece's buffer. False on a read error
-    // or a file that shrank (the sequential reader then reports what it finds).
+    // Makes bytes [from, to) of the file the piece's text: mapped, or else copied. False
+    // on a read error or a file that shrank (the sequential reader then reports what it
+    // finds); a mapped file that shrinks is found out after the piece is read (shrunk_).
     bool readText(Piece& p, std::uint64_t from, std::uint64_t to) {
-        const std::size_t n = std::size_t(to - from);
-        if (p.text_capacity < n) {
-            p.text.reset(new char[n]);
-            p.text_capacity = n;
-        }
         p.text_offset = from;
+        p.mapped = p.mapping.map(vcd_->fileDescriptor(), from, to, &shrunk_);
+        if (p.mapped) {
+            p.text = p.mapping.data();
+            return true;
+        }
+        const std::size_t n = std::size_t(to - from);
+        if (p.copy_capacity < n) {
+            p.copy.reset(new char[n]);
+            p.copy_capacity = n;
+        }
+        p.text = p.copy.get();
         std::size_t got = 0;
         while (got < n) {
             const ssize_t r =
-                ::pread(vcd_->fileDescriptor(), p.text.get() + got, n - got, off_t(from + got));
+                ::pread(vcd_->fileDescriptor(), p.copy.get() + got, n - got, off_t(from + got));
             if (r < 0 && errno == EINTR) continue;
             if (r <= 0) return false;
             got += std::size_t(r);
@@ -212,9 +229,14 @@ private:
         return true;
     }
 
+    bool fileShrank() const {
+        struct stat st;
+        return ::fstat(vcd_->fileDescriptor(), &st) != 0 || std::uint64_t(st.st_size) < size_;
+    }
+
     // The byte at file offset `off` in the piece's buffer (or just past its end).
     static const char* at(const Piece& p, std::uint64_t off) {
-        return p.text.get() + (off - p.text_offset);
+        return p.text + (off - p.text_offset);
     }
 
     // The first `#time` line starting at or after `x` and before x + search_ (the file's
@@ -227,7 +249,7 @@ private:
             const char* nl =
                 static_cast<const char*>(std::memchr(at(p, i - 1), '\n', stop - i + 1));
             if (!nl) break;
-            i = p.text_offset + std::uint64_t(nl - p.text.get()) + 1;
+            i = p.text_offset + std::uint64_t(nl - p.text) + 1;
             if (i < stop && *at(p, i) == '#') return i;
         }
         return stop == size_ ? size_ : VcdTokeniser::kNoOffset;
@@ -261,7 +283,11 @@ private:
             p.run.first_time = kNoTick;
             tok.tokenise(at(p, p.begin), at(p, p.end), p.run, p.blocks, p.used);
             if (k > 0) findFirstEdges(p);
-            p.ok = true;
+            // Zeros read where the file shrank under its mapping decide nothing either:
+            // past its new end (SIGBUS, shrunk_) or in the page that holds that end (no
+            // fault). The tokeniser refuses NUL bytes anywhere, so that piece already
+            // fails; the file's size, asked after the piece was read, does not rest on it.
+            p.ok = !shrunk_.load(std::memory_order_seq_cst) && !(p.mapped && fileShrank());
         } catch (...) {
             // A fault in the traffic (InputError) or no memory: the sequential reader,
             // reading the same bytes on the decoding thread, meets it again and reports it.
@@ -339,6 +365,9 @@ private:
     std::size_t handing_ = 0;           // its next block
     Tick end_ = 0;
 
+    // Set when a read of a piece's mapping found the file shorter than it was (declared
+    // before the pieces, whose mappings point at it).
+    std::atomic<bool> shrunk_{false};
     std::vector<Piece> pieces_;  // piece k in pieces_[k % kPiecesAhead]
     std::mutex m_;
     std::condition_variable ready_, space_;

@@ -3,17 +3,25 @@
 // pieces on two threads (SegmentedVcdReader) must read as the sequential reader reads it.
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <string>
 
+#include "capture/capture_reader.h"
+
 namespace busdecode::fuzz {
+
+// Options that read a file sequentially on the caller's thread: no read-ahead, no pieces.
+OpenOptions sequentialOptions();
 
 // What a reader hands out for the file at `path`, as text: the initial levels and start,
 // every edge as it comes (repeats kept), the end and the bytes read; or, where it
 // throws an InputError, the edges before it and the error. Every scalar is selected, and
-// bits 0, width / 2 and width - 1 of vectors (at most 64 lines).
+// bits 0, width / 2 and width - 1 of vectors (at most 64 lines). `before_edges` runs
+// after the initial levels are read, before the first edge (a test changing the file).
 std::string sequentialVcdReading(const std::string& path);
 std::string piecesVcdReading(const std::string& path, std::uint64_t piece_bytes,
-                             std::uint64_t boundary_search);
+                             std::uint64_t boundary_search,
+                             const std::function<void()>& before_edges = {});
 
 // "" if `got` reads as `want`, else what differs. Where `want` ends in an error, `got`
 // must end in the same one, and the edges before it need only agree as far as both go:

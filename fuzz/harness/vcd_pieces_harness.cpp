@@ -13,8 +13,6 @@
 
 namespace busdecode::fuzz {
 
-namespace {
-
 OpenOptions sequentialOptions() {
     OpenOptions o;
     o.read_ahead = false;
@@ -22,7 +20,10 @@ OpenOptions sequentialOptions() {
     return o;
 }
 
-std::string reading(const std::function<std::unique_ptr<CaptureReader>()>& open) {
+namespace {
+
+std::string reading(const std::function<std::unique_ptr<CaptureReader>()>& open,
+                    const std::function<void()>& before_edges = {}) {
     std::string out;
     try {
         std::unique_ptr<CaptureReader> r = open();
@@ -42,6 +43,7 @@ std::string reading(const std::function<std::unique_ptr<CaptureReader>()>& open)
         for (std::uint8_t l : r->initialLevels())
             out += char('0' + l);
         out += fmt::format(" from {}\n", r->startTick());
+        if (before_edges) before_edges();
         EdgeBlock block;
         while (r->next(block)) {
             for (const Edge& e : block.edges)
@@ -63,11 +65,12 @@ std::string sequentialVcdReading(const std::string& path) {
 }
 
 std::string piecesVcdReading(const std::string& path, std::uint64_t piece_bytes,
-                             std::uint64_t boundary_search) {
+                             std::uint64_t boundary_search,
+                             const std::function<void()>& before_edges) {
     OpenOptions pieces;  // decode's: read ahead (in pieces, for a VCD file)
     pieces.vcd_piece_bytes = piece_bytes;
     pieces.vcd_boundary_search = boundary_search;
-    return reading([&] { return openCapture(path, pieces); });
+    return reading([&] { return openCapture(path, pieces); }, before_edges);
 }
 
 std::string readingDifference(const std::string& got, const std::string& want) {

@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <random>
 #include <string>
@@ -23,12 +24,7 @@
 namespace busdecode::test {
 namespace {
 
-OpenOptions sequentialOptions() {
-    OpenOptions o;
-    o.read_ahead = false;
-    o.read_file_ahead = false;
-    return o;
-}
+using fuzz::sequentialOptions;
 
 void expectSameReading(const std::string& got, const std::string& want, const std::string& what) {
     const std::string difference = fuzz::readingDifference(got, want);
@@ -39,8 +35,9 @@ std::string sequential(const std::string& path) {
     return fuzz::sequentialVcdReading(path);
 }
 
-std::string segmented(const std::string& path, std::uint64_t piece, std::uint64_t search) {
-    return fuzz::piecesVcdReading(path, piece, search);
+std::string segmented(const std::string& path, std::uint64_t piece, std::uint64_t search,
+                      const std::function<void()>& before_edges = {}) {
+    return fuzz::piecesVcdReading(path, piece, search, before_edges);
 }
 
 // Every cut: pieces of 1 byte to 4 KiB, searches of 1 byte to 64 KiB.
@@ -190,6 +187,25 @@ TEST(SegmentedVcdReader, TakesOverRegularFilesReadOnTwoThreads) {
     OpenOptions followed = two_threads;
     followed.follow = true;
     EXPECT_FALSE(openCapture(path, followed)->readsAhead());
+}
+
+TEST(SegmentedVcdReader, AFileThatShrinksWhileReadIsReadAsTheSequentialReaderReadsWhatIsLeft) {
+    // The pieces are mapped (guarded_mapping.h). A read past the file's new end raises
+    // SIGBUS, and the page holding the end reads as zeros without one: neither may crash
+    // decode or pass for the file's text. Cut after decode opened the file, before its
+    // first edge: inside a line, near the start, near the end, and 5 bytes before the end
+    // (the last piece's mapping then ends in the page that holds the cut: no fault).
+    std::mt19937 rng(11);
+    const std::string text = randomVcd(rng, 20000, false, Fault::None, false);
+    const std::uint64_t size = text.size();
+    for (std::uint64_t at : {size / 2, size / 8, size - size / 32, size - 5}) {
+        const std::string path = tempCapture("shrinks.vcd", text);
+        const std::string got =
+            segmented(path, 4096, 65536, [&] { std::filesystem::resize_file(path, at); });
+        ASSERT_EQ(std::filesystem::file_size(path), at);
+        const std::string want = sequential(path);  // the file as it is now
+        ASSERT_NO_FATAL_FAILURE(expectSameReading(got, want, fmt::format("cut at {}", at)));
+    }
 }
 
 }  // namespace
