@@ -125,8 +125,8 @@ inline bool digitsOfLengthSwar(const char* p, std::uint64_t& value) {
 #if defined(__SSE2__)
 // digitsOfLength<N> below, in one 16-byte register (SSE2, every x86-64): the digits
 // combined in pairs by three multiply-adds (digits -> 2-digit -> 4-digit -> 8-digit
-// lanes) and one 64-bit multiply. The SWAR version chains two or three 64-bit multiplies
-// per time; this one took reading the 500 MB BiSS-C capture alone from 151 to 114 ms
+// lanes) and, past 8 digits, one 64-bit multiply. The SWAR version chains two or three 64-bit
+// multiplies per time; this one took reading the 500 MB BiSS-C capture alone from 151 to 114 ms
 // (bench/README.md, stop 25).
 template <int N>
 inline bool digitsOfLengthSse2(const char* p, std::uint64_t& value) {
@@ -134,36 +134,34 @@ inline bool digitsOfLengthSse2(const char* p, std::uint64_t& value) {
         _mm_sub_epi8(_mm_loadu_si128(reinterpret_cast<const __m128i*>(p)), _mm_set1_epi8('0'));
     const __m128i nine = _mm_set1_epi8(9);
     const int is_digit = _mm_movemask_epi8(_mm_cmpeq_epi8(_mm_max_epu8(d, nine), nine));
-    constexpr int kFirstN = (1 << N) - 1;
     const __m128i zero = _mm_setzero_si128();
     // pmaddwd's lanes are little-endian: the first (more significant) digit of a pair is
     // the low 16 bits, so its weight comes first.
     const __m128i by10 = _mm_set_epi16(1, 10, 1, 10, 1, 10, 1, 10);
+    __m128i pairs;  // 2-digit values in 16-bit lanes, the first digits' first
     if constexpr (N <= 8) {
-        // Up to 8 digits fill the low half alone: moved to its top bytes, the same three
-        // multiply-adds leave the value in the low 32 bits, and the high half's multiply
-        // and add below (zero times 10^8) are skipped. Times of 8 digits or fewer are
-        // most of a 500 MB capture's (bench/README.md, "-O3 for the code that decodes").
-        const __m128i digits = _mm_slli_si128(d, 8 - N);
-        const __m128i pairs = _mm_madd_epi16(_mm_unpacklo_epi8(digits, zero), by10);
-        const __m128i quads = _mm_madd_epi16(_mm_packs_epi32(pairs, pairs),
-                                             _mm_set_epi16(1, 100, 1, 100, 1, 100, 1, 100));
-        const __m128i eight =
-            _mm_madd_epi16(_mm_packs_epi32(quads, quads),  // each <= 9999: packs cannot saturate
-                           _mm_set_epi16(1, 10000, 1, 10000, 1, 10000, 1, 10000));
-        value = std::uint32_t(_mm_cvtsi128_si32(eight));
-        return (is_digit & kFirstN) == kFirstN;
+        // Up to 8 digits fill the low half alone: moved to its top bytes, they make the
+        // only pairs (twice over), and the one 8-digit group needs no multiply by 10^8
+        // below. Times of 8 digits or fewer are most of a 500 MB capture's
+        // (bench/README.md, "-O3 for the code that decodes").
+        const __m128i low = _mm_madd_epi16(_mm_unpacklo_epi8(_mm_slli_si128(d, 8 - N), zero), by10);
+        pairs = _mm_packs_epi32(low, low);
+    } else {
+        // The N digits moved to the top bytes, zeros (leading zeros) shifted in below them.
+        const __m128i digits = _mm_slli_si128(d, 16 - N);
+        pairs = _mm_packs_epi32(_mm_madd_epi16(_mm_unpacklo_epi8(digits, zero), by10),
+                                _mm_madd_epi16(_mm_unpackhi_epi8(digits, zero), by10));
     }
-    // The N digits moved to the top bytes, zeros (leading zeros) shifted in below them.
-    const __m128i digits = _mm_slli_si128(d, 16 - N);
-    const __m128i pairs = _mm_packs_epi32(_mm_madd_epi16(_mm_unpacklo_epi8(digits, zero), by10),
-                                          _mm_madd_epi16(_mm_unpackhi_epi8(digits, zero), by10));
     const __m128i quads =  // each <= 9999: packs below cannot saturate
         _mm_madd_epi16(pairs, _mm_set_epi16(1, 100, 1, 100, 1, 100, 1, 100));
     const __m128i eights = _mm_madd_epi16(_mm_packs_epi32(quads, quads),
                                           _mm_set_epi16(1, 10000, 1, 10000, 1, 10000, 1, 10000));
-    const std::uint64_t both = std::uint64_t(_mm_cvtsi128_si64(eights));  // high 8, low 8
-    value = (both & 0xFFFFFFFFULL) * 100000000ULL + (both >> 32);
+    const std::uint64_t both = std::uint64_t(_mm_cvtsi128_si64(eights));  // first 8, next 8
+    if constexpr (N <= 8)
+        value = both & 0xFFFFFFFFULL;
+    else
+        value = (both & 0xFFFFFFFFULL) * 100000000ULL + (both >> 32);
+    constexpr int kFirstN = (1 << N) - 1;
     return (is_digit & kFirstN) == kFirstN;
 }
 #endif
