@@ -40,8 +40,10 @@ struct Piece {
     std::size_t used = 0;  // blocks[0, used) hold its edges
     // Per line, where its first edge is (block * kEdgeBlockSize + index), or kNoEdge.
     std::vector<std::uint32_t> first_edge;
+    // What the piece work (setPieceWork()) made of it, if anything.
+    std::unique_ptr<PieceWork::Result> result;
 };
-constexpr std::uint32_t kNoEdge = ~std::uint32_t(0);
+constexpr std::uint32_t kNoEdge = PieceWork::kNoEdge;
 
 class SegmentedVcdReader final : public CaptureReader {
 public:
@@ -99,6 +101,17 @@ public:
     std::uint64_t bytesTotal() const override { return size_; }
     bool changesOnly() const override { return true; }
     bool readsAhead() const override { return true; }
+    bool setPieceWork(std::shared_ptr<PieceWork> work) override {
+        if (!planned_) initialLevels();
+        if (sequential_ || helper_.joinable()) return false;
+        piece_work_ = std::move(work);
+        return true;
+    }
+    std::unique_ptr<PieceWork::Result> takePieceResult(std::uint32_t& dropped) override {
+        if (!head_result_) return nullptr;
+        dropped = head_dropped_;
+        return std::move(head_result_);
+    }
 
 private:
     Piece& slot(std::uint64_t k) { return pieces_[std::size_t(k % pieces_.size())]; }
@@ -261,6 +274,7 @@ private:
         p.index = k;
         p.ok = false;
         p.used = 0;
+        p.result.reset();
         const std::uint64_t x0 = start_ + k * piece_bytes_;
         const std::uint64_t x1 = std::min(start_ + (k + 1) * piece_bytes_, size_);
         // From the byte before x0 (is x0 a line start?) to the end of both searches.
@@ -293,6 +307,14 @@ private:
             // reading the same bytes on the decoding thread, meets it again and reports it.
             p.ok = false;
         }
+        // The first piece is decoded from the capture's start anyway: no work ahead.
+        if (p.ok && k > 0 && piece_work_) {
+            try {
+                p.result = piece_work_->run({p.blocks.data(), p.used, &p.first_edge});
+            } catch (...) {
+                p.result.reset();  // nothing ahead for this piece: it is decoded as it comes
+            }
+        }
     }
 
     // Where each line's first edge in the piece is: the edges accept() may drop.
@@ -315,6 +337,8 @@ private:
     // Completes the head piece with the state before it (x_), and moves x_ past it.
     bool accept(Piece& p) {
         if (!p.ok || p.begin != expected_begin_) return false;
+        head_result_.reset();
+        head_dropped_ = 0;
         if (p.index == 0) {
             x_ = p.run;
         } else {
@@ -329,6 +353,8 @@ private:
                 if (e.level == x_.level[l]) drop.push_back(at);
             }
             std::sort(drop.rbegin(), drop.rend());
+            head_dropped_ = std::uint32_t(drop.size());
+            head_result_ = std::move(p.result);
             for (std::uint32_t at : drop) {
                 auto& edges = p.blocks[at / kEdgeBlockSize].edges;
                 edges.erase(edges.begin() + std::ptrdiff_t(at % kEdgeBlockSize));
@@ -364,6 +390,10 @@ private:
     bool head_open_ = false;            // the head piece is being handed out
     std::size_t handing_ = 0;           // its next block
     Tick end_ = 0;
+    std::shared_ptr<PieceWork> piece_work_;  // set before the helper starts, then only read
+    // The head piece's result, until takePieceResult() takes it, and its dropped edges.
+    std::unique_ptr<PieceWork::Result> head_result_;
+    std::uint32_t head_dropped_ = 0;
 
     // Set when a read of a piece's mapping found the file shorter than it was (declared
     // before the pieces, whose mappings point at it).

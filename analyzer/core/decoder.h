@@ -2,6 +2,7 @@
 // The decoder interface. A decoder is a plain C++ state machine fed with the edges of
 // its bound lines in time order (merged next-edge iteration, as in libscopehal): cost
 // grows with edges, not samples. No Qt in here.
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -15,6 +16,18 @@
 namespace busdecode {
 
 class EventWindow;
+
+// What a decoder is at one point of the edge stream, for decoding a capture in pieces on
+// several threads at once (core/piece_speculation.h): a decoder started fresh partway
+// through the capture takes over from the one that decoded up to there, from the first
+// point where their states are the same. `words` is everything that decides what the
+// decoder does with the edges after that point; two decoders with the same words there
+// emit the same events from then on. `counts` are running totals (frames seen, say)
+// that do not decide anything: the one taking over adds the other's (addCounts()).
+struct SpliceState {
+    std::vector<std::uint64_t> words;
+    std::vector<std::uint64_t> counts;
+};
 
 struct DecoderContext {
     Timebase timebase;
@@ -94,6 +107,26 @@ public:
     // Stacked decoders override it to include their lower decoder's.
     virtual Tick watermark(Tick now) const { return busy_since_ == kNoTick ? now : busy_since_; }
 
+    // Piece-parallel decoding (core/piece_speculation.h). A decoder that can be spliced
+    // says so here, and fills `out` in spliceState() wherever it is at a point it can be
+    // compared at (between frames, say), returning false elsewhere: a false costs
+    // nothing but a later splice. Every field it leaves out of SpliceState::words must
+    // be one that two decoders of the same options given the same edges from that point
+    // on cannot differ in.
+    virtual bool splices() const { return false; }
+    virtual bool spliceState(SpliceState& out) const {
+        (void)out;
+        return false;
+    }
+    // Called after start() on a decoder started partway through the capture: it may set
+    // what it cannot know to what a long capture most likely left (BiSS-C: a preamble of
+    // CDM zeros seen), so that its state meets the other's sooner. A wrong guess costs a
+    // later splice, never a different output.
+    virtual void guessHistory() {}
+    // Adds `delta` to SpliceState::counts, element by element (modulo 2^64): this
+    // decoder takes over from one whose totals were that much higher.
+    virtual void addCounts(const std::vector<std::uint64_t>& delta) { (void)delta; }
+
     // Events this decoder emits go to `sink`.
     void setSink(EventSink* sink) { ctx_.sink = sink; }
     const DecoderContext& context() const { return ctx_; }
@@ -116,6 +149,8 @@ protected:
     }
     void setBusyFrom(Tick t) { busy_since_ = t; }
     void idle() { busy_since_ = kNoTick; }
+    // For spliceState(): the earliest start of an event still to come, or kNoTick.
+    Tick busySince() const { return busy_since_; }
     const Timebase& tb() const { return ctx_.timebase; }
     // Whether to add fields to the events (DecoderContext::fields_wanted).
     bool fieldsWanted() const { return ctx_.fields_wanted; }

@@ -12,6 +12,7 @@
 
 #include "event_window.h"
 #include "glitch_filter.h"
+#include "piece_speculation.h"
 #include "registry.h"
 #include "waveform.h"
 
@@ -80,6 +81,8 @@ struct Session::Impl : EventSink {
     struct Slot {
         std::string instance;
         std::unique_ptr<Decoder> decoder;
+        const DecoderFactory* factory = nullptr;  // what made it, with these options
+        Options options;
         std::vector<int> role_line;  // role index -> selected line, -1 unbound
         std::optional<GlitchFilter> glitch;
         DecoderContext ctx;
@@ -109,6 +112,8 @@ struct Session::Impl : EventSink {
     std::vector<int> role_of_line;
     int emitting = -1;
     Tick now = 0;
+    bool speculate = true;
+    Session::PieceStats piece_stats;
     std::atomic<bool> stop{false};
     const std::atomic<bool>* external_stop = nullptr;
     bool stopped() const { return stop || (external_stop && *external_stop); }
@@ -122,6 +127,11 @@ struct Session::Impl : EventSink {
     // frames were built in new storage. At most about 2 MB.
     std::vector<EventPtr> spare;
     static constexpr std::size_t kMaxSpare = 1024;
+    // With pieces decoded ahead (piece_speculation.h), most events are built on the
+    // reader's threads: what the pool above cannot hold goes back to them through this.
+    std::shared_ptr<EventPool> shared_pool;
+    std::vector<EventPtr> to_share;
+    static constexpr std::size_t kShareBatch = 256;
 
     EventPtr freshEvent() override {
         if (spare.empty()) return std::make_unique<Event>();
@@ -178,6 +188,10 @@ struct Session::Impl : EventSink {
         } else if (spare.size() < kMaxSpare) {
             e->reset();
             spare.push_back(std::move(e));
+        } else if (shared_pool) {
+            e->reset();
+            to_share.push_back(std::move(e));
+            if (to_share.size() >= kShareBatch) shared_pool->give(to_share);
         }
     }
 
@@ -271,7 +285,9 @@ Session::Session(std::vector<DecoderRequest> requests, CaptureReader& reader, st
             glitch_ns = Options::resolve(gi, {{"glitch_ns", it->second}}).number("glitch_ns");
             req.options.erase(it);
         }
-        slot.decoder = f->create(Options::resolve(info, req.options));
+        slot.options = Options::resolve(info, req.options);
+        slot.factory = f;
+        slot.decoder = f->create(slot.options);
         if (glitch_ns > 0) {
             Tick w = Tick(std::llround(reader.timebase().fromNs(glitch_ns)));
             if (w > 0) slot.glitch.emplace(w);
@@ -376,6 +392,14 @@ Session::Session(std::vector<DecoderRequest> requests, CaptureReader& reader, st
 
 Session::~Session() = default;
 
+void Session::setPieceSpeculation(bool on) {
+    impl_->speculate = on;
+}
+
+Session::PieceStats Session::pieceStats() const {
+    return impl_->piece_stats;
+}
+
 void Session::requestStop() {
     impl_->stop = true;
 }
@@ -410,6 +434,22 @@ void Session::run() {
     for (auto* s : sinks_)
         s->begin(facts_);
 
+    // Pieces decoded ahead on the reader's threads, where it has pieces and the one
+    // decoder takes whole blocks and can be spliced.
+    std::optional<SpeculationSplicer> splicer;
+    if (im.speculate && im.block_path && !im.keep_window && reader.changesOnly() &&
+        im.slots[0].decoder->splices()) {
+        Impl::Slot& slot = im.slots[0];
+        DecoderContext ctx = slot.ctx;
+        ctx.sink = nullptr;
+        auto pool = std::make_shared<EventPool>();
+        if (reader.setPieceWork(std::make_shared<PieceSpeculator>(*slot.factory, slot.options, ctx,
+                                                                  im.role_of_line, pool))) {
+            splicer.emplace(slot.decoder, im, im.role_of_line.data());
+            im.shared_pool = std::move(pool);
+        }
+    }
+
     EdgeBlock block;
     block.edges.reserve(kEdgeBlockSize);
     const bool changes_only = reader.changesOnly();
@@ -426,8 +466,19 @@ void Session::run() {
                 kept[n++] = e;
             }
         }
+        const std::uint64_t before = edges;
         edges += n;
-        if (im.block_path) {  // the whole block in one call
+        bool advance = true;
+        if (splicer) {
+            im.emitting = 0;
+            std::uint32_t dropped = 0;
+            if (auto r = reader.takePieceResult(dropped))
+                if (auto* s = dynamic_cast<Speculation*>(r.get())) {
+                    r.release();
+                    splicer->startPiece(std::unique_ptr<Speculation>(s), before, dropped);
+                }
+            advance = splicer->decode(kept, kept + n, before);
+        } else if (im.block_path) {  // the whole block in one call
             im.emitting = 0;
             im.slots[0].decoder->edges(kept, kept + n, im.role_of_line.data());
         } else {
@@ -438,8 +489,18 @@ void Session::run() {
         facts_.edges = edges;
         if (!block.edges.empty()) im.now = std::max(im.now, block.edges.back().t);
         if (block.known_until != kNoTick && block.known_until > im.now) im.now = block.known_until;
-        im.advanceAll(im.now);
+        if (advance) im.advanceAll(im.now);
         im.release(false);
+    }
+    if (splicer) {
+        im.piece_stats = {splicer->stats().pieces, splicer->stats().spliced,
+                          splicer->stats().edges_ahead};
+        // The targets name the decoder that took over.
+        for (auto& tgs : im.targets)
+            for (auto& tg : tgs)
+                tg.decoder = im.slots[std::size_t(tg.slot)].decoder.get();
+        // Stopped within a piece decoded ahead: the decoder has seen it to its end.
+        if (im.stopped()) im.now = std::max(im.now, splicer->decodedUntil());
     }
     if (!im.stopped()) {
         // Drain the reader's end (a stopped follow has no end tick yet).

@@ -67,6 +67,16 @@ public:
     // An external flag (set from a SIGINT handler) checked between blocks as well.
     void setStopFlag(const std::atomic<bool>* flag);
     const CaptureFacts& facts() const { return facts_; }
+    // Decoding pieces of the capture ahead on the reader's threads (piece_speculation.h),
+    // where the reader cuts the file in pieces and the one decoder can be spliced. On by
+    // default; the output is the same either way. Call before run().
+    void setPieceSpeculation(bool on);
+    struct PieceStats {
+        std::uint64_t pieces = 0;       // pieces decoded ahead
+        std::uint64_t spliced = 0;      // of those, spliced in
+        std::uint64_t edges_ahead = 0;  // edges the decoding thread did not decode itself
+    };
+    PieceStats pieceStats() const;
 
     struct Impl;
 

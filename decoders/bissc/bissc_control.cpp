@@ -1,5 +1,7 @@
 #include "bissc_control.h"
 
+#include <algorithm>
+
 #include <fmt/format.h>
 
 #include "core/crc.h"
@@ -36,6 +38,15 @@ std::uint32_t BisscControlReassembler::cdsBits(int from, int n) const {
     for (int i = 0; i < n; ++i)
         v = (v << 1) | std::uint32_t(frames_[from + i].cds & 1);
     return v;
+}
+
+bool BisscControlReassembler::appendSpliceWords(std::vector<std::uint64_t>& words) const {
+    if (phase_ != Phase::Idle || !frames_.empty()) return false;
+    // Idle, only the run of CDM zeros counts, and only up to the preamble's length: any
+    // run at least that long starts an access at the next CDM = 1 alike. The rest is
+    // set afresh when an access starts (startAccess()).
+    words.push_back(std::uint64_t(std::min(zeros_, kPreambleZeros)));
+    return true;
 }
 
 void BisscControlReassembler::toIdle(int zeros) {

@@ -38,6 +38,13 @@ public:
     // Start of the earliest frame of an access still open (its event will start there),
     // or kNoTick when nothing is open.
     Tick openSince() const;
+    // For BisscDecoder::spliceState(): false while an access is open (its frames' bits
+    // would have to be compared too); else appends what decides the next frames' fate.
+    bool appendSpliceWords(std::vector<std::uint64_t>& words) const;
+    // Idle with the preamble seen (BisscDecoder::guessHistory()).
+    void assumePreambleSeen() {
+        if (phase_ == Phase::Idle) zeros_ = kPreambleZeros;
+    }
 
     // Needed before a control start bit counts (PROTOCOLS.md §1.4).
     static constexpr int kPreambleZeros = 14;

@@ -179,9 +179,14 @@ void BisscDecoder::edges(const Edge* first, const Edge* last, const int* role_of
         // edge that needs more than the usual (takeDataEdge()), which the general path
         // then takes.
         if (dataEdgesNow()) {
-            first = context().lines_are_roles ? dataRun<true>(first, last, role_of_line)
-                                              : dataRun<false>(first, last, role_of_line);
+            // At most kMaxRun edges a run: the room it reserves for its rises stays small
+            // (a decoder started for each piece of a file, piece_speculation.h, would
+            // otherwise clear and fault in a block's worth, 128 KiB, each).
+            const Edge* end = last - first > kMaxRun ? first + kMaxRun : last;
+            first = context().lines_are_roles ? dataRun<true>(first, end, role_of_line)
+                                              : dataRun<false>(first, end, role_of_line);
             if (first == last) break;
+            if (first == end) continue;  // the run's limit, not an edge it could not take
         }
         const int role = role_of_line[first->line];
         if (!takeAckWaitEdge(first->t, role, first->level != 0))

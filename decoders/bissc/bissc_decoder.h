@@ -50,6 +50,15 @@ public:
     // cleanFrames()): the data width, the CRC options or the mapping is the likely cause;
     // or when the lines change but no frame is answered: the mapping.
     std::vector<std::string> advice() const override;
+    // Splice points (core/piece_speculation.h): at a frame's first clock edge (no rise
+    // yet) or idle, with no sample waiting and no control access open; every field
+    // compared but the running totals (bissc_splice.cpp).
+    bool splices() const override { return true; }
+    bool spliceState(SpliceState& out) const override;
+    void addCounts(const std::vector<std::uint64_t>& delta) override;
+    // Outside a control access, with the preamble of CDM zeros seen: what every capture
+    // without register traffic has been in since its 14th frame.
+    void guessHistory() override { control_.assumePreambleSeen(); }
 
     // Frames the slave answered (an ACK), and of those the clean ones: the CRC right, the
     // stop bit low, no fault but those the encoder reports itself (nE, nW) or that do not
@@ -256,6 +265,7 @@ private:
     // (DecoderContext::lines_are_roles), not looked up.
     // Out of line, as it was before it became a template: the function perf and
     // bench/README.md name, and the code the micro-benchmark compared.
+    static constexpr std::ptrdiff_t kMaxRun = 1024;  // edges a run takes at most (edges())
     template <bool kLinesAreRoles>
     [[gnu::noinline]] const Edge* dataRun(const Edge* first, const Edge* last,
                                           const int* role_of_line);

@@ -1,0 +1,200 @@
+#include "piece_speculation.h"
+
+#include <algorithm>
+#include <limits>
+#include <utility>
+
+namespace busdecode {
+
+namespace {
+
+// Keeps a speculative decoder's events aside, filled in storage from the shared pool
+// (the session's own pool of recycled events belongs to the decoding thread).
+class KeepEvents final : public EventSink {
+public:
+    KeepEvents(std::vector<EventPtr>& events, EventPool* pool) : events_(events), pool_(pool) {}
+    void onEvent(Event&& e) override {
+        EventPtr owned = freshEvent();
+        *owned = std::move(e);
+        events_.push_back(std::move(owned));
+    }
+    void onOwnedEvent(EventPtr e) override { events_.push_back(std::move(e)); }
+    EventPtr freshEvent() override {
+        if (spare_.empty() && pool_) pool_->take(spare_, kBatch);
+        if (spare_.empty()) return std::make_unique<Event>();
+        EventPtr e = std::move(spare_.back());
+        spare_.pop_back();
+        return e;
+    }
+    ~KeepEvents() override {
+        if (pool_) pool_->give(spare_);
+    }
+
+private:
+    static constexpr std::size_t kBatch = 256;
+    std::vector<EventPtr>& events_;
+    EventPool* pool_;
+    std::vector<EventPtr> spare_;
+};
+
+// Tells an edge that follows a pause: a gap since the edge before it more than kPauseGaps
+// times the shortest gap (above zero) seen so far.
+class Pauses {
+public:
+    bool after(Tick t) {
+        const Tick gap = last_ == kNoTick ? 0 : t - last_;
+        last_ = t;
+        if (gap > 0 && gap < shortest_) shortest_ = gap;
+        return gap > PieceSpeculator::kPauseGaps * shortest_;
+    }
+
+private:
+    Tick last_ = kNoTick;
+    Tick shortest_ = std::numeric_limits<Tick>::max() / PieceSpeculator::kPauseGaps;
+};
+
+}  // namespace
+
+PieceSpeculator::PieceSpeculator(const DecoderFactory& factory, Options options, DecoderContext ctx,
+                                 std::vector<int> role_of_line, std::shared_ptr<EventPool> pool)
+    : factory_(factory),
+      options_(std::move(options)),
+      ctx_(std::move(ctx)),
+      role_of_line_(std::move(role_of_line)),
+      pool_(std::move(pool)) {}
+
+std::unique_ptr<PieceWork::Result> PieceSpeculator::run(const Piece& piece) {
+    // Every line's first edge in the piece may repeat the level it had before (the reader
+    // then drops it), and that level is not known here. So the fresh decoder starts
+    // after every line's first edge, at the first pause in the traffic (where a frame
+    // starts), with the levels the edges before it left: it sees exactly the edges the
+    // decoding thread will, from there on, and none from the middle of a frame.
+    const std::size_t lines = role_of_line_.size();
+    std::uint64_t stable_from = 0;  // edges taken once every line's first one is
+    for (std::size_t line = 0; line < lines; ++line) {
+        if (role_of_line_[line] < 0) continue;
+        const std::uint32_t at =
+            line < piece.first_edge->size() ? (*piece.first_edge)[line] : PieceWork::kNoEdge;
+        if (at == PieceWork::kNoEdge) return nullptr;  // a level not known at all
+        stable_from = std::max<std::uint64_t>(stable_from, std::uint64_t(at) + 1);
+    }
+    Pauses pauses;
+    std::vector<int> level(lines, -1);
+    std::uint64_t from = 0;  // the first edge the fresh decoder takes
+    std::size_t from_block = piece.used, from_index = 0;
+    for (std::size_t b = 0; b < piece.used && from_block == piece.used; ++b) {
+        const auto& edges = piece.blocks[b].edges;
+        for (std::size_t j = 0; j < edges.size(); ++j, ++from) {
+            if (pauses.after(edges[j].t) && from >= stable_from) {
+                from_block = b;
+                from_index = j;
+                break;
+            }
+            level[edges[j].line] = edges[j].level;
+        }
+    }
+    if (from_block == piece.used) return nullptr;  // no pause: no frame starts in the piece
+
+    DecoderContext ctx = ctx_;
+    for (std::size_t line = 0; line < lines; ++line) {
+        const int role = role_of_line_[line];
+        if (role >= 0 && std::size_t(role) < ctx.initial_levels.size())
+            ctx.initial_levels[std::size_t(role)] = level[line];
+    }
+    auto spec = std::make_unique<Speculation>();
+    KeepEvents keep(spec->events, pool_.get());
+    ctx.sink = &keep;
+    spec->decoder = factory_.create(options_);
+    Decoder& d = *spec->decoder;
+    d.start(ctx);
+    d.guessHistory();
+    d.setSink(&keep);
+
+    // The decoder's state is only known between its calls, so the blocks are handed over
+    // in runs that end where a splice point may be: at an edge after a pause, the first
+    // kSnapshots such edges where the decoder has a SpliceState. After each block,
+    // advance() to its last edge, as the session does.
+    SpliceState state;
+    const int* roles = role_of_line_.data();
+    std::uint64_t taken = from - from_index;  // edges before block from_block
+    Tick now = kNoTick;
+    std::uint64_t pause_count = 0;
+    for (std::size_t b = from_block; b < piece.used; ++b) {
+        const auto& edges = piece.blocks[b].edges;
+        const Edge* e = edges.data();
+        const std::size_t n = edges.size();
+        std::size_t i = b == from_block ? from_index : 0;  // edges [.., i) handed over
+        for (std::size_t j = i; j < n && spec->snapshots.size() < kSnapshots; ++j) {
+            const bool first = b == from_block && j == from_index;  // (its pause seen above)
+            if (!pauses.after(e[j].t) && !first) continue;
+            // The first few pauses, then every kSparseEvery-th: a state that meets the
+            // other's late still finds a splice point, at little cost.
+            if (++pause_count > kDenseSnapshots && pause_count % kSparseEvery != 0) continue;
+            d.edges(e + i, e + j + 1, roles);
+            i = j + 1;
+            if (d.spliceState(state)) {
+                spec->snapshots.push_back({taken + i, spec->events.size(), std::move(state)});
+                state = SpliceState{};
+            }
+        }
+        d.edges(e + i, e + n, roles);
+        taken += n;
+        if (n == 0) continue;  // the session never sees an empty block
+        now = now == kNoTick ? edges.back().t : std::max(now, edges.back().t);
+        d.advance(now);
+    }
+    spec->edges = taken;
+    spec->last = now;
+    if (spec->snapshots.empty()) return nullptr;
+    return spec;
+}
+
+void SpeculationSplicer::startPiece(std::unique_ptr<Speculation> s, std::uint64_t taken,
+                                    std::uint32_t dropped) {
+    ++stats_.pieces;
+    spec_ = std::move(s);
+    base_ = taken - dropped;  // modulo 2^64: every snapshot lies at or past `taken`
+    next_ = 0;
+}
+
+bool SpeculationSplicer::decode(const Edge* first, const Edge* last, std::uint64_t taken) {
+    const std::uint64_t n = std::uint64_t(last - first);
+    if (taken < skip_until_) return false;  // (blocks never straddle pieces)
+    std::uint64_t done = 0;                 // of this block
+    while (spec_ && next_ < spec_->snapshots.size()) {
+        Speculation::Snapshot& at = spec_->snapshots[next_];
+        const std::uint64_t pos = base_ + at.after;  // in edges handed out
+        if (pos > taken + n) break;                  // in a later block
+        ++next_;
+        if (pos < taken + done) continue;  // (not past a first edge dropped: cannot be)
+        decoder_->edges(first + done, first + (pos - taken), role_of_line_);
+        done = pos - taken;
+        SpliceState mine;
+        if (decoder_->spliceState(mine) && mine.words == at.state.words) {
+            skip_until_ = base_ + spec_->edges;
+            decoded_until_ = spec_->last;
+            stats_.edges_ahead += skip_until_ - pos;
+            splice(at, mine);
+            return false;
+        }
+    }
+    if (spec_ && next_ == spec_->snapshots.size()) spec_.reset();  // no splice: decode on
+    decoder_->edges(first + done, last, role_of_line_);
+    return true;
+}
+
+void SpeculationSplicer::splice(Speculation::Snapshot& at, const SpliceState& mine) {
+    ++stats_.spliced;
+    std::vector<std::uint64_t> delta(mine.counts.size());
+    for (std::size_t i = 0; i < delta.size() && i < at.state.counts.size(); ++i)
+        delta[i] = mine.counts[i] - at.state.counts[i];
+    std::unique_ptr<Decoder> next = std::move(spec_->decoder);
+    next->addCounts(delta);
+    next->setSink(&sink_);
+    for (std::size_t i = at.events; i < spec_->events.size(); ++i)
+        sink_.onOwnedEvent(std::move(spec_->events[i]));
+    decoder_ = std::move(next);
+    spec_.reset();
+}
+
+}  // namespace busdecode

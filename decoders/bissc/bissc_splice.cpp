@@ -1,0 +1,44 @@
+// Where a BiSS-C decoder started partway through a capture may take over from the one
+// that decoded everything before (core/piece_speculation.h): the state compared, and the
+// totals carried across.
+#include "bissc_decoder.h"
+#include "core/splice_words.h"
+
+namespace busdecode {
+
+bool BisscDecoder::spliceState(SpliceState& out) const {
+    // Between frames: a frame just begun by its first clock edge. The previous frame is
+    // out (its event emitted) and only what it measured is carried on. (Not while idle: a
+    // decoder started in the middle of a frame is idle for a while, long before it could
+    // match, and would spend the splice points the speculator looks for.)
+    if (state_ != State::WaitAck || !f_.rises.empty() || !sampler_.empty()) return false;
+    out.words.clear();
+    out.counts.clear();
+    if (!control_.appendSpliceWords(out.words)) return false;
+    SpliceWords w(out.words);
+    w << state_ << ma_ << sl_ << last_ma_edge_ << last_delay_ << glitch_pending_ << last_period_
+      << min_quiet_ << slave_timeout_ << quiet_ticks_ << busySince() << sampler_.level();
+    // The frame: just begun (most fields still as Frame{} left them), or the last one
+    // when idle, which a new frame resets; compared whole either way, not reasoned about.
+    w << f_.start << f_.from_hold << f_.hold_fall << f_.ack << f_.delay << f_.ack_delay
+      << f_.delay_sum << f_.delay_edges << f_.scheduled << f_.last_sample_t << f_.slot
+      << f_.proc_cycles << f_.start_index << f_.stop_index << f_.cds << f_.data << f_.data_count
+      << f_.ne << f_.nw << f_.crc_rx << f_.crc_count << f_.timeout_end << f_.ma_at_timeout_end
+      << f_.retriggered << f_.max_high << f_.max_low << f_.period << f_.rises.size();
+    for (std::size_t i = 0; i < f_.rises.size(); ++i)
+        w << f_.rises[i];
+    w << f_.errors.size();
+    for (const auto& e : f_.errors)
+        w << e;
+    out.counts = {frames_, answered_frames_, clean_frames_, slow_ma_edges_, slow_sl_edges_};
+    return true;
+}
+
+void BisscDecoder::addCounts(const std::vector<std::uint64_t>& delta) {
+    std::uint64_t* counts[] = {&frames_, &answered_frames_, &clean_frames_, &slow_ma_edges_,
+                               &slow_sl_edges_};
+    for (std::size_t i = 0; i < delta.size() && i < std::size(counts); ++i)
+        *counts[i] += delta[i];
+}
+
+}  // namespace busdecode
