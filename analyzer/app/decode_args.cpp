@@ -213,6 +213,7 @@ CaptureFacts decodeCapture(const std::string& path, const std::vector<DecoderReq
     }
     if (realtime) reader = std::make_unique<PacedReader>(std::move(reader));
     Session session(requests, *reader, path);
+    session.setPieceSpeculation(open.decode_ahead);
     if (stop) session.setStopFlag(stop);
     for (auto* s : sinks)
         session.addSink(s);

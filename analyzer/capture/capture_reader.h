@@ -110,6 +110,10 @@ struct OpenOptions {
     // With read_ahead: a regular file, not followed, is also read ahead into memory on a
     // third thread (FileReadAhead), so that the kernel's copy runs beside the tokeniser.
     bool read_file_ahead = true;
+    // With both: the session may decode the pieces ahead too, on the threads that read
+    // them (core/piece_speculation.h). Off where several decodes already keep every
+    // core busy (verify --jobs 2 and more): there it only adds work.
+    bool decode_ahead = true;
     // With both: a VCD file is read in pieces on two threads (segmented_vcd_reader.h) of
     // this nominal length, the next `#time` line looked for this far past it; 0: the
     // defaults there. Tests and the vcd_pieces fuzz target cut files finer.

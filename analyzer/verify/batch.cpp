@@ -97,12 +97,13 @@ std::vector<CaptureVerdict> verifyCaptures(
     std::condition_variable cv;
     std::atomic<std::size_t> next{0};
     std::size_t finished = 0;
+    OpenOptions job_open = open;  // set below, before the workers start
 
     auto worker = [&] {
         for (;;) {
             const std::size_t i = next.fetch_add(1);
             if (i >= n) return;
-            CaptureVerdict v = verifyCapture(captures[i], rules, requests, open);
+            CaptureVerdict v = verifyCapture(captures[i], rules, requests, job_open);
             {
                 std::lock_guard<std::mutex> lock(mu);
                 slots[i] = std::move(v);
@@ -115,6 +116,9 @@ std::vector<CaptureVerdict> verifyCaptures(
     const std::size_t wanted = batch.jobs > 0 ? std::size_t(batch.jobs)
                                               : std::max(1u, std::thread::hardware_concurrency());
     const std::size_t threads = std::min(wanted, std::max<std::size_t>(n, 1));
+    // Captures decoded side by side keep the cores busy already: pieces decoded ahead on
+    // top would only add work (bench/README.md, "BiSS-C's pieces decoded ahead").
+    if (threads > 1) job_open.decode_ahead = false;
     std::vector<std::thread> pool;
     for (std::size_t t = 0; t < threads; ++t)
         pool.emplace_back(worker);
