@@ -93,7 +93,7 @@ std::string writeCapture(const Waveform& w, const std::string& name) {
     return path;
 }
 
-// 10 MHz, sampled at 100 MHz, 40 ns of line delay: the bench's traffic, `frames` of it.
+// 10 MHz, sampled at 100 MHz, 40 ns of line delay: the traffic bench/run.sh times.
 BisscGenConfig benchLike() {
     BisscGenConfig cfg;
     cfg.timebase = Timebase::fromSampleRate(100'000'000);
