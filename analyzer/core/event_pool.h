@@ -1,9 +1,10 @@
 #pragma once
-// Emptied events shared between threads: the decoding thread's output hands the events it
-// is done with back here, and the threads decoding pieces ahead (piece_speculation.h) take
-// them to fill again. An event's strings and vectors keep their storage, so that a frame
+// Emptied events for decoders to fill again. EventPool is shared between threads: the
+// decoding thread's output hands the events it is done with back there, and the threads
+// decoding pieces ahead (piece_speculation.h) take them to fill again, so that a frame
 // costs no allocation on the thread that builds it and no free (across threads, the
-// dearest kind) on the one that outputs it. In batches, one lock each.
+// dearest kind) on the one that outputs it; in batches, one lock each. RecycledEvents is
+// one thread's own store in front of it.
 #include <algorithm>
 #include <cstddef>
 #include <mutex>
@@ -44,6 +45,59 @@ public:
 private:
     std::mutex m_;
     std::vector<EventPtr> held_;
+};
+
+// One thread's emptied events, for its decoders to fill again: their strings and vectors
+// keep their storage (two allocations and frees per event otherwise). It holds up to
+// `keep`; with a shared pool, it takes from it when it has none and gives it what it
+// cannot hold, kBatch at a time, and gives back what it holds at the end.
+class RecycledEvents {
+public:
+    static constexpr std::size_t kBatch = 256;
+
+    explicit RecycledEvents(std::size_t keep, EventPool* shared = nullptr)
+        : keep_(keep), shared_(shared) {}
+    ~RecycledEvents() {
+        if (shared_) {
+            shared_->give(overflow_);
+            shared_->give(held_);
+        }
+    }
+    RecycledEvents(const RecycledEvents&) = delete;
+    RecycledEvents& operator=(const RecycledEvents&) = delete;
+
+    void setShared(EventPool* shared) { shared_ = shared; }
+
+    // An empty event to fill.
+    EventPtr fresh() {
+        if (held_.empty() && shared_) shared_->take(held_, kBatch);
+        if (held_.empty()) return std::make_unique<Event>();
+        EventPtr e = std::move(held_.back());
+        held_.pop_back();
+        return e;
+    }
+    // `e`'s contents in an event of this store's.
+    EventPtr adopt(Event&& e) {
+        EventPtr owned = fresh();
+        *owned = std::move(e);
+        return owned;
+    }
+    // An event done with: emptied and kept, handed on, or freed.
+    void recycle(EventPtr e) {
+        if (held_.size() < keep_) {
+            e->reset();
+            held_.push_back(std::move(e));
+        } else if (shared_) {
+            e->reset();
+            overflow_.push_back(std::move(e));
+            if (overflow_.size() >= kBatch) shared_->give(overflow_);
+        }
+    }
+
+private:
+    const std::size_t keep_;
+    EventPool* shared_;
+    std::vector<EventPtr> held_, overflow_;
 };
 
 }  // namespace busdecode

@@ -9,32 +9,17 @@ namespace busdecode {
 namespace {
 
 // Keeps a speculative decoder's events aside, filled in storage from the shared pool
-// (the session's own pool of recycled events belongs to the decoding thread).
+// (the session's own store of recycled events belongs to the decoding thread).
 class KeepEvents final : public EventSink {
 public:
-    KeepEvents(std::vector<EventPtr>& events, EventPool* pool) : events_(events), pool_(pool) {}
-    void onEvent(Event&& e) override {
-        EventPtr owned = freshEvent();
-        *owned = std::move(e);
-        events_.push_back(std::move(owned));
-    }
+    KeepEvents(std::vector<EventPtr>& events, EventPool* pool) : events_(events), store_(0, pool) {}
+    void onEvent(Event&& e) override { events_.push_back(store_.adopt(std::move(e))); }
     void onOwnedEvent(EventPtr e) override { events_.push_back(std::move(e)); }
-    EventPtr freshEvent() override {
-        if (spare_.empty() && pool_) pool_->take(spare_, kBatch);
-        if (spare_.empty()) return std::make_unique<Event>();
-        EventPtr e = std::move(spare_.back());
-        spare_.pop_back();
-        return e;
-    }
-    ~KeepEvents() override {
-        if (pool_) pool_->give(spare_);
-    }
+    EventPtr freshEvent() override { return store_.fresh(); }
 
 private:
-    static constexpr std::size_t kBatch = 256;
     std::vector<EventPtr>& events_;
-    EventPool* pool_;
-    std::vector<EventPtr> spare_;
+    RecycledEvents store_;
 };
 
 // Tells an edge that follows a pause: a gap since the edge before it more than kPauseGaps
@@ -78,75 +63,75 @@ std::unique_ptr<PieceWork::Result> PieceSpeculator::run(const Piece& piece) {
         if (at == PieceWork::kNoEdge) return nullptr;  // a level not known at all
         stable_from = std::max<std::uint64_t>(stable_from, std::uint64_t(at) + 1);
     }
-    Pauses pauses;
-    std::vector<int> level(lines, -1);
-    std::uint64_t from = 0;  // the first edge the fresh decoder takes
-    std::size_t from_block = piece.used, from_index = 0;
-    for (std::size_t b = 0; b < piece.used && from_block == piece.used; ++b) {
-        const auto& edges = piece.blocks[b].edges;
-        for (std::size_t j = 0; j < edges.size(); ++j, ++from) {
-            if (pauses.after(edges[j].t) && from >= stable_from) {
-                from_block = b;
-                from_index = j;
-                break;
-            }
-            level[edges[j].line] = edges[j].level;
-        }
-    }
-    if (from_block == piece.used) return nullptr;  // no pause: no frame starts in the piece
-
-    DecoderContext ctx = ctx_;
-    for (std::size_t line = 0; line < lines; ++line) {
-        const int role = role_of_line_[line];
-        if (role >= 0 && std::size_t(role) < ctx.initial_levels.size())
-            ctx.initial_levels[std::size_t(role)] = level[line];
-    }
+    // One pass over the piece: until the decoder starts, the levels each edge leaves;
+    // from then on, the blocks handed over in runs that end where a splice point may be
+    // (the decoder's state is only known between its calls): at an edge after a pause,
+    // the first kSnapshots such edges where the decoder has a SpliceState. After each
+    // block, advance() to its last edge, as the session does.
     auto spec = std::make_unique<Speculation>();
     KeepEvents keep(spec->events, pool_.get());
-    ctx.sink = &keep;
-    spec->decoder = factory_.create(options_);
-    Decoder& d = *spec->decoder;
-    d.start(ctx);
-    d.guessHistory();
-    d.setSink(&keep);
-
-    // The decoder's state is only known between its calls, so the blocks are handed over
-    // in runs that end where a splice point may be: at an edge after a pause, the first
-    // kSnapshots such edges where the decoder has a SpliceState. After each block,
-    // advance() to its last edge, as the session does.
+    Decoder* d = nullptr;
+    std::vector<int> level(lines, -1);
+    Pauses pauses;
     SpliceState state;
     const int* roles = role_of_line_.data();
-    std::uint64_t taken = from - from_index;  // edges before block from_block
+    std::uint64_t taken = 0;  // edges of the blocks before this one
     Tick now = kNoTick;
     std::uint64_t pause_count = 0;
-    for (std::size_t b = from_block; b < piece.used; ++b) {
+    for (std::size_t b = 0; b < piece.used; ++b) {
         const auto& edges = piece.blocks[b].edges;
         const Edge* e = edges.data();
         const std::size_t n = edges.size();
-        std::size_t i = b == from_block ? from_index : 0;  // edges [.., i) handed over
-        for (std::size_t j = i; j < n && spec->snapshots.size() < kSnapshots; ++j) {
-            const bool first = b == from_block && j == from_index;  // (its pause seen above)
-            if (!pauses.after(e[j].t) && !first) continue;
+        std::size_t i = 0;  // edges [.., i) handed over (or, before the start, passed)
+        for (std::size_t j = 0; j < n && (!d || spec->snapshots.size() < kSnapshots); ++j) {
+            const bool pause = pauses.after(e[j].t);
+            if (!d) {
+                if (!pause || taken + j < stable_from) {
+                    level[e[j].line] = e[j].level;
+                    continue;
+                }
+                d = startDecoder(*spec, keep, level);
+                i = j;
+            } else if (!pause) {
+                continue;
+            }
             // The first few pauses, then every kSparseEvery-th: a state that meets the
             // other's late still finds a splice point, at little cost.
             if (++pause_count > kDenseSnapshots && pause_count % kSparseEvery != 0) continue;
-            d.edges(e + i, e + j + 1, roles);
+            d->edges(e + i, e + j + 1, roles);
             i = j + 1;
-            if (d.spliceState(state)) {
+            if (d->spliceState(state)) {
                 spec->snapshots.push_back({taken + i, spec->events.size(), std::move(state)});
                 state = SpliceState{};
             }
         }
-        d.edges(e + i, e + n, roles);
         taken += n;
+        if (!d) continue;
+        d->edges(e + i, e + n, roles);
         if (n == 0) continue;  // the session never sees an empty block
         now = now == kNoTick ? edges.back().t : std::max(now, edges.back().t);
-        d.advance(now);
+        d->advance(now);
     }
     spec->edges = taken;
     spec->last = now;
-    if (spec->snapshots.empty()) return nullptr;
+    if (spec->snapshots.empty()) return nullptr;  // no pause: no frame starts in the piece
     return spec;
+}
+
+Decoder* PieceSpeculator::startDecoder(Speculation& spec, EventSink& sink,
+                                       const std::vector<int>& level_of_line) const {
+    DecoderContext ctx = ctx_;
+    for (std::size_t line = 0; line < role_of_line_.size(); ++line) {
+        const int role = role_of_line_[line];
+        if (role >= 0 && std::size_t(role) < ctx.initial_levels.size())
+            ctx.initial_levels[std::size_t(role)] = level_of_line[line];
+    }
+    ctx.sink = &sink;
+    spec.decoder = factory_.create(options_);
+    spec.decoder->start(ctx);
+    spec.decoder->guessHistory();
+    spec.decoder->setSink(&sink);
+    return spec.decoder.get();
 }
 
 void SpeculationSplicer::startPiece(std::unique_ptr<Speculation> s, std::uint64_t taken,
@@ -166,7 +151,7 @@ bool SpeculationSplicer::decode(const Edge* first, const Edge* last, std::uint64
         const std::uint64_t pos = base_ + at.after;  // in edges handed out
         if (pos > taken + n) break;                  // in a later block
         ++next_;
-        if (pos < taken + done) continue;  // (not past a first edge dropped: cannot be)
+        if (pos < taken + done) continue;  // (cannot be: each lies past the one before)
         decoder_->edges(first + done, first + (pos - taken), role_of_line_);
         done = pos - taken;
         SpliceState mine;

@@ -67,6 +67,11 @@ public:
     static constexpr Tick kPauseGaps = 8;
 
 private:
+    // A fresh decoder in `spec`, started with the lines at `level_of_line`, its events
+    // going to `sink`.
+    Decoder* startDecoder(Speculation& spec, EventSink& sink,
+                          const std::vector<int>& level_of_line) const;
+
     const DecoderFactory& factory_;
     const Options options_;
     const DecoderContext ctx_;

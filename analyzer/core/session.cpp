@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include "event_pool.h"
 #include "event_window.h"
 #include "glitch_filter.h"
 #include "piece_speculation.h"
@@ -124,28 +125,17 @@ struct Session::Impl : EventSink {
     // a quarter of an SPI word's cost by callgrind). Events are released once per edge
     // block, so the pool must hold a block's worth to serve the next one: 10 MHz BiSS-C
     // makes about 165 frames per block, of 100 edges each; with 64, two thirds of its
-    // frames were built in new storage. At most about 2 MB.
-    std::vector<EventPtr> spare;
+    // frames were built in new storage. At most about 2 MB. With pieces decoded ahead
+    // (piece_speculation.h), most events are built on the reader's threads: what this
+    // store cannot hold goes back to them through the shared pool.
     static constexpr std::size_t kMaxSpare = 1024;
-    // With pieces decoded ahead (piece_speculation.h), most events are built on the
-    // reader's threads: what the pool above cannot hold goes back to them through this.
-    std::shared_ptr<EventPool> shared_pool;
-    std::vector<EventPtr> to_share;
-    static constexpr std::size_t kShareBatch = 256;
+    std::shared_ptr<EventPool> shared_pool;  // (declared first: `spare` gives back to it)
+    RecycledEvents spare{kMaxSpare};
 
-    EventPtr freshEvent() override {
-        if (spare.empty()) return std::make_unique<Event>();
-        EventPtr e = std::move(spare.back());
-        spare.pop_back();
-        return e;
-    }
+    EventPtr freshEvent() override { return spare.fresh(); }
 
     // An event a decoder built without freshEvent(): into storage of the pool.
-    void onEvent(Event&& e) override {
-        EventPtr owned = freshEvent();
-        *owned = std::move(e);
-        onOwnedEvent(std::move(owned));
-    }
+    void onEvent(Event&& e) override { onOwnedEvent(spare.adopt(std::move(e))); }
 
     void onOwnedEvent(EventPtr e) override {
         e->instance = slots[emitting].instance;
@@ -185,13 +175,8 @@ struct Session::Impl : EventSink {
             s->onEvent(*e, *facts);
         if (keep_window) {
             window.remember(std::move(e), 4096);
-        } else if (spare.size() < kMaxSpare) {
-            e->reset();
-            spare.push_back(std::move(e));
-        } else if (shared_pool) {
-            e->reset();
-            to_share.push_back(std::move(e));
-            if (to_share.size() >= kShareBatch) shared_pool->give(to_share);
+        } else {
+            spare.recycle(std::move(e));
         }
     }
 
@@ -447,6 +432,7 @@ void Session::run() {
                                                                   im.role_of_line, pool))) {
             splicer.emplace(slot.decoder, im, im.role_of_line.data());
             im.shared_pool = std::move(pool);
+            im.spare.setShared(im.shared_pool.get());
         }
     }
 

@@ -393,13 +393,7 @@ TEST(BisscFrames, UnansweredFramesCloseTogetherStaySeparate) {
 // clock phase of the frame; every pause between frames then looked like clocking, and the rest of
 // the capture ran into one frame.
 TEST(BisscFrames, ACaptureStartingInsideAFrameDecodesTheFramesAfterIt) {
-    BisscGenConfig cfg;
-    cfg.timebase = Timebase::fromSampleRate(100'000'000);
-    cfg.clock_hz = 10e6;
-    cfg.line_delay_ns = 40;
-    cfg.timeout_ns = 2040;
-    cfg.idle_ns = 850;
-    BisscGenerator gen(cfg);
+    BisscGenerator gen(tenMhzAt100Msps());
     BisscFrameSpec f;
     for (int i = 0; i < 12; ++i) {
         f.data = 0x200000u + std::uint64_t(i) * 0x1357u;

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "bissc_decoder.h"
+#include "bissc_generator.h"
 #include "core/event.h"
 #include "core/registry.h"
 #include "core/session.h"
@@ -29,6 +30,18 @@ inline std::vector<Event> decodeBissc(const Waveform& w,
     r.map = {{"ma", ma}, {"sl", sl}};
     r.options = options;
     return decodeWaveform(w, {r});
+}
+
+// 10 MHz sampled at 100 MS/s, 40 ns of line delay, a 2.04 us timeout and 850 ns of idle:
+// frames 6.89 us apart, much as bench/run.sh's BiSS-C capture runs them.
+inline BisscGenConfig tenMhzAt100Msps() {
+    BisscGenConfig cfg;
+    cfg.timebase = Timebase::fromSampleRate(100'000'000);
+    cfg.clock_hz = 10e6;
+    cfg.line_delay_ns = 40;
+    cfg.timeout_ns = 2040;
+    cfg.idle_ns = 850;
+    return cfg;
 }
 
 inline std::vector<Event> ofType(const std::vector<Event>& all, const std::string& type) {
