@@ -128,10 +128,12 @@ inline bool digitsOfLengthSwar(const char* p, std::uint64_t& value) {
 // lanes) and, past 8 digits, one 64-bit multiply. The SWAR version chains two or three 64-bit
 // multiplies per time; this one took reading the 500 MB BiSS-C capture alone from 151 to 114 ms
 // (bench/README.md, stop 25).
+// digitsOfLengthSse2 on the 16 bytes already loaded: the value of their first N digits,
+// and a mask with bit i set iff byte i is a digit (shapeOfTimeLine() tests more bytes of
+// the same load).
 template <int N>
-inline bool digitsOfLengthSse2(const char* p, std::uint64_t& value) {
-    const __m128i d =
-        _mm_sub_epi8(_mm_loadu_si128(reinterpret_cast<const __m128i*>(p)), _mm_set1_epi8('0'));
+inline int digitsOfLengthIn(__m128i raw, std::uint64_t& value) {
+    const __m128i d = _mm_sub_epi8(raw, _mm_set1_epi8('0'));
     const __m128i nine = _mm_set1_epi8(9);
     const int is_digit = _mm_movemask_epi8(_mm_cmpeq_epi8(_mm_max_epu8(d, nine), nine));
     const __m128i zero = _mm_setzero_si128();
@@ -161,6 +163,18 @@ inline bool digitsOfLengthSse2(const char* p, std::uint64_t& value) {
         value = both & 0xFFFFFFFFULL;
     else
         value = (both & 0xFFFFFFFFULL) * 100000000ULL + (both >> 32);
+    return is_digit;
+}
+
+// digitsOfLength<N> below, in one 16-byte register (SSE2, every x86-64): the digits
+// combined in pairs by three multiply-adds (digits -> 2-digit -> 4-digit -> 8-digit
+// lanes) and, past 8 digits, one 64-bit multiply. The SWAR version chains two or three 64-bit
+// multiplies per time; this one took reading the 500 MB BiSS-C capture alone from 151 to 114 ms
+// (bench/README.md, stop 25).
+template <int N>
+inline bool digitsOfLengthSse2(const char* p, std::uint64_t& value) {
+    const int is_digit =
+        digitsOfLengthIn<N>(_mm_loadu_si128(reinterpret_cast<const __m128i*>(p)), value);
     constexpr int kFirstN = (1 << N) - 1;
     return (is_digit & kFirstN) == kFirstN;
 }

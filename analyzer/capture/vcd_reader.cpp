@@ -34,6 +34,7 @@
 #include "decimal_scan.h"
 #include "readers.h"
 #include "segmented_vcd_reader.h"
+#include "vcd_time_line.h"
 #include "vcd_tokeniser.h"
 
 namespace busdecode {
@@ -655,9 +656,28 @@ private:
                 // Where the time ends is known before its digits are read: the next
                 // token's loads need not wait for them.
                 std::uint64_t t;
-                const bool digits = digitsOfLength<N>(p + 1, t);
+                const TimeLineShape shape = shapeOfTimeLine<N>(p + 1, t);
+                if (shape == TimeLineShape::OneChange) {
+                    // `#time v!` and a newline, the whole line known good but for its
+                    // identifier (a selected or unselected scalar) and its time going
+                    // forward; otherwise it is taken token by token below.
+                    const std::int32_t sel = scalar[static_cast<unsigned char>(p[N + 3])];
+                    if (sel != kNotScalar && Tick(t) >= cur) [[likely]] {
+                        cur = Tick(t);
+                        if (sel >= 0) {
+                            const std::uint8_t v = std::uint8_t(p[N + 2] - '0');
+                            if (level[sel] != v) {
+                                level[sel] = v;
+                                *out++ = Edge(cur, std::uint32_t(sel), v);
+                            }
+                        }
+                        ++line;
+                        p += N + 5;
+                        continue;
+                    }
+                }
                 const std::uint8_t k = kSeparator[static_cast<unsigned char>(p[1 + N])];
-                if (!digits || !k) [[unlikely]] {
+                if (shape == TimeLineShape::NotDigits || !k) [[unlikely]] {
                     // A time of another length goes to its own loop. No digits, 16 or
                     // more, or no separator after them: pump() reports it, or checks the
                     // range.

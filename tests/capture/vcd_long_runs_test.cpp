@@ -217,6 +217,11 @@ TEST(VcdLongRuns, ErrorsDeepInARunNameTheirLine) {
         {"#12a 1!", "expected a time after '#', found '#12a'"},
         {"# 1!", "expected a time after '#', found '#'"},
         {"1%", "value change for undeclared identifier '%'"},
+        // A whole `#time v!` line of the run's length, taken in one test of its shape
+        // (capture/vcd_time_line.h) but for its identifier, and a time of the run's
+        // length going backwards on such a line.
+        {"#31000 1%", "value change for undeclared identifier '%'"},
+        {"#30000 1!", "time going backwards (#30000 after #30999)"},
         // One past the most an Edge holds (core/edge.h), and far past it.
         {"#36028797018963968", "time beyond 2^55 - 1 ticks (36028797018963967)"},
         {"#4611686018427387905", "time beyond 2^55 - 1 ticks (36028797018963967)"},
