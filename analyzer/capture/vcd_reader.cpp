@@ -675,6 +675,27 @@ private:
                         p += N + 5;
                         continue;
                     }
+                } else if (shape == TimeLineShape::TwoChanges && out < full) {
+                    // `#time v! v"` and a newline, likewise; room for two edges (for
+                    // one, out <= full promises room).
+                    const std::int32_t s1 = scalar[static_cast<unsigned char>(p[N + 3])];
+                    const std::int32_t s2 = scalar[static_cast<unsigned char>(p[N + 6])];
+                    if (s1 != kNotScalar && s2 != kNotScalar && Tick(t) >= cur) [[likely]] {
+                        cur = Tick(t);
+                        const auto take = [&](std::int32_t sel, char value) {
+                            if (sel < 0) return;
+                            const std::uint8_t v = std::uint8_t(value - '0');
+                            if (level[sel] != v) {
+                                level[sel] = v;
+                                *out++ = Edge(cur, std::uint32_t(sel), v);
+                            }
+                        };
+                        take(s1, p[N + 2]);
+                        take(s2, p[N + 5]);
+                        ++line;
+                        p += N + 8;
+                        continue;
+                    }
                 }
                 const std::uint8_t k = kSeparator[static_cast<unsigned char>(p[1 + N])];
                 if (shape == TimeLineShape::NotDigits || !k) [[unlikely]] {
