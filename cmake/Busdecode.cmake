@@ -1,13 +1,17 @@
 # Helpers shared by every decoder and test folder, so each folder's CMakeLists.txt is a
 # few declarative lines.
 
-# busdecode_decoder(ID <id> FACTORY <function> SOURCES <files...> [LIBS <targets...>])
+# busdecode_decoder(ID <id> FACTORY <function> SOURCES <files...> [LIBS <targets...>]
+#                   [PROVIDES <decoder ids...>])
 #   Builds decoder_<id> (static, PIC: linked by tests and other decoders) and the Qt
 #   plugin busdecode_<id> in build/bin/plugins. FACTORY names a function
 #   `std::shared_ptr<const busdecode::DecoderFactory> FACTORY()` (namespace busdecode)
-#   defined in SOURCES; the plugin source is generated from one template.
+#   defined in SOURCES; the plugin source is generated from one template. PROVIDES lists
+#   the ids of the decoders its factories make (default: <id>), for the plugin's
+#   metadata: a run loads only the plugins that provide what it asks for (a wrong list
+#   costs time, not results: the CLI loads every plugin before it gives up on an id).
 function(busdecode_decoder)
-  cmake_parse_arguments(D "" "ID" "FACTORY;SOURCES;LIBS" ${ARGN})
+  cmake_parse_arguments(D "" "ID" "FACTORY;SOURCES;LIBS;PROVIDES" ${ARGN})
   add_library(decoder_${D_ID} STATIC ${D_SOURCES})
   target_compile_options(decoder_${D_ID} PRIVATE ${BUSDECODE_SPEED_OPTIONS})  # -O3 (CMakeLists.txt)
   target_include_directories(decoder_${D_ID} PUBLIC ${CMAKE_CURRENT_SOURCE_DIR})
@@ -23,6 +27,14 @@ function(busdecode_decoder)
   endforeach()
   set(PLUGIN_FACTORY_DECLS "${_decls}")
   set(PLUGIN_FACTORY_CALLS "${_calls}")
+  if(NOT D_PROVIDES)
+    set(D_PROVIDES ${D_ID})
+  endif()
+  list(TRANSFORM D_PROVIDES PREPEND "\"")
+  list(TRANSFORM D_PROVIDES APPEND "\"")
+  list(JOIN D_PROVIDES ", " _ids)
+  file(CONFIGURE OUTPUT ${CMAKE_CURRENT_BINARY_DIR}/${D_ID}_plugin.json
+       CONTENT "{ \"decoders\": [@_ids@] }\n" @ONLY)
   configure_file(${CMAKE_SOURCE_DIR}/plugins/plugin_template.cpp.in
                  ${CMAKE_CURRENT_BINARY_DIR}/${D_ID}_plugin.cpp @ONLY)
   add_library(busdecode_${D_ID} MODULE ${CMAKE_CURRENT_BINARY_DIR}/${D_ID}_plugin.cpp)

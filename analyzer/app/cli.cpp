@@ -15,6 +15,7 @@
 
 #include "app/decode_args.h"
 #include "app/list_decoders.h"
+#include "app/plugin_loader.h"
 #include "core/options.h"
 #include "core/registry.h"
 #include "lcm/lcm_sink.h"
@@ -204,7 +205,8 @@ int runCli(int argc, char** argv) {
         QStringList args = normaliseArgs(argc, argv);
         if (verify) args.removeAt(1);
         Parsed parsed = parse(args, verify);
-        loadPlugins();
+        // The decoders asked for (all of them to list them, or when none is named).
+        loadPlugins(parsed.list ? std::vector<std::string>{} : parsed.args.protos);
         if (parsed.list) {
             printDecoderList(stdout);
             return 0;

@@ -1,21 +1,14 @@
 #include "decode_args.h"
 
 #include <chrono>
-#include <cstdlib>
-#include <mutex>
-#include <set>
 #include <thread>
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
-#include <QCoreApplication>
-#include <QDir>
-#include <QPluginLoader>
-#include <QString>
 
-#include "busdecode/plugin.h"
 #include "capture/prefetch_reader.h"
 #include "core/registry.h"
+#include "plugin_loader.h"
 
 namespace busdecode {
 
@@ -50,6 +43,10 @@ std::vector<DecoderRequest> buildRequests(const std::vector<std::string>& protos
     std::vector<const DecoderInfo*> infos;
     for (const auto& p : protos) {
         const DecoderFactory* f = Registry::instance().find(p);
+        if (!f) {
+            loadPlugins();  // every plugin: one may provide it without saying so
+            f = Registry::instance().find(p);
+        }
         if (!f)
             Registry::instance().create(p, {});  // throws "unknown decoder ... (available: ...)"
         reqs.push_back({p, {}, {}});
@@ -106,50 +103,6 @@ std::vector<DecoderRequest> buildRequests(const std::vector<std::string>& protos
     for (const auto& o : opts)
         apply("--opt", o, false);
     return reqs;
-}
-
-void loadPlugins() {
-    static std::once_flag once;
-    std::call_once(once, [] {
-        QStringList dirs;
-        const QString app =
-            QCoreApplication::instance() ? QCoreApplication::applicationDirPath() : QString();
-        if (const char* env = std::getenv("BUSDECODE_PLUGIN_PATH"))
-            for (const auto& d : QString::fromLocal8Bit(env).split(':', Qt::SkipEmptyParts))
-                dirs << d;
-        if (!app.isEmpty()) {
-            dirs << app + "/plugins";
-            dirs << app + "/../lib/busdecode/plugins";
-            dirs << app + "/../lib/x86_64-linux-gnu/busdecode/plugins";
-        }
-        std::set<QString> seen;
-        for (const auto& d : dirs) {
-            QDir dir(d);
-            if (!dir.exists()) continue;
-            for (const auto& file : dir.entryList({"*.so"}, QDir::Files, QDir::Name)) {
-                const QString path = dir.absoluteFilePath(file);
-                if (!seen.insert(QFileInfo(path).canonicalFilePath()).second) continue;
-                QPluginLoader loader(path);
-                QObject* root = loader.instance();
-                auto* plugin = root ? qobject_cast<DecoderPlugin*>(root) : nullptr;
-                if (!plugin) {
-                    // A Qt plugin that loads but is not ours: most likely a decoder built
-                    // against another version of the interface (plugin.h).
-                    const std::string why =
-                        root ? fmt::format(
-                                   "it does not implement {}: rebuild it against "
-                                   "this version's busdecode/plugin.h",
-                                   BUSDECODE_PLUGIN_IID)
-                             : loader.errorString().toStdString();
-                    fmt::print(stderr, "decode: warning: {}: not a busdecode plugin ({})\n",
-                               path.toStdString(), why);
-                    continue;
-                }
-                for (auto& f : plugin->factories())
-                    Registry::instance().add(f);
-            }
-        }
-    });
 }
 
 namespace {

@@ -36,10 +36,6 @@ std::vector<DecoderRequest> buildRequests(const std::vector<std::string>& protos
                                           const std::vector<std::string>& maps,
                                           const std::vector<std::string>& opts);
 
-// Loads every decoder plugin (once): <binary dir>/plugins, <binary dir>/../lib/busdecode/plugins,
-// and BUSDECODE_PLUGIN_PATH. Safe to call repeatedly.
-void loadPlugins();
-
 // A decoder's advice (CaptureFacts::advice) as a line for stderr (with --format jsonl and
 // verify, whose stdout has no room for it): "decode: CAPTURE: hint: TEXT\n".
 std::string hintLine(const std::string& capture, const std::string& hint);

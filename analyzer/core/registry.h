@@ -38,4 +38,24 @@ private:
     DecoderInfo info_;
 };
 
+// The factory of a decoder stacked on others whose code is linked into it
+// (core/stacked.h: TMCL on UART, the TMC8100 on SPI): it registers theirs before it
+// creates the decoder, so that the registry knows them even when their own plugins were
+// not loaded (app/plugin_loader.h loads only the plugins a run asks for). The registry
+// keeps the first of equal ids: a lower decoder's own plugin, if loaded first, wins.
+template <class D>
+class StackedFactory : public SimpleFactory<D> {
+public:
+    StackedFactory(DecoderInfo info, std::vector<std::shared_ptr<const DecoderFactory>> lower)
+        : SimpleFactory<D>(std::move(info)), lower_(std::move(lower)) {}
+    std::unique_ptr<Decoder> create(const Options& o) const override {
+        for (const auto& f : lower_)
+            Registry::instance().add(f);
+        return SimpleFactory<D>::create(o);
+    }
+
+private:
+    std::vector<std::shared_ptr<const DecoderFactory>> lower_;
+};
+
 }  // namespace busdecode

@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "app/decode_args.h"
+#include "app/plugin_loader.h"
 #include "batch.h"
 #include "core/atomic_file.h"
 #include "core/options.h"
@@ -17,7 +18,7 @@ namespace busdecode {
 
 int runVerify(const DecodeArgs& args) {
     try {
-        loadPlugins();
+        loadPlugins();  // every one: the rules may name any decoder
         std::vector<std::string> known;
         for (const auto* f : Registry::instance().all())
             known.push_back(f->info().id);

@@ -52,25 +52,10 @@ DecoderInfo tmc8100Info() {
     return info;
 }
 
-namespace {
-class Tmc8100Factory : public DecoderFactory {
-public:
-    Tmc8100Factory() : info_(tmc8100Info()) {}
-    const DecoderInfo& info() const override { return info_; }
-    std::unique_ptr<Decoder> create(const Options& o) const override {
-        // The SPI layer is linked in; make sure the registry knows it even when the spi
-        // plugin itself was not loaded (the registry keeps the first of equal ids).
-        Registry::instance().add(makeSpiFactory());
-        return std::make_unique<Tmc8100Decoder>(o);
-    }
-
-private:
-    DecoderInfo info_;
-};
-}  // namespace
-
 std::shared_ptr<const DecoderFactory> makeTmc8100Factory() {
-    return std::make_shared<Tmc8100Factory>();
+    // The SPI layer is linked in.
+    return std::make_shared<StackedFactory<Tmc8100Decoder>>(
+        tmc8100Info(), std::vector<std::shared_ptr<const DecoderFactory>>{makeSpiFactory()});
 }
 
 }  // namespace busdecode

@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include "core/registry.h"
+#include "uart_decoder.h"
 
 namespace busdecode {
 
@@ -346,7 +347,9 @@ std::shared_ptr<const DecoderFactory> makeTmclFactory() {
           "checksum_ok", "checksum", "mnemonic", "version", "request", "request_start_ns", "rtt_ns",
           "latency_ns"}},
     };
-    return std::make_shared<SimpleFactory<TmclDecoder>>(std::move(info));
+    // The UART layer is linked in.
+    return std::make_shared<StackedFactory<TmclDecoder>>(
+        std::move(info), std::vector<std::shared_ptr<const DecoderFactory>>{makeUartFactory()});
 }
 
 std::vector<std::string> TmclDecoder::advice() const {

@@ -1,8 +1,11 @@
 #pragma once
 // The decoder plugin interface. A plugin is a Qt plugin (QPluginLoader) whose root
-// object implements DecoderPlugin and hands out decoder factories. The CLI loads every
-// plugin in <binary dir>/plugins, <prefix>/lib/busdecode/plugins and the directories
-// listed in BUSDECODE_PLUGIN_PATH (colon separated). See plugins/example/.
+// object implements DecoderPlugin and hands out decoder factories. The CLI finds the
+// plugins in <binary dir>/plugins, <prefix>/lib/busdecode/plugins and the directories
+// listed in BUSDECODE_PLUGIN_PATH (colon separated), and loads those that provide a
+// decoder the run asks for: a plugin's metadata (Q_PLUGIN_METADATA's FILE) may list its
+// decoder ids as { "decoders": ["id", ...] }; one without the list is always loaded.
+// See plugins/example/.
 #include <QtPlugin>
 #include <memory>
 #include <vector>

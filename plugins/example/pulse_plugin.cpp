@@ -7,7 +7,10 @@
 
 class PulsePlugin : public QObject, public busdecode::DecoderPlugin {
     Q_OBJECT
-    Q_PLUGIN_METADATA(IID BUSDECODE_PLUGIN_IID)
+    // pulse_plugin.json lists the decoder ids this plugin provides, so that a run asking
+    // for other decoders need not load it (optional: a plugin without the list is always
+    // loaded).
+    Q_PLUGIN_METADATA(IID BUSDECODE_PLUGIN_IID FILE "pulse_plugin.json")
     Q_INTERFACES(busdecode::DecoderPlugin)
 
 public:

@@ -161,7 +161,9 @@ TEST(BisscPieces, RegisterAccessesDecodeAsInOrder) {
         const Decoded ahead = decodeFile(path, Way::PiecesAhead, piece);
         expectSame(ahead, want, fmt::format("pieces of {} bytes", piece));
         // Between the accesses, in pieces of a few frames or more.
-        if (piece >= 4096) EXPECT_GT(ahead.pieces.spliced, 0u) << piece;
+        if (piece >= 4096) {
+            EXPECT_GT(ahead.pieces.spliced, 0u) << piece;
+        }
     }
 }
 

@@ -54,6 +54,51 @@ TEST(Cli, ListShowsEveryBuiltInDecoderWithRolesAndOptions) {
     EXPECT_NE(r.out.find("cpol"), std::string::npos);
 }
 
+// The built-in plugins Qt loaded in a run (QT_DEBUG_PLUGINS=1 makes it say so on stderr:
+// `qt.core.library: ".../busdecode_spi.so" loaded library`).
+std::vector<std::string> pluginsLoaded(const std::vector<std::string>& args, int status = 0) {
+    std::string cmd = "QT_DEBUG_PLUGINS=1 " + shellQuote(binDir() + "/decode");
+    for (const auto& a : args)
+        cmd += " " + shellQuote(a);
+    const RunResult r = runCommand(cmd);
+    EXPECT_EQ(r.status, status) << r.err;
+    std::vector<std::string> ids;
+    for (const auto& l : lines(r.err)) {
+        const auto so = l.find(".so\" loaded library");
+        const auto name = l.rfind("busdecode_", so);
+        if (so != std::string::npos && name != std::string::npos)
+            ids.push_back(l.substr(name + 10, so - name - 10));
+    }
+    return ids;
+}
+
+TEST(Cli, LoadsOnlyThePluginsOfTheDecodersAskedFor) {
+    const auto path = writeTemp("plugins.vcd", mixedCapture());
+    using Ids = std::vector<std::string>;
+    EXPECT_EQ(pluginsLoaded({path, "--proto", "spi"}), Ids{"spi"});
+    EXPECT_EQ(pluginsLoaded({path, "--proto", "uart", "--proto", "spi", "--map", "uart.rx=top.tx"}),
+              (Ids{"spi", "uart"}));
+    // A decoder stacked on another brings that one's code along (StackedFactory): TMCL
+    // on UART runs without the uart plugin.
+    EXPECT_EQ(
+        pluginsLoaded({path, "--proto", "tmcl", "--map", "host=top.tx", "--opt", "baud=115200"}),
+        Ids{"tmcl"});
+    // Listing, and an unknown decoder's error naming all there are: every plugin.
+    const Ids all{"bissc", "spi", "ssi", "tmc8100", "tmcl", "uart"};
+    EXPECT_EQ(pluginsLoaded({"--list"}), all);
+    EXPECT_EQ(pluginsLoaded({path, "--proto", "nosuch"}, 2), all);
+}
+
+TEST(Cli, AnUnknownDecoderIsNamedWithEveryDecoderThereIs) {
+    const auto path = writeTemp("unknown.vcd", mixedCapture());
+    auto r = runDecode({path, "--proto", "nosuch"});
+    EXPECT_EQ(r.status, 2);
+    EXPECT_NE(r.err.find("unknown decoder 'nosuch' (available: bissc, spi, ssi, tmc8100, tmcl, "
+                         "uart"),
+              std::string::npos)
+        << r.err;
+}
+
 TEST(Cli, JsonlHasTheContractKeysInTimeOrderAcrossTwoBuses) {
     const auto path = writeTemp("mixed.vcd", mixedCapture());
     auto r = runDecode({path, "--proto", "spi", "--proto", "uart", "--opt", "uart.baud=115200",

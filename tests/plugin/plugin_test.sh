@@ -18,6 +18,14 @@ expected='{"proto":"pulse","type":"pulse","start_ns":100,"end_ns":150,"width_ns"
 if [ "$out" != "$expected" ]; then
   echo "unexpected output; expected:"; echo "$expected"; exit 1
 fi
+# Its metadata lists "pulse" (pulse_plugin.json), the built-in plugins' list theirs: a run
+# asking for pulse loads its plugin and no other (Qt names each library it loads).
+loaded=$(QT_DEBUG_PLUGINS=1 BUSDECODE_PLUGIN_PATH="$tmp/pulse" "$tmp/prefix/bin/decode" \
+         "$src_dir/tests/plugin/pulses.vcd" --proto pulse 2>&1 >/dev/null |
+         grep -o 'busdecode_[a-z0-9]*\.so" loaded library' | sort -u || true)
+if [ "$loaded" != 'busdecode_pulse.so" loaded library' ]; then
+  echo "a run asking for pulse loaded: $loaded"; exit 1
+fi
 # --list shows the plugin's declaration
 list=$(BUSDECODE_PLUGIN_PATH="$tmp/pulse" "$tmp/prefix/bin/decode" --list)
 grep -q "^pulse  Pulse widths" <<<"$list" || { echo "--list does not show the plugin"; exit 1; }
