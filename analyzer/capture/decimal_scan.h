@@ -141,12 +141,19 @@ inline int digitsOfLengthIn(__m128i raw, std::uint64_t& value) {
     // the low 16 bits, so its weight comes first.
     const __m128i by10 = _mm_set_epi16(1, 10, 1, 10, 1, 10, 1, 10);
     __m128i pairs;  // 2-digit values in 16-bit lanes, the first digits' first
-    if constexpr (N <= 8) {
+    if constexpr (N <= 10) {
         // Up to 8 digits fill the low half alone: moved to its top bytes, they make the
         // only pairs (twice over), and the one 8-digit group needs no multiply by 10^8
         // below. Times of 8 digits or fewer are most of a 500 MB capture's
-        // (bench/README.md, "-O3 for the code that decodes").
-        const __m128i low = _mm_madd_epi16(_mm_unpacklo_epi8(_mm_slli_si128(d, 8 - N), zero), by10);
+        // (bench/README.md, "-O3 for the code that decodes"). Of 9 or 10 digits, the last
+        // 8 go the same way, moved down, and the first one or two are taken from the low
+        // bytes alone (bench/README.md, stop 40): times of 9 digits are the rest of it.
+        __m128i low8;
+        if constexpr (N <= 8)
+            low8 = _mm_slli_si128(d, 8 - N);
+        else
+            low8 = _mm_srli_si128(d, N - 8);
+        const __m128i low = _mm_madd_epi16(_mm_unpacklo_epi8(low8, zero), by10);
         pairs = _mm_packs_epi32(low, low);
     } else {
         // The N digits moved to the top bytes, zeros (leading zeros) shifted in below them.
@@ -159,10 +166,16 @@ inline int digitsOfLengthIn(__m128i raw, std::uint64_t& value) {
     const __m128i eights = _mm_madd_epi16(_mm_packs_epi32(quads, quads),
                                           _mm_set_epi16(1, 10000, 1, 10000, 1, 10000, 1, 10000));
     const std::uint64_t both = std::uint64_t(_mm_cvtsi128_si64(eights));  // first 8, next 8
-    if constexpr (N <= 8)
+    if constexpr (N <= 8) {
         value = both & 0xFFFFFFFFULL;
-    else
+    } else if constexpr (N <= 10) {
+        const unsigned first = unsigned(_mm_cvtsi128_si32(d));  // the first digits' bytes
+        const std::uint64_t lead =
+            N == 9 ? (first & 0xFF) : (first & 0xFF) * 10 + ((first >> 8) & 0xFF);
+        value = lead * 100000000ULL + (both & 0xFFFFFFFFULL);
+    } else {
         value = (both & 0xFFFFFFFFULL) * 100000000ULL + (both >> 32);
+    }
     return is_digit;
 }
 
