@@ -11,6 +11,8 @@
 //                two halves parsed in one loop, a token of each in turn: two independent
 //                chains, so a loop bound by the latency from one token's end to the
 //                next token's start would run up to twice as fast.
+// - whole-lines: fastRun()'s shape since stop 40: a whole `#time v!` line after one test
+//                of its shape (capture/vcd_time_line.h), anything else token by token.
 // - masks:       (x86-64 with AVX2) separators found 64 bytes at a time; each token's
 //                start and length come from the masks, and its time or edge is taken
 //                without a branch on its kind or its data.
@@ -26,6 +28,7 @@
 #include <fstream>
 #include <iterator>
 #include <string>
+#include <utility>
 #include <vector>
 
 #if defined(__x86_64__)
@@ -33,6 +36,7 @@
 #endif
 
 #include "capture/decimal_scan.h"
+#include "capture/vcd_time_line.h"
 
 namespace {
 
@@ -112,6 +116,61 @@ Totals runSingle(const char* p, const char* stop, Edge* buf, std::uint8_t* level
         s.out = buf;
         while (s.p < ce)
             step(s);
+        n.edges += std::uint64_t(s.out - buf);
+    }
+    n.lines = s.lines;
+    return n;
+}
+
+// fastRun()'s shape since stop 40: a whole `#time v!` line after one test of its shape
+// (capture/vcd_time_line.h), any other token by step(); with none of fastRun()'s block,
+// piece or error bookkeeping, the floor of the tokeniser as it is now (bench/README.md,
+// "Whole time lines in one test"). False at a line it does not take.
+template <int N>
+bool wholeLinesOf(Cursor& s, const char* ce) {
+    while (s.p < ce) {
+        const char* p = s.p;
+        std::uint64_t t;
+        if (*p != '#' ||
+            busdecode::shapeOfTimeLine<N>(p + 1, t) != busdecode::TimeLineShape::OneChange)
+            return false;
+        const unsigned i = static_cast<unsigned char>(p[N + 3]) - 33u;
+        if (i >= 94 || g_line[i] < 0 || t < s.cur) return false;
+        s.cur = t;
+        const auto sel = unsigned(g_line[i]);
+        const auto v = std::uint8_t(p[N + 2] - '0');
+        if (s.level[sel] != v) {
+            s.level[sel] = v;
+            *s.out++ = Edge(t, sel, v);
+        }
+        ++s.lines;
+        s.p = p + N + 5;
+    }
+    return true;
+}
+
+template <std::size_t... N>
+constexpr std::array<bool (*)(Cursor&, const char*), sizeof...(N)> wholeLinesTable(
+    std::index_sequence<N...>) {
+    return {&wholeLinesOf<int(N == 0 ? 1 : N)>...};
+}
+
+Totals runWholeLines(const char* p, const char* stop, Edge* buf, std::uint8_t* level) {
+    static constexpr auto kOf =
+        wholeLinesTable(std::make_index_sequence<busdecode::kOneChangeMaxDigits + 1>());
+    Totals n;
+    Cursor s{p, 0, 0, buf, level};
+    while (s.p < stop) {
+        const char* ce = std::min(stop, s.p + kChunk);
+        s.out = buf;
+        while (s.p < ce) {
+            if (*s.p == '#') {
+                const int d = scanDecimal16(s.p + 1).digits;
+                if (d >= 1 && d <= busdecode::kOneChangeMaxDigits && kOf[std::size_t(d)](s, ce))
+                    continue;
+            }
+            step(s);
+        }
         n.edges += std::uint64_t(s.out - buf);
     }
     n.lines = s.lines;
@@ -261,6 +320,8 @@ int main(int argc, char** argv) {
         {"single", [](const char* b, const char* s, Edge* e, Edge*,
                       std::uint8_t* l) { return runSingle(b, s, e, l); }},
         {"two-streams", runTwoStreams},
+        {"whole-lines", [](const char* b, const char* s, Edge* e, Edge*,
+                           std::uint8_t* l) { return runWholeLines(b, s, e, l); }},
     };
 #if defined(__x86_64__)
     if (__builtin_cpu_supports("avx2"))

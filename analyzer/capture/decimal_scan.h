@@ -123,11 +123,6 @@ inline bool digitsOfLengthSwar(const char* p, std::uint64_t& value) {
 }
 
 #if defined(__SSE2__)
-// digitsOfLength<N> below, in one 16-byte register (SSE2, every x86-64): the digits
-// combined in pairs by three multiply-adds (digits -> 2-digit -> 4-digit -> 8-digit
-// lanes) and, past 8 digits, one 64-bit multiply. The SWAR version chains two or three 64-bit
-// multiplies per time; this one took reading the 500 MB BiSS-C capture alone from 151 to 114 ms
-// (bench/README.md, stop 25).
 // digitsOfLengthSse2 on the 16 bytes already loaded: the value of their first N digits,
 // and a mask with bit i set iff byte i is a digit (shapeOfTimeLine() tests more bytes of
 // the same load).
@@ -181,7 +176,7 @@ inline int digitsOfLengthIn(__m128i raw, std::uint64_t& value) {
 
 // digitsOfLength<N> below, in one 16-byte register (SSE2, every x86-64): the digits
 // combined in pairs by three multiply-adds (digits -> 2-digit -> 4-digit -> 8-digit
-// lanes) and, past 8 digits, one 64-bit multiply. The SWAR version chains two or three 64-bit
+// lanes) and, past 10 digits, one 64-bit multiply. The SWAR version chains two or three 64-bit
 // multiplies per time; this one took reading the 500 MB BiSS-C capture alone from 151 to 114 ms
 // (bench/README.md, stop 25).
 template <int N>

@@ -657,20 +657,24 @@ private:
                 // token's loads need not wait for them.
                 std::uint64_t t;
                 const TimeLineShape shape = shapeOfTimeLine<N>(p + 1, t);
+                // A change of a whole line taken below: a selected or unselected scalar's
+                // value (its time already in force).
+                const auto take = [&](std::int32_t sel, char value) {
+                    if (sel < 0) return;
+                    const std::uint8_t v = std::uint8_t(value - '0');
+                    if (level[sel] != v) {
+                        level[sel] = v;
+                        *out++ = Edge(cur, std::uint32_t(sel), v);
+                    }
+                };
                 if (shape == TimeLineShape::OneChange) {
                     // `#time v!` and a newline, the whole line known good but for its
-                    // identifier (a selected or unselected scalar) and its time going
-                    // forward; otherwise it is taken token by token below.
+                    // identifier and its time going forward; otherwise it is taken token
+                    // by token below.
                     const std::int32_t sel = scalar[static_cast<unsigned char>(p[N + 3])];
                     if (sel != kNotScalar && Tick(t) >= cur) [[likely]] {
                         cur = Tick(t);
-                        if (sel >= 0) {
-                            const std::uint8_t v = std::uint8_t(p[N + 2] - '0');
-                            if (level[sel] != v) {
-                                level[sel] = v;
-                                *out++ = Edge(cur, std::uint32_t(sel), v);
-                            }
-                        }
+                        take(sel, p[N + 2]);
                         ++line;
                         p += N + 5;
                         continue;
@@ -682,14 +686,6 @@ private:
                     const std::int32_t s2 = scalar[static_cast<unsigned char>(p[N + 6])];
                     if (s1 != kNotScalar && s2 != kNotScalar && Tick(t) >= cur) [[likely]] {
                         cur = Tick(t);
-                        const auto take = [&](std::int32_t sel, char value) {
-                            if (sel < 0) return;
-                            const std::uint8_t v = std::uint8_t(value - '0');
-                            if (level[sel] != v) {
-                                level[sel] = v;
-                                *out++ = Edge(cur, std::uint32_t(sel), v);
-                            }
-                        };
                         take(s1, p[N + 2]);
                         take(s2, p[N + 5]);
                         ++line;
