@@ -1,4 +1,4 @@
-// Three shapes of the VCD token loop, timed on one capture held in memory (no kernel
+// Shapes of the VCD token loop, timed on one capture held in memory (no kernel
 // copy, no decoder): which one a faster tokeniser should take. An experiment, not part
 // of `decode`: the loops keep only what VcdReader::fastRun() does per token on
 // make_capture's files (one-character identifiers, `#time` starting every line).
@@ -11,15 +11,23 @@
 //                two halves parsed in one loop, a token of each in turn: two independent
 //                chains, so a loop bound by the latency from one token's end to the
 //                next token's start would run up to twice as fast.
-// - whole-lines: fastRun()'s shape since stop 40: a whole `#time v!` line after one test
-//                of its shape (capture/vcd_time_line.h), anything else token by token.
+// - whole-lines: stop 40's first step: a whole `#time v!` line after one test of its
+//                shape (capture/vcd_time_line.h), anything else token by token.
+// - both-shapes: whole-lines with the two-change line (`#time v! v"`) taken whole too,
+//                each shape on its own branch: runTimesOf()'s shape since stop 40.
+// - line-index:  (stop 41) the lines of each 64 KiB chunk found first, 64 bytes at a
+//                time (their starts written eight at a time, no branch per line), then
+//                each taken whole with its start from that index, one change or two
+//                without a branch on which. TOKEN_LOOP_STAGE1_ONLY=1 times the first
+//                stage alone.
 // - masks:       (x86-64 with AVX2) separators found 64 bytes at a time; each token's
 //                start and length come from the masks, and its time or edge is taken
 //                without a branch on its kind or its data.
 // Each prints the median of RUNS (default 5) passes, and the edges and lines it counted
-// (all three must agree with read_capture's edges).
+// (all must agree with read_capture's edges).
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <chrono>
 #include <cstdint>
 #include <cstdio>
@@ -177,6 +185,195 @@ Totals runWholeLines(const char* p, const char* stop, Edge* buf, std::uint8_t* l
     return n;
 }
 
+// Both line shapes whole, `#time v!` and `#time v! v"`, each on its own branch, as
+// VcdReader::runTimesOf() takes them since stop 40. False at a line it does not take.
+template <int N>
+bool bothShapesOf(Cursor& s, const char* ce) {
+    while (s.p < ce) {
+        const char* p = s.p;
+        std::uint64_t t;
+        if (*p != '#') return false;
+        const busdecode::TimeLineShape shape = busdecode::shapeOfTimeLine<N>(p + 1, t);
+        if (t < s.cur) return false;
+        const auto take = [&](char id, char value) {
+            const unsigned i = static_cast<unsigned char>(id) - 33u;
+            const auto sel = unsigned(g_line[i < 94 ? i : 0]);
+            const auto v = std::uint8_t(value - '0');
+            if (s.level[sel] != v) {
+                s.level[sel] = v;
+                *s.out++ = Edge(t, sel, v);
+            }
+        };
+        if (shape == busdecode::TimeLineShape::OneChange) {
+            s.cur = t;
+            take(p[N + 3], p[N + 2]);
+            s.p = p + N + 5;
+        } else if (shape == busdecode::TimeLineShape::TwoChanges) {
+            s.cur = t;
+            take(p[N + 3], p[N + 2]);
+            take(p[N + 6], p[N + 5]);
+            s.p = p + N + 8;
+        } else {
+            return false;
+        }
+        ++s.lines;
+    }
+    return true;
+}
+
+// Newlines of 64 bytes, a bit each (SSE2).
+inline std::uint64_t newlines64(const char* p) {
+    const __m128i nl = _mm_set1_epi8('\n');
+    std::uint64_t m = 0;
+    for (int k = 0; k < 4; ++k) {
+        const __m128i x = _mm_loadu_si128(reinterpret_cast<const __m128i*>(p + 16 * k));
+        m |= std::uint64_t(unsigned(_mm_movemask_epi8(_mm_cmpeq_epi8(x, nl)))) << (16 * k);
+    }
+    return m;
+}
+
+// The lines of [p, ce) found first (their starts into `at`, eight at a time without a
+// branch per line), then each taken whole, one-change or two-change, without a branch on
+// which: a line's start does not depend on the line before it. Returns the lines taken
+// (all of them, or up to the first it cannot take).
+template <int N>
+std::size_t indexedLinesOf(Cursor& s, const char* base, const std::uint32_t* at, std::size_t from,
+                           std::size_t count) {
+    // The cursor's fields in locals: an edge's store may alias them (as seen by the
+    // compiler), and a count kept in memory would chain every line to the one before.
+    Edge* out = s.out;
+    std::uint8_t* const level = s.level;
+    std::uint64_t cur = s.cur;
+    std::size_t i = from;
+    for (; i < count; ++i) {
+        const char* p = base + at[i];
+        const std::size_t len = at[i + 1] - at[i];  // with its newline
+        std::uint64_t t;
+        const busdecode::TimeLineShape shape = busdecode::shapeOfTimeLine<N>(p + 1, t);
+        const bool one = len == std::size_t(N + 5);
+        const bool two = len == std::size_t(N + 8);
+        const unsigned i1 = static_cast<unsigned char>(p[N + 3]) - 33u;
+        const unsigned i2 = static_cast<unsigned char>(p[N + 6]) - 33u;
+        const bool shape_ok = (one & (shape == busdecode::TimeLineShape::OneChange)) |
+                              (two & (shape == busdecode::TimeLineShape::TwoChanges));
+        if (*p != '#' || !shape_ok || t < cur || i1 >= 94 || (two && i2 >= 94)) break;
+        const auto sel1 = unsigned(g_line[i1]);
+        const unsigned sel2 = two ? unsigned(g_line[i2]) : sel1;
+        const auto v1 = std::uint8_t(p[N + 2] & 1), v2 = std::uint8_t(p[N + 5] & 1);
+        // Every change a real one (a predictable branch: a VCD writes changes): both
+        // edges written, the second counted for a two-change line.
+        if (level[sel1] == v1 || (two && (level[sel2] == v2 || sel2 == sel1))) break;
+        cur = t;
+        level[sel1] = v1;
+        level[sel2] = two ? v2 : v1;
+        out[0] = Edge(t, sel1, v1);
+        out[1] = Edge(t, sel2, v2);
+        out += 1 + int(two);
+    }
+    s.out = out;
+    s.cur = cur;
+    s.lines += i - from;
+    return i;
+}
+
+template <std::size_t... N>
+constexpr std::array<bool (*)(Cursor&, const char*), sizeof...(N)> bothShapesTable(
+    std::index_sequence<N...>) {
+    return {&bothShapesOf<int(N == 0 ? 1 : N)>...};
+}
+template <std::size_t... N>
+constexpr std::array<std::size_t (*)(Cursor&, const char*, const std::uint32_t*, std::size_t,
+                                     std::size_t),
+                     sizeof...(N)>
+indexedTable(std::index_sequence<N...>) {
+    return {&indexedLinesOf<int(N == 0 ? 1 : N)>...};
+}
+
+Totals runBothShapes(const char* p, const char* stop, Edge* buf, std::uint8_t* level) {
+    static constexpr auto kOf =
+        bothShapesTable(std::make_index_sequence<busdecode::kTwoChangesMaxDigits + 1>());
+    Totals n;
+    Cursor s{p, 0, 0, buf, level};
+    while (s.p < stop) {
+        const char* ce = std::min(stop, s.p + kChunk);
+        s.out = buf;
+        while (s.p < ce) {
+            if (*s.p == '#') {
+                const int d = scanDecimal16(s.p + 1).digits;
+                if (d >= 1 && d <= busdecode::kTwoChangesMaxDigits && kOf[std::size_t(d)](s, ce))
+                    continue;
+            }
+            step(s);
+        }
+        n.edges += std::uint64_t(s.out - buf);
+    }
+    n.lines = s.lines;
+    return n;
+}
+
+Totals runIndexed(const char* p, const char* stop, Edge* buf, std::uint8_t* level) {
+    static constexpr auto kOf =
+        indexedTable(std::make_index_sequence<busdecode::kTwoChangesMaxDigits + 1>());
+    static std::vector<std::uint32_t> at(kChunk + 64);
+    Totals n;
+    Cursor s{p, 0, 0, buf, level};
+    while (s.p < stop) {
+        const char* base = s.p;
+        const char* ce = std::min(stop, base + kChunk);
+        // Stage 1: where each line starts (after each newline), the first at 0.
+        std::size_t count = 0;
+        at[count++] = 0;
+        for (const char* q = base; q < ce; q += 64) {
+            std::uint64_t m = newlines64(q);
+            if (ce - q < 64) m &= (std::uint64_t(1) << (ce - q)) - 1;
+            const auto off = std::uint32_t(q - base) + 1;
+            const int c = __builtin_popcountll(m);
+            std::uint32_t* w = &at[count];
+            for (int j = 0; j < 8; ++j) {
+                w[j] = off + std::uint32_t(std::countr_zero(m));
+                m &= m - 1;
+            }
+            for (int j = 8; j < c; ++j) {
+                w[j] = off + std::uint32_t(std::countr_zero(m));
+                m &= m - 1;
+            }
+            count += std::size_t(c);
+        }
+        // Lines 0 .. count-2 are whole ([at[i], at[i+1])); the rest goes to the next chunk.
+        const std::size_t whole = count - 1;
+        if (whole == 0) unsupported("a line longer than a chunk");
+        s.out = buf;
+        std::size_t i = 0;
+        // TOKEN_LOOP_STAGE1_ONLY=1: the lines found and nothing taken, to time the first
+        // stage alone (bench/README.md, stop 41).
+        static const bool stage1_only = std::getenv("TOKEN_LOOP_STAGE1_ONLY") != nullptr;
+        if (stage1_only) i = whole;
+        while (i < whole) {
+            const char* l = base + at[i];
+            if (*l == '#') {
+                const int d = scanDecimal16(l + 1).digits;
+                if (d >= 1 && d <= busdecode::kTwoChangesMaxDigits) {
+                    const std::size_t j = kOf[std::size_t(d)](s, base, at.data(), i, whole);
+                    if (j != i) {
+                        i = j;
+                        continue;
+                    }
+                }
+            }
+            // Any other line, token by token.
+            s.p = l;
+            const char* e = base + at[i + 1];
+            while (s.p < e)
+                step(s);
+            ++i;
+        }
+        s.p = base + at[whole];
+        n.edges += std::uint64_t(s.out - buf);
+    }
+    n.lines = s.lines;
+    return n;
+}
+
 Totals runTwoStreams(const char* p, const char* stop, Edge* buf, Edge* buf2, std::uint8_t* level) {
     Totals n;
     std::uint8_t level2[64];
@@ -322,6 +519,10 @@ int main(int argc, char** argv) {
         {"two-streams", runTwoStreams},
         {"whole-lines", [](const char* b, const char* s, Edge* e, Edge*,
                            std::uint8_t* l) { return runWholeLines(b, s, e, l); }},
+        {"both-shapes", [](const char* b, const char* s, Edge* e, Edge*,
+                           std::uint8_t* l) { return runBothShapes(b, s, e, l); }},
+        {"line-index", [](const char* b, const char* s, Edge* e, Edge*,
+                          std::uint8_t* l) { return runIndexed(b, s, e, l); }},
     };
 #if defined(__x86_64__)
     if (__builtin_cpu_supports("avx2"))
