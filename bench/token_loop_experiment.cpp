@@ -163,9 +163,11 @@ constexpr std::array<bool (*)(Cursor&, const char*), sizeof...(N)> wholeLinesTab
     return {&wholeLinesOf<int(N == 0 ? 1 : N)>...};
 }
 
-Totals runWholeLines(const char* p, const char* stop, Edge* buf, std::uint8_t* level) {
-    static constexpr auto kOf =
-        wholeLinesTable(std::make_index_sequence<busdecode::kOneChangeMaxDigits + 1>());
+// Each line of a `#time` of 1 to kMaxDigits digits through that length's loop in `of`
+// (until a line it does not take), any other token by step().
+template <std::size_t kMaxDigits>
+Totals runLineLoops(const std::array<bool (*)(Cursor&, const char*), kMaxDigits + 1>& of,
+                    const char* p, const char* stop, Edge* buf, std::uint8_t* level) {
     Totals n;
     Cursor s{p, 0, 0, buf, level};
     while (s.p < stop) {
@@ -174,8 +176,7 @@ Totals runWholeLines(const char* p, const char* stop, Edge* buf, std::uint8_t* l
         while (s.p < ce) {
             if (*s.p == '#') {
                 const int d = scanDecimal16(s.p + 1).digits;
-                if (d >= 1 && d <= busdecode::kOneChangeMaxDigits && kOf[std::size_t(d)](s, ce))
-                    continue;
+                if (d >= 1 && std::size_t(d) <= kMaxDigits && of[std::size_t(d)](s, ce)) continue;
             }
             step(s);
         }
@@ -183,6 +184,12 @@ Totals runWholeLines(const char* p, const char* stop, Edge* buf, std::uint8_t* l
     }
     n.lines = s.lines;
     return n;
+}
+
+Totals runWholeLines(const char* p, const char* stop, Edge* buf, std::uint8_t* level) {
+    static constexpr auto kOf =
+        wholeLinesTable(std::make_index_sequence<busdecode::kOneChangeMaxDigits + 1>());
+    return runLineLoops<busdecode::kOneChangeMaxDigits>(kOf, p, stop, buf, level);
 }
 
 // Both line shapes whole, `#time v!` and `#time v! v"`, each on its own branch, as
@@ -292,23 +299,7 @@ indexedTable(std::index_sequence<N...>) {
 Totals runBothShapes(const char* p, const char* stop, Edge* buf, std::uint8_t* level) {
     static constexpr auto kOf =
         bothShapesTable(std::make_index_sequence<busdecode::kTwoChangesMaxDigits + 1>());
-    Totals n;
-    Cursor s{p, 0, 0, buf, level};
-    while (s.p < stop) {
-        const char* ce = std::min(stop, s.p + kChunk);
-        s.out = buf;
-        while (s.p < ce) {
-            if (*s.p == '#') {
-                const int d = scanDecimal16(s.p + 1).digits;
-                if (d >= 1 && d <= busdecode::kTwoChangesMaxDigits && kOf[std::size_t(d)](s, ce))
-                    continue;
-            }
-            step(s);
-        }
-        n.edges += std::uint64_t(s.out - buf);
-    }
-    n.lines = s.lines;
-    return n;
+    return runLineLoops<busdecode::kTwoChangesMaxDigits>(kOf, p, stop, buf, level);
 }
 
 Totals runIndexed(const char* p, const char* stop, Edge* buf, std::uint8_t* level) {
