@@ -130,10 +130,26 @@ Totals runSingle(const char* p, const char* stop, Edge* buf, std::uint8_t* level
     return n;
 }
 
-// fastRun()'s shape since stop 40: a whole `#time v!` line after one test of its shape
+// The line of a one-character identifier, or -1 (out of range, or not declared).
+inline std::int32_t lineOfId(char id) {
+    const unsigned i = static_cast<unsigned char>(id) - 33u;
+    return i < 94 ? g_line[i] : -1;
+}
+
+// A change of line `sel` (declared) to `value` ('0' or '1') at time t: an edge if its
+// level moves.
+inline void takeChange(Cursor& s, std::uint64_t t, std::int32_t sel, char value) {
+    const auto v = std::uint8_t(value - '0');
+    if (s.level[sel] != v) {
+        s.level[sel] = v;
+        *s.out++ = Edge(t, unsigned(sel), v);
+    }
+}
+
+// Stop 40's first step: a whole `#time v!` line after one test of its shape
 // (capture/vcd_time_line.h), any other token by step(); with none of fastRun()'s block,
-// piece or error bookkeeping, the floor of the tokeniser as it is now (bench/README.md,
-// "Whole time lines in one test"). False at a line it does not take.
+// piece or error bookkeeping (bench/README.md, "Whole time lines in one test"). False at
+// a line it does not take.
 template <int N>
 bool wholeLinesOf(Cursor& s, const char* ce) {
     while (s.p < ce) {
@@ -142,15 +158,10 @@ bool wholeLinesOf(Cursor& s, const char* ce) {
         if (*p != '#' ||
             busdecode::shapeOfTimeLine<N>(p + 1, t) != busdecode::TimeLineShape::OneChange)
             return false;
-        const unsigned i = static_cast<unsigned char>(p[N + 3]) - 33u;
-        if (i >= 94 || g_line[i] < 0 || t < s.cur) return false;
+        const std::int32_t sel = lineOfId(p[N + 3]);
+        if (sel < 0 || t < s.cur) return false;
         s.cur = t;
-        const auto sel = unsigned(g_line[i]);
-        const auto v = std::uint8_t(p[N + 2] - '0');
-        if (s.level[sel] != v) {
-            s.level[sel] = v;
-            *s.out++ = Edge(t, sel, v);
-        }
+        takeChange(s, t, sel, p[N + 2]);
         ++s.lines;
         s.p = p + N + 5;
     }
@@ -202,23 +213,18 @@ bool bothShapesOf(Cursor& s, const char* ce) {
         if (*p != '#') return false;
         const busdecode::TimeLineShape shape = busdecode::shapeOfTimeLine<N>(p + 1, t);
         if (t < s.cur) return false;
-        const auto take = [&](char id, char value) {
-            const unsigned i = static_cast<unsigned char>(id) - 33u;
-            const auto sel = unsigned(g_line[i < 94 ? i : 0]);
-            const auto v = std::uint8_t(value - '0');
-            if (s.level[sel] != v) {
-                s.level[sel] = v;
-                *s.out++ = Edge(t, sel, v);
-            }
-        };
+        const std::int32_t sel1 = lineOfId(p[N + 3]);
         if (shape == busdecode::TimeLineShape::OneChange) {
+            if (sel1 < 0) return false;
             s.cur = t;
-            take(p[N + 3], p[N + 2]);
+            takeChange(s, t, sel1, p[N + 2]);
             s.p = p + N + 5;
         } else if (shape == busdecode::TimeLineShape::TwoChanges) {
+            const std::int32_t sel2 = lineOfId(p[N + 6]);
+            if (sel1 < 0 || sel2 < 0) return false;
             s.cur = t;
-            take(p[N + 3], p[N + 2]);
-            take(p[N + 6], p[N + 5]);
+            takeChange(s, t, sel1, p[N + 2]);
+            takeChange(s, t, sel2, p[N + 5]);
             s.p = p + N + 8;
         } else {
             return false;
@@ -228,14 +234,19 @@ bool bothShapesOf(Cursor& s, const char* ce) {
     return true;
 }
 
-// Newlines of 64 bytes, a bit each (SSE2).
+// Newlines of 64 bytes, a bit each (SSE2; a byte loop elsewhere).
 inline std::uint64_t newlines64(const char* p) {
-    const __m128i nl = _mm_set1_epi8('\n');
     std::uint64_t m = 0;
+#if defined(__SSE2__)
+    const __m128i nl = _mm_set1_epi8('\n');
     for (int k = 0; k < 4; ++k) {
         const __m128i x = _mm_loadu_si128(reinterpret_cast<const __m128i*>(p + 16 * k));
         m |= std::uint64_t(unsigned(_mm_movemask_epi8(_mm_cmpeq_epi8(x, nl)))) << (16 * k);
     }
+#else
+    for (int k = 0; k < 64; ++k)
+        m |= std::uint64_t(p[k] == '\n') << k;
+#endif
     return m;
 }
 
@@ -259,13 +270,12 @@ std::size_t indexedLinesOf(Cursor& s, const char* base, const std::uint32_t* at,
         const busdecode::TimeLineShape shape = busdecode::shapeOfTimeLine<N>(p + 1, t);
         const bool one = len == std::size_t(N + 5);
         const bool two = len == std::size_t(N + 8);
-        const unsigned i1 = static_cast<unsigned char>(p[N + 3]) - 33u;
-        const unsigned i2 = static_cast<unsigned char>(p[N + 6]) - 33u;
+        const std::int32_t line1 = lineOfId(p[N + 3]);
+        const std::int32_t line2 = two ? lineOfId(p[N + 6]) : line1;
         const bool shape_ok = (one & (shape == busdecode::TimeLineShape::OneChange)) |
                               (two & (shape == busdecode::TimeLineShape::TwoChanges));
-        if (*p != '#' || !shape_ok || t < cur || i1 >= 94 || (two && i2 >= 94)) break;
-        const auto sel1 = unsigned(g_line[i1]);
-        const unsigned sel2 = two ? unsigned(g_line[i2]) : sel1;
+        if (*p != '#' || !shape_ok || t < cur || line1 < 0 || line2 < 0) break;
+        const auto sel1 = unsigned(line1), sel2 = unsigned(line2);
         const auto v1 = std::uint8_t(p[N + 2] & 1), v2 = std::uint8_t(p[N + 5] & 1);
         // Every change a real one (a predictable branch: a VCD writes changes): both
         // edges written, the second counted for a two-change line.
