@@ -35,6 +35,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <exception>
 #include <limits>
 #include <string>
 #include <vector>
@@ -171,6 +172,7 @@ private:
             ++j;
         if (j == ns) return;
         const double period = double(r[nr - 1] - r[0]) / double(nr - 1);
+        if (!(period > 0)) return;  // rises in one tick: no slot can be placed
         const double half = period / 2.0;
         const double ack_delay = double((sl[j] >> 1) - r[1]);
         // Each later SL edge answers the rise nearest to it less the delay.
@@ -311,7 +313,13 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "bissc_frame_experiment: BITS must be 1..52\n");
         return 2;
     }
-    const Edges in = loadEdges(argv[1]);
+    Edges in;
+    try {
+        in = loadEdges(argv[1]);
+    } catch (const std::exception& e) {  // the reader's one-line error (file and line)
+        std::fprintf(stderr, "%s\n", e.what());
+        return 2;
+    }
     FramePass pass(in, bits);
     Totals totals, collected;
     std::uint64_t touched = 0, events = 0;
