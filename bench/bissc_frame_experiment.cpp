@@ -36,7 +36,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
-#include <limits>
 #include <string>
 #include <vector>
 
@@ -47,6 +46,7 @@
 #include "core/decoder.h"
 #include "core/options.h"
 #include "core/registry.h"
+#include "read_edges.h"
 
 namespace {
 
@@ -65,35 +65,36 @@ struct Totals {
     std::uint64_t clean = 0;  // ACK low, a start bit, CRC right, stop bit low
     std::uint64_t position_sum = 0;
     std::uint64_t overlong = 0;
-    bool operator==(const Totals&) const = default;
 };
 
 struct Edges {
     std::vector<Edge> edges;
-    int ma = -1, sl = -1;    // their lines (the low byte's line: lineAndLevel() / 2)
-    bool sl_initial = true;  // SL's level before the first edge
+    int ma = -1, sl = -1;  // their lines (the low byte's line: lineAndLevel() / 2)
+    bool ma_initial = true, sl_initial = true;  // their levels before the first edge
     busdecode::Timebase timebase;
 };
 
+// Every signal selected (read_edges.h), each signal's line its index: make_capture's
+// BiSS-C files have only MA and SL.
 Edges loadEdges(const std::string& path) {
     busdecode::OpenOptions one_thread;
     one_thread.read_file_ahead = false;
-    auto reader = busdecode::openCapture(path, one_thread);
-    std::vector<busdecode::LineRef> lines;
+    auto reader = busdecode::bench::openSelected(path, one_thread);
     Edges out;
-    for (int i = 0; i < int(reader->signals().size()); ++i) {
-        const std::string& name = reader->signals()[std::size_t(i)].name;
-        if (name == "ma") out.ma = int(lines.size());
-        if (name == "sl") out.sl = int(lines.size());
-        if (name == "ma" || name == "sl") lines.push_back({i, -1});
+    const auto& signals = reader->signals();
+    for (int i = 0; i < int(signals.size()); ++i) {
+        if (signals[std::size_t(i)].name == "ma") out.ma = i;
+        if (signals[std::size_t(i)].name == "sl") out.sl = i;
     }
-    if (out.ma < 0 || out.sl < 0) {
-        std::fprintf(stderr, "%s: no signals named ma and sl (make_capture bissc)\n", path.c_str());
+    if (out.ma < 0 || out.sl < 0 || signals.size() != 2) {
+        std::fprintf(stderr, "%s: not two signals named ma and sl (make_capture bissc)\n",
+                     path.c_str());
         std::exit(2);
     }
-    reader->select(lines);
     out.timebase = reader->timebase();
-    out.sl_initial = reader->initialLevels()[std::size_t(out.sl)] != 0;
+    const std::vector<std::uint8_t> initial = reader->initialLevels();
+    out.ma_initial = initial[std::size_t(out.ma)] != 0;
+    out.sl_initial = initial[std::size_t(out.sl)] != 0;
     EdgeBlock block;
     while (reader->next(block))
         out.edges.insert(out.edges.end(), block.edges.begin(), block.edges.end());
@@ -106,8 +107,8 @@ public:
         : in_(in),
           bits_(bits),
           crc_(busdecode::BitCrc::fromFullPoly(0x43, 0, true), bits + 2),
-          rises_(kMaxFrameEdges + 1),
-          sl_(kMaxFrameEdges + 1) {}
+          rises_(kMaxFrameEdges),
+          sl_(kMaxFrameEdges) {}
 
     template <bool kSample>
     [[gnu::noinline]] Totals run() {
@@ -164,8 +165,7 @@ private:
         if (nr < 2) return;
         ++totals.frames;
         const Tick* r = rises_.data();
-        Tick* const sl = sl_.data();                // each SL edge as tick * 2 + level
-        sl[ns] = std::numeric_limits<Tick>::max();  // a sentinel: after every sample time
+        const Tick* sl = sl_.data();  // each SL edge as tick * 2 + level
         // The ACK: SL's first fall after the second rise.
         std::size_t j = 0;
         while (j < ns && ((sl[j] >> 1) <= r[1] || (sl[j] & 1) != 0))
@@ -200,22 +200,21 @@ private:
         const double offset = delay + half;  // a sample's time after its rise
         const auto at = [&](std::size_t k) { return double(r[k]) + offset; };
         unsigned __int128 toggles = 0;
-        unsigned level_before = unsigned(sl_before);
         for (std::size_t i = 0; i < ns; ++i) {
             const double u = double(sl[i] >> 1);
             const double estimate = (u - double(r[0]) - offset) * inv_period + 1.0;
             std::size_t k = std::size_t(std::clamp(estimate, 1.0, double(slots)));
-            while (k <= slots && at(k) < u)
-                [[unlikely]]++ k;
+            while (k <= slots && at(k) < u)  // (rarely: the estimate is nearly always right)
+                ++k;
             while (k > 1 && at(k - 1) >= u)
-                [[unlikely]]-- k;
+                --k;
             if (k > slots) continue;  // after the last sample (the timeout's end)
             toggles ^= (unsigned __int128)(1) << (slots - k);
         }
         unsigned __int128 word = toggles;  // each bit: the XOR of it and those above it
         for (int shift = 1; shift < 128; shift *= 2)
             word ^= word >> shift;
-        if (level_before) word ^= ((unsigned __int128)(1) << slots) - 1;
+        if (sl_before) word ^= ((unsigned __int128)(1) << slots) - 1;
         // Slot k is bit slots - k. After the ACK (low), busy slots are low until Start.
         if ((word >> (slots - 1)) & 1u) return;  // no ACK
         const unsigned __int128 after_ack = word & (((unsigned __int128)(1) << (slots - 1)) - 1);
@@ -253,7 +252,7 @@ public:
         busdecode::bench::registerDecoders();
         factory_ = busdecode::Registry::instance().find("bissc");
         options_ = busdecode::Options::resolve(factory_->info(), {{"bits", std::to_string(bits)}});
-        role_of_line_.assign(2, -1);
+        role_of_line_.assign(std::size_t(std::max(in.ma, in.sl) + 1), -1);
         role_of_line_[std::size_t(in.ma)] = busdecode::BisscDecoder::kMa;
         role_of_line_[std::size_t(in.sl)] = busdecode::BisscDecoder::kSl;
     }
@@ -269,7 +268,7 @@ public:
         ctx.sink = &sink;
         ctx.fields_wanted = false;
         ctx.lines_are_roles = busdecode::linesAreRoles(role_of_line_);
-        ctx.initial_levels = {1, in_.sl_initial ? 1 : 0};
+        ctx.initial_levels = {in_.ma_initial ? 1 : 0, in_.sl_initial ? 1 : 0};  // MA, SL
         decoder->start(ctx);
         const Edge* e = in_.edges.data();
         const std::size_t n = in_.edges.size();
@@ -321,7 +320,7 @@ int main(int argc, char** argv) {
         return 2;
     }
     FramePass pass(in, bits);
-    Totals totals, collected;
+    Totals totals;
     std::uint64_t touched = 0, events = 0;
     DecoderPass decoder(in, bits);
     const double decoder_s = medianSeconds(runs, [&] { events = decoder.run(); });
@@ -332,7 +331,7 @@ int main(int argc, char** argv) {
         touched = sum;
     });
     const double sampled_s = medianSeconds(runs, [&] { totals = pass.run<true>(); });
-    const double collect_s = medianSeconds(runs, [&] { collected = pass.run<false>(); });
+    const double collect_s = medianSeconds(runs, [&] { (void)pass.run<false>(); });
     const double n = double(in.edges.size());
     const double frames = double(std::max<std::uint64_t>(totals.frames, 1));
     std::printf("edges %zu frames %llu clean %llu position_sum %llu overlong %llu\n",
