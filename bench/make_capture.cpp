@@ -1,6 +1,12 @@
 // make_capture: writes the large captures bench/run.sh times.
 //
-//   make_capture BUS FORMAT SIZE_MB OUT     (FORMAT: vcd, csv, saleae or sr)
+//   make_capture BUS FORMAT SIZE_MB OUT [FIRST_TICK]   (FORMAT: vcd, csv, saleae or sr)
+//
+// FIRST_TICK (VCD only): the repeated traffic starts at the first chunk period at or after
+// this tick, after a quiet stretch, as in the later part of a long capture: times of 9
+// digits from 100000000 (1 s at 100 MS/s), 10 from 1000000000. The profile-guided build
+// trains on such files (cmake/pgo_train.sh), whose small captures would otherwise only
+// have short times.
 //
 // sr (a sigrok session) is SIZE_MB of samples before compression: one byte a sample up
 // to eight lines, 1e6 samples per MB.
@@ -79,7 +85,7 @@ private:
 };
 
 void repeatVcd(const std::string& chunk_file, const Waveform& chunk, std::uint64_t target,
-               Output& out) {
+               std::int64_t first_tick, Output& out) {
     const std::string text = slurp(chunk_file);
     const auto lines = splitLines(text);
     // Header: everything up to the line with $enddefinitions; then the initial dump (all
@@ -100,7 +106,9 @@ void repeatVcd(const std::string& chunk_file, const Waveform& chunk, std::uint64
     for (std::size_t i = edges; i < lines.size(); ++i)
         body_bytes += lines[i].size();
     char stamp[32];
-    for (std::int64_t k = 0;; ++k) {
+    // The levels hold from the initial dump until the first repetition's first time.
+    const std::int64_t k0 = first_tick > 0 ? (first_tick + period - 1) / period : 0;
+    for (std::int64_t k = k0;; ++k) {
         const bool last = out.bytes() + body_bytes >= target;
         for (std::size_t i = edges; i < lines.size(); ++i) {
             std::string_view line = lines[i];
@@ -223,12 +231,21 @@ std::uint64_t repeatSr(const Waveform& chunk, std::uint64_t target, const std::s
 }  // namespace
 
 int main(int argc, char** argv) {
-    if (argc != 5) {
-        std::fprintf(stderr, "usage: make_capture BUS vcd|csv|saleae|sr SIZE_MB OUT\n");
+    if (argc != 5 && argc != 6) {
+        std::fprintf(stderr,
+                     "usage: make_capture BUS vcd|csv|saleae|sr SIZE_MB OUT [FIRST_TICK]\n");
         return 2;
     }
     try {
         const std::string bus_id = argv[1], format = argv[2], out_path = argv[4];
+        std::int64_t first_tick = 0;
+        if (argc == 6) {
+            char* end = nullptr;
+            first_tick = std::strtoll(argv[5], &end, 10);
+            if (*argv[5] == '\0' || *end != '\0' || first_tick < 0 || first_tick > (1LL << 52))
+                throw std::invalid_argument("FIRST_TICK must be a tick from 0 to 2^52");
+            if (format != "vcd") throw std::invalid_argument("FIRST_TICK is for vcd only");
+        }
         const std::uint64_t target = std::uint64_t(std::atof(argv[3]) * 1e6);
         // About 20 ms of traffic per chunk: a few MB, repeated as often as needed.
         const int units = bus_id.rfind("spi", 0) == 0     ? 800
@@ -243,7 +260,7 @@ int main(int argc, char** argv) {
             Output out(out_path);
             if (format == "vcd") {
                 writeVcd(bus.chunk, chunk_file);
-                repeatVcd(chunk_file, bus.chunk, target, out);
+                repeatVcd(chunk_file, bus.chunk, target, first_tick, out);
             } else if (format == "csv") {
                 writeCsv(bus.chunk, chunk_file, CsvDialect::SigrokDense);
                 repeatCsv(chunk_file, target, out);

@@ -13,7 +13,7 @@
 function(busdecode_decoder)
   cmake_parse_arguments(D "" "ID" "FACTORY;SOURCES;LIBS;PROVIDES" ${ARGN})
   add_library(decoder_${D_ID} STATIC ${D_SOURCES})
-  target_compile_options(decoder_${D_ID} PRIVATE ${BUSDECODE_SPEED_OPTIONS})  # -O3 (CMakeLists.txt)
+  busdecode_speed(decoder_${D_ID})  # -O3 and the profile (cmake/BusdecodePgo.cmake)
   target_include_directories(decoder_${D_ID} PUBLIC ${CMAKE_CURRENT_SOURCE_DIR})
   target_link_libraries(decoder_${D_ID} PUBLIC busdecode_core ${D_LIBS})
 
