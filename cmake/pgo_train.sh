@@ -30,4 +30,14 @@ for proto in spi bissc; do
     run "$work/${proto}_10.vcd" --proto $proto
     rm -f "$work"/*.vcd
 done
+# The counts must be named by the objects' paths inside the build folder
+# (-fprofile-prefix-path), or the optimised build finds none and silently compiles
+# without them: stop here instead (the compiler must see the build folder under the
+# path CMake gives it).
+expected="analyzer#CMakeFiles#busdecode_core.dir#capture#vcd_reader.cpp.gcda"
+if [ ! -f "$profile/$expected" ]; then
+    echo "pgo_train.sh: no $expected in $profile: the profiles are named otherwise;" \
+        "configure with -DBUSDECODE_PGO=OFF" >&2
+    exit 1
+fi
 touch "$stamp"
