@@ -1,16 +1,17 @@
 # Profile-guided optimisation (GCC) of the code that decodes: the core library and the
-# decoders. Side by side on the 500 MB captures it took SPI's `decode` from 287 to 262 ms
-# and BiSS-C's from 406 to 354 ms (bench/README.md, "Profile-guided optimisation").
+# decoders. Side by side on the 500 MB captures, read back, it took SPI's `decode` from
+# 265 to 247 ms and BiSS-C's from 453 to 406 ms (bench/README.md, "Profile-guided
+# optimisation", with the command).
 #
 # How the build does it, with nothing to do by hand:
 #  1. build/pgo/build is a second build of this source tree (ExternalProject), with the
 #     core and the decoders instrumented (-fprofile-generate). It builds only `decode`,
 #     the SPI and BiSS-C plugins and bench/'s `make_capture` (whatever BUSDECODE_BENCH
 #     says here).
-#  2. cmake/pgo_train.sh runs that `decode` on SPI and BiSS-C captures written by
-#     `make_capture` (VCD, dense CSV and Saleae CSV, text and JSONL output, one and two
-#     threads): the counts land in build/pgo/profile, and build/pgo/profile.stamp marks
-#     them done.
+#  2. cmake/pgo_train.sh runs that `decode` on SPI and BiSS-C VCD captures written by
+#     `make_capture` (times of up to 8, 9 and 10 digits; text and JSONL output, one and
+#     two threads): the counts land in build/pgo/profile, and build/pgo/profile.stamp
+#     marks them done.
 #  3. The core's and the decoders' objects in this build depend on that stamp and compile
 #     with -fprofile-use. Decoders the training does not run keep -O3's code
 #     (-fprofile-partial-training).
