@@ -39,6 +39,13 @@ reader="$build/bin/read_capture"
 for x in "$decode" "$make" "$reader"; do
     [ -x "$x" ] || { echo "missing $x (build with: cmake --build $build)" >&2; exit 2; }
 done
+# The peers and tools it times with: missing, the run would stop halfway through.
+for t in hyperfine sigrok-cli wc python3 /usr/bin/time; do
+    command -v "$t" >/dev/null || {
+        echo "run.sh: $t not found (Debian: apt-get install hyperfine sigrok-cli time python3)" >&2
+        exit 2
+    }
+done
 tmp="$(mktemp -d "${TMPDIR:-/tmp}/busdecode-bench.XXXXXX")"
 trap 'rm -rf "$tmp"' EXIT
 runs=5
@@ -72,26 +79,29 @@ median() {
     hyperfine -N --style none --warmup "$warm" --runs "$n" --export-json "$tmp/h.json" "$*" >/dev/null 2>&1
     jq -r '.results[0] | "\(.median) \(.user + .system)"' "$tmp/h.json"
 }
-# The same for decode and wc -l timed around sigrok-cli's run of the same file: N runs
+# The same for decode and wc -l timed around sigrok-cli's run of the same file: N rounds
 # before it and N after, median and mean over all 2N. The machine's speed drifts (this
 # VM: up to 40 % within minutes); sigrok-cli's one run spans a minute or more, so the
-# fast tools are sampled across that same stretch, not in one moment of it. Without
-# sigrok's arguments (""), decode and wc -l alone, N runs of each, twice.
+# fast tools are sampled across that same stretch, not in one moment of it. Within each
+# stretch the two alternate, a run of decode then one of wc -l (time_runs.py, after one
+# untimed round): a ratio of two tools timed in the same seconds, not of two blocks of
+# runs a few seconds apart. On this VM what ran just before moves decode's time by up to
+# a fifth (bench/README.md, "A faster machine whose two cores come and go"). Without
+# sigrok's arguments (""), decode and wc -l alone, N rounds, twice.
 around() {
     local n="$1" f="$2" sargs="$3" args="$4"
     local i
     for i in 1 2; do
         # shellcheck disable=SC2086
-        hyperfine -N --style none --warmup 1 --runs "$n" --export-json "$tmp/dec$i.json" \
-            "$decode $f $args" >/dev/null 2>&1
-        hyperfine -N --style none --warmup 1 --runs "$n" --export-json "$tmp/wc$i.json" \
-            "wc -l $f" >/dev/null 2>&1
+        python3 "$src/bench/time_runs.py" -n "$n" -w 1 --json "$tmp/side$i.json" \
+            "$decode" "$f" $args --- wc -l "$f" >/dev/null
         # shellcheck disable=SC2086
         [ $i = 1 ] && [ -n "$sargs" ] && read -r t_sig c_sig < <(median 1 sigrok-cli -I vcd -i "$f" $sargs)
     done
-    local q='[.[].results[0]] | [(map(.times[]) | sort | if length % 2 == 1 then .[length / 2 | floor] else (.[length / 2 - 1] + .[length / 2]) / 2 end), (map(.user + .system) | add / length)] | "\(.[0]) \(.[1])"'
-    read -r t_dec c_dec < <(jq -rs "$q" "$tmp/dec1.json" "$tmp/dec2.json")
-    read -r t_wc c_wc < <(jq -rs "$q" "$tmp/wc1.json" "$tmp/wc2.json")
+    # Command K (0: decode, 1: wc -l) over both stretches: "median-wall mean-cpu".
+    local q='[.[].results[$k]] | [(map(.times[]) | sort | if length % 2 == 1 then .[length / 2 | floor] else (.[length / 2 - 1] + .[length / 2]) / 2 end), (map(.cpu[]) | add / length)] | "\(.[0]) \(.[1])"'
+    read -r t_dec c_dec < <(jq -rs --argjson k 0 "$q" "$tmp/side1.json" "$tmp/side2.json")
+    read -r t_wc c_wc < <(jq -rs --argjson k 1 "$q" "$tmp/side1.json" "$tmp/side2.json")
 }
 peak_mb() {  # peak resident set of a command, MB
     /usr/bin/time -v "$@" >/dev/null 2>"$tmp/time.txt" || true
@@ -191,6 +201,19 @@ for bus in spi bissc; do
             "$size_mb MB" "$(fmt_s "$t_one") s wall, $(fmt_s "$c_one") s CPU" \
             "its CPU shared over $(nproc) cores, $(fmt_s "$t_share") s: at **$(ratio "$t_wc" "$t_share")** of wc -l's speed" \
             "(a bound on decode's row above)" "-"
+        # Two of those at once: are the two cores really two at this moment? On a VM
+        # they may be two threads of one host core, or share it with a neighbour, for
+        # minutes at a time; then decode's two threads take about twice the CPU time
+        # for the same work, and its rows above say more about the host than the code
+        # (bench/README.md, "A faster machine whose two cores come and go").
+        hyperfine -N --style none --warmup 1 --runs "$runs" --export-json "$tmp/pair.json" \
+            "sh -c '$decode $f $args --threads 1 >/dev/null & $decode $f $args --threads 1 >/dev/null; wait'" \
+            >/dev/null 2>&1
+        t_pair="$(jq -r '.results[0].median' "$tmp/pair.json")"
+        row "$bus.vcd read back: two decode --threads 1 at once vs one (are the cores two?)" \
+            "$size_mb MB" "$(fmt_s "$t_pair") s wall for both" \
+            "one alone as above: **$(ratio "$t_pair" "$t_one")x** its time (1: two cores; 2: one core shared)" \
+            "(how to read the rows above)" "-"
     else
         row "$bus.vcd read back (cache dropped, then cat): decode vs wc -l" "$size_mb MB" \
             "(not measured: dropping the page cache needs root)" "-" ">= 0.25" "-"
@@ -298,7 +321,7 @@ rm -f "${vfiles[@]}"
 
 echo
 echo "Machine: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'), $(nproc) cores, $(free -g | awk '/Mem:/ {print $2}') GB RAM; load average at the start: $load_start, at the end: $(cut -d' ' -f1-3 /proc/loadavg)"
-echo "Wall times are medians: decode and wc -l of $((2 * runs)) runs, $runs before and $runs after sigrok-cli's 1 run of the same file (other rows: $runs runs); CPU = user + system, mean. On a loaded machine wall times mostly measure waiting for a core: compare CPU times then."
+echo "Wall times are medians: decode and wc -l of $((2 * runs)) runs each, alternating, $runs before and $runs after sigrok-cli's 1 run of the same file (other rows: $runs runs); CPU = user + system, mean. On a loaded machine wall times mostly measure waiting for a core: compare CPU times then."
 echo "decode: $decode ($(grep -m1 CMAKE_BUILD_TYPE "$build/CMakeCache.txt" | cut -d= -f2)); $(sigrok-cli --version | head -1); $(wc --version | head -1)"
 echo
 echo "| measurement | file | busdecode | compared with | target | met |"
