@@ -40,9 +40,9 @@ for x in "$decode" "$make" "$reader"; do
     [ -x "$x" ] || { echo "missing $x (build with: cmake --build $build)" >&2; exit 2; }
 done
 # The peers and tools it times with: missing, the run would stop halfway through.
-for t in hyperfine sigrok-cli wc python3 /usr/bin/time; do
+for t in hyperfine sigrok-cli jq bc wc python3 /usr/bin/time; do
     command -v "$t" >/dev/null || {
-        echo "run.sh: $t not found (Debian: apt-get install hyperfine sigrok-cli time python3)" >&2
+        echo "run.sh: $t not found (Debian: apt-get install hyperfine sigrok-cli jq bc time python3)" >&2
         exit 2
     }
 done
