@@ -1,13 +1,15 @@
 #!/usr/bin/env python3
 """Times commands side by side, interleaved: run 1 of each, run 2 of each, ...
 
-    bench/time_runs.py [-n RUNS] [-w WARMUP] [--json FILE] CMD1 ARGS... [--- CMD2 ARGS... ...]
+    bench/time_runs.py [-n RUNS] [-w WARMUP] [--json FILE] CMD1 ARGS... [--- CMD2 ARGS...]
 
-WARMUP rounds (default 0) run every command first, untimed. Prints, per command, the median wall time, the mean CPU time (user + system) and the
-cores kept busy (CPU / wall). Interleaving matters on a VM whose speed drifts within
-minutes: two commands timed one after the other can differ by the drift alone. Output
-goes to /dev/null. --json FILE also writes every run's times there (bench/run.sh reads
-them): {"results": [{"command": ..., "times": [s...], "cpu": [s...]}, ...]}. Examples (bench/README.md):
+WARMUP rounds (default 0) run every command first, untimed. Prints, per command, the
+median wall time, the mean CPU time (user + system) and the cores kept busy (CPU /
+wall). Interleaving matters on a VM whose speed drifts within minutes: two commands
+timed one after the other can differ by the drift alone. Output goes to /dev/null.
+--json FILE also writes every run's times there (bench/run.sh reads them):
+{"results": [{"command": ..., "times": [s...], "cpu": [s...]}, ...]}.
+Examples (bench/README.md):
 
     bench/time_runs.py -n 15 wc -l F.vcd --- build/bin/decode F.vcd --proto spi
     bench/time_runs.py -n 15 old/bin/decode F.vcd --proto spi --- build/bin/decode F.vcd --proto spi
@@ -22,7 +24,7 @@ import time
 
 
 def main(argv):
-    usage = "usage: time_runs.py [-n RUNS] [-w WARMUP] [--json FILE] CMD ARGS... [--- CMD ARGS...]"
+    usage = "usage: time_runs.py [-n RUNS] [-w WARMUP] [--json FILE] CMD ARGS... [--- CMD ...]"
     runs, warmup, json_path = 10, 0, None
     while len(argv) >= 2 and argv[0] in ("-n", "-w", "--json"):
         try:
