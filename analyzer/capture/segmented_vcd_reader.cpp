@@ -38,6 +38,15 @@ struct Piece {
     VcdTokenState run;
     std::vector<EdgeBlock> blocks;
     std::size_t used = 0;  // blocks[0, used) hold its edges
+    // Each thread tokenises into storage of its own: `blocks` and `copy` are thread
+    // blocks_owner's, `other_blocks` and `other_copy` the other's (work() swaps them).
+    // A cache line written on one core and then overwritten on the other must cross
+    // between them, and on a VM whose two cores may sit on two dies that is slow: the
+    // tokeniser ran 2.4 times as long (bench/README.md, "Two dies").
+    std::vector<EdgeBlock> other_blocks;
+    std::unique_ptr<char[]> other_copy;
+    std::size_t other_copy_capacity = 0;
+    int blocks_owner = 0;
     // Per line, where its first edge is (block * kEdgeBlockSize + index), or kNoEdge.
     std::vector<std::uint32_t> first_edge;
     // What the piece work (setPieceWork()) made of it, if anything.
@@ -73,10 +82,17 @@ public:
         for (;;) {
             if (head_open_) {
                 Piece& h = slot(head_);
+                // The block handed out last goes back to its piece, and `block` gets its
+                // own storage back: the storage stays with the thread that writes it.
+                if (lent_) {
+                    std::swap(block, h.blocks[handing_ - 1]);
+                    lent_ = false;
+                }
                 while (handing_ < h.used) {
                     EdgeBlock& b = h.blocks[handing_++];
                     if (b.edges.empty()) continue;  // its one edge dropped (accept())
                     std::swap(block, b);
+                    lent_ = true;
                     return true;
                 }
                 release();
@@ -141,7 +157,7 @@ private:
         Piece& p = slot(k);
         p.state = Piece::State::Working;
         lock.unlock();
-        work(k, tok, p);
+        work(k, tok, &tok == main_tok_.get() ? 0 : 1, p);
         lock.lock();
         p.state = Piece::State::Done;
         return k;
@@ -270,7 +286,13 @@ private:
 
     // Reads and tokenises piece k (any thread; no lock held). The first piece goes on
     // from the initial levels' state; the others start from nothing known.
-    void work(std::uint64_t k, VcdTokeniser& tok, Piece& p) {
+    void work(std::uint64_t k, VcdTokeniser& tok, int thread, Piece& p) {
+        if (p.blocks_owner != thread) {
+            std::swap(p.blocks, p.other_blocks);
+            std::swap(p.copy, p.other_copy);
+            std::swap(p.copy_capacity, p.other_copy_capacity);
+            p.blocks_owner = thread;
+        }
         p.index = k;
         p.ok = false;
         p.used = 0;
@@ -310,7 +332,7 @@ private:
         // The first piece is decoded from the capture's start anyway: no work ahead.
         if (p.ok && k > 0 && piece_work_) {
             try {
-                p.result = piece_work_->run({p.blocks.data(), p.used, &p.first_edge});
+                p.result = piece_work_->run({p.blocks.data(), p.used, &p.first_edge, thread});
             } catch (...) {
                 p.result.reset();  // nothing ahead for this piece: it is decoded as it comes
             }
@@ -388,6 +410,7 @@ private:
     VcdTokenState x_;
     std::uint64_t expected_begin_ = 0;  // where the head piece must start
     bool head_open_ = false;            // the head piece is being handed out
+    bool lent_ = false;                 // next()'s block is the head's block handing_ - 1
     std::size_t handing_ = 0;           // its next block
     Tick end_ = 0;
     std::shared_ptr<PieceWork> piece_work_;  // set before the helper starts, then only read
