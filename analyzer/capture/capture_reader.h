@@ -43,6 +43,8 @@ public:
         // Per selected line, the index (block * kEdgeBlockSize + position) of its first
         // edge in the piece, or kNoEdge.
         const std::vector<std::uint32_t>* first_edge = nullptr;
+        // The thread running the work: 0, the one that calls next(); 1, the other.
+        int thread = 0;
     };
     static constexpr std::uint32_t kNoEdge = ~std::uint32_t(0);
 

@@ -1,6 +1,7 @@
 #pragma once
 // A decoded event: one frame, word, transfer, register access... Protocol faults are
 // events with `errors`, never exceptions.
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <string_view>
@@ -32,6 +33,10 @@ struct Event {
     // Ask the session to call Decoder::correlate() on this event before it is output,
     // once every other decoder's events up to `end` are known.
     bool wants_correlation = false;
+    // Whose storage this is, for the session to give it back to once output: 0, the
+    // decoding thread's; 1, a reader thread's (event_pool.h, RecycledEvents::sendHome()).
+    // Not part of what was decoded: reset() keeps it.
+    std::uint8_t home = 0;
 
     Event& set(std::string key, Value v);  // replaces an existing key
     // Appends a key the event does not have yet, without searching: for decoders filling

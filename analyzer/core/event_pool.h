@@ -29,8 +29,8 @@ public:
             held_.pop_back();
         }
     }
-    // Takes the events in `in` (emptied: reset() already called on each), leaving `in`
-    // empty; those beyond kMaxHeld are freed.
+    // Takes the events in `in` (emptied by reset(), or with Event::home 1, to be emptied
+    // by the store that takes them), leaving `in` empty; those beyond kMaxHeld are freed.
     void give(std::vector<EventPtr>& in) {
         {
             std::lock_guard<std::mutex> lock(m_);
@@ -51,6 +51,12 @@ private:
 // keep their storage (two allocations and frees per event otherwise). It holds up to
 // `keep`; with a shared pool, it takes from it when it has none and gives it what it
 // cannot hold, kBatch at a time, and gives back what it holds at the end.
+//
+// Events another thread filled (Event::home 1) can go back to that thread's pool as
+// they are, not emptied (sendHome()): that thread empties them when it takes them
+// (fresh()). Then this thread only reads their storage. Storage written on one
+// core and then on the other must cross between them each time, and on a VM whose two
+// cores may sit on two dies that crossing is slow (bench/README.md, "Two dies").
 class RecycledEvents {
 public:
     static constexpr std::size_t kBatch = 256;
@@ -62,11 +68,14 @@ public:
             shared_->give(overflow_);
             shared_->give(held_);
         }
+        if (home_) home_->give(to_home_);
     }
     RecycledEvents(const RecycledEvents&) = delete;
     RecycledEvents& operator=(const RecycledEvents&) = delete;
 
     void setShared(EventPool* shared) { shared_ = shared; }
+    // Events with home 1 go to `pool` when recycled, not emptied.
+    void sendHome(EventPool* pool) { home_ = pool; }
 
     // An empty event to fill.
     EventPtr fresh() {
@@ -74,6 +83,7 @@ public:
         if (held_.empty()) return std::make_unique<Event>();
         EventPtr e = std::move(held_.back());
         held_.pop_back();
+        if (e->home == 1) e->reset();  // perhaps given back as it was (sendHome())
         return e;
     }
     // `e`'s contents in an event of this store's.
@@ -84,7 +94,10 @@ public:
     }
     // An event done with: emptied and kept, handed on, or freed.
     void recycle(EventPtr e) {
-        if (held_.size() < keep_) {
+        if (e->home == 1 && home_) {
+            to_home_.push_back(std::move(e));
+            if (to_home_.size() >= kBatch) home_->give(to_home_);
+        } else if (held_.size() < keep_) {
             e->reset();
             held_.push_back(std::move(e));
         } else if (shared_) {
@@ -97,7 +110,8 @@ public:
 private:
     const std::size_t keep_;
     EventPool* shared_;
-    std::vector<EventPtr> held_, overflow_;
+    EventPool* home_ = nullptr;
+    std::vector<EventPtr> held_, overflow_, to_home_;
 };
 
 }  // namespace busdecode

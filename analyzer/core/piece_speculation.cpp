@@ -8,18 +8,24 @@ namespace busdecode {
 
 namespace {
 
-// Keeps a speculative decoder's events aside, filled in storage from the shared pool
-// (the session's own store of recycled events belongs to the decoding thread).
+// Keeps a speculative decoder's events aside, filled in storage from this thread's pool
+// (the session's own store of recycled events belongs to the decoding thread), marked
+// with `home`, the pool the session gives them back to.
 class KeepEvents final : public EventSink {
 public:
-    KeepEvents(std::vector<EventPtr>& events, EventPool* pool) : events_(events), store_(0, pool) {}
-    void onEvent(Event&& e) override { events_.push_back(store_.adopt(std::move(e))); }
-    void onOwnedEvent(EventPtr e) override { events_.push_back(std::move(e)); }
+    KeepEvents(std::vector<EventPtr>& events, EventPool* pool, std::uint8_t home)
+        : events_(events), store_(0, pool), home_(home) {}
+    void onEvent(Event&& e) override { onOwnedEvent(store_.adopt(std::move(e))); }
+    void onOwnedEvent(EventPtr e) override {
+        e->home = home_;
+        events_.push_back(std::move(e));
+    }
     EventPtr freshEvent() override { return store_.fresh(); }
 
 private:
     std::vector<EventPtr>& events_;
     RecycledEvents store_;
+    const std::uint8_t home_;
 };
 
 // Tells an edge that follows a pause: a gap since the edge before it more than kPauseGaps
@@ -41,12 +47,15 @@ private:
 }  // namespace
 
 PieceSpeculator::PieceSpeculator(const DecoderFactory& factory, Options options, DecoderContext ctx,
-                                 std::vector<int> role_of_line, std::shared_ptr<EventPool> pool)
+                                 std::vector<int> role_of_line,
+                                 std::shared_ptr<EventPool> decoding_pool,
+                                 std::shared_ptr<EventPool> other_pool)
     : factory_(factory),
       options_(std::move(options)),
       ctx_(std::move(ctx)),
       role_of_line_(std::move(role_of_line)),
-      pool_(std::move(pool)) {}
+      decoding_pool_(std::move(decoding_pool)),
+      other_pool_(std::move(other_pool)) {}
 
 std::unique_ptr<PieceWork::Result> PieceSpeculator::run(const Piece& piece) {
     // Every line's first edge in the piece may repeat the level it had before (the reader
@@ -69,7 +78,10 @@ std::unique_ptr<PieceWork::Result> PieceSpeculator::run(const Piece& piece) {
     // the first kSnapshots such edges where the decoder has a SpliceState. After each
     // block, advance() to its last edge, as the session does.
     auto spec = std::make_unique<Speculation>();
-    KeepEvents keep(spec->events, pool_.get());
+    // On the decoding thread, the session's pool and home 0; on the other, that one's.
+    const bool other = piece.thread != 0 && other_pool_;
+    KeepEvents keep(spec->events, other ? other_pool_.get() : decoding_pool_.get(),
+                    std::uint8_t(other ? 1 : 0));
     Decoder* d = nullptr;
     std::vector<int> level(lines, -1);
     Pauses pauses;

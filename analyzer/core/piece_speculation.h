@@ -44,10 +44,13 @@ struct Speculation final : PieceWork::Result {
 class PieceSpeculator final : public PieceWork {
 public:
     // ctx: the session's decoder's (sink and initial levels are replaced); role_of_line:
-    // the session's, line -> role; pool: where the session gives back the events it is
-    // done with (or null).
+    // the session's, line -> role; decoding_pool: where the session gives back the events
+    // it is done with (or null), for pieces run on the decoding thread (Piece::thread 0);
+    // other_pool: where it gives back those of pieces run on the other thread, marked
+    // Event::home 1 (or null: they use decoding_pool too).
     PieceSpeculator(const DecoderFactory& factory, Options options, DecoderContext ctx,
-                    std::vector<int> role_of_line, std::shared_ptr<EventPool> pool);
+                    std::vector<int> role_of_line, std::shared_ptr<EventPool> decoding_pool,
+                    std::shared_ptr<EventPool> other_pool = nullptr);
     std::unique_ptr<Result> run(const Piece& piece) override;
 
     // Splice points kept per piece. A fresh decoder's state meets the other's once it has
@@ -76,7 +79,8 @@ private:
     const Options options_;
     const DecoderContext ctx_;
     const std::vector<int> role_of_line_;
-    const std::shared_ptr<EventPool> pool_;
+    const std::shared_ptr<EventPool> decoding_pool_;
+    const std::shared_ptr<EventPool> other_pool_;
 };
 
 // The decoding thread's side: takes each piece's Speculation and splices it in.

@@ -129,7 +129,9 @@ struct Session::Impl : EventSink {
     // (piece_speculation.h), most events are built on the reader's threads: what this
     // store cannot hold goes back to them through the shared pool.
     static constexpr std::size_t kMaxSpare = 1024;
-    std::shared_ptr<EventPool> shared_pool;  // (declared first: `spare` gives back to it)
+    // (Declared first: `spare` gives back to them.) The decoding thread's pieces' events,
+    // and the other reader thread's (Event::home 1), given back not emptied.
+    std::shared_ptr<EventPool> shared_pool, other_pool;
     RecycledEvents spare{kMaxSpare};
 
     EventPtr freshEvent() override { return spare.fresh(); }
@@ -428,11 +430,14 @@ void Session::run() {
         DecoderContext ctx = slot.ctx;
         ctx.sink = nullptr;
         auto pool = std::make_shared<EventPool>();
-        if (reader.setPieceWork(std::make_shared<PieceSpeculator>(*slot.factory, slot.options, ctx,
-                                                                  im.role_of_line, pool))) {
+        auto other_pool = std::make_shared<EventPool>();
+        if (reader.setPieceWork(std::make_shared<PieceSpeculator>(
+                *slot.factory, slot.options, ctx, im.role_of_line, pool, other_pool))) {
             splicer.emplace(slot.decoder, im, im.role_of_line.data());
             im.shared_pool = std::move(pool);
+            im.other_pool = std::move(other_pool);
             im.spare.setShared(im.shared_pool.get());
+            im.spare.sendHome(im.other_pool.get());
         }
     }
 
