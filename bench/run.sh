@@ -117,7 +117,7 @@ ratio() { echo "scale=2; $1 / $2" | bc -l; }
 probe_row() {
     row "$1: between the two cores, before each stretch (two_cores_probe)" "" \
         "${probes[0]}; ${probes[1]}" \
-        "one die: about 50-120 ns, 11-22 GB/s; two dies: 330-520 ns, 2.4-3 GB/s" \
+        "one die: handover 7-22 GB/s (round trip 50-320 ns); two dies: 2.4-3 GB/s (320-550 ns)" \
         "(how to read the row above)" "-"
 }
 fmt_s() { printf '%.3f' "$1"; }
@@ -270,21 +270,35 @@ row "spi_saleae.csv (Saleae Logic 2, a row per change): decode" "$size_mb MB" \
     "(none)" "-"
 rm -f "$f"
 
-# 3. Linear time: the doubling curve (SPI VCD)
+# 3. Linear time: the doubling curve (SPI VCD). All four files at once (1.9 GB at the
+# default size, within this VM's page cache of about 2.7 GB), timed in rounds, one run of
+# each per round (time_runs.py): each doubling compares runs of the same minutes. Timed
+# one file after another, a step that fell in slow minutes (two dies, bench/README.md)
+# read x2.5-2.9 where side by side it is x1.9. Median CPU time per file.
 curve=""
 prev=""
-for s in $((size / 4)) $((size / 2)) "$size" "$big"; do
-    name="curve_$s.vcd"
-    gen spi vcd "$s" "$name" >/dev/null
-    echo "timing $name ..." >&2
-    # shellcheck disable=SC2086
-    read -r t c < <(median "$runs" "$decode" "$tmp/$name" $spi_args)
+sizes=("$((size / 4))" "$((size / 2))" "$size" "$big")
+cmds=()
+for s in "${sizes[@]}"; do
+    gen spi vcd "$s" "curve_$s.vcd" >/dev/null
+    [ ${#cmds[@]} -gt 0 ] && cmds+=("---")
+    # shellcheck disable=SC2206
+    cmds+=("$decode" "$tmp/curve_$s.vcd" $spi_args)
+done
+echo "timing the doubling curve ..." >&2
+python3 "$src/bench/time_runs.py" -n "$runs" -w 1 --json "$tmp/curve.json" "${cmds[@]}" >/dev/null
+k=0
+for s in "${sizes[@]}"; do
+    c="$(jq -r --argjson k "$k" '.results[$k].cpu | sort | .[length / 2 | floor]' "$tmp/curve.json")"
     if [ -n "$prev" ]; then curve+=" -> ${s} MB $(fmt_s "$c") s (x$(ratio "$c" "$prev"))"; else curve="${s} MB $(fmt_s "$c") s"; fi
     prev="$c"
-    [ "$s" = "$big" ] && mem_big="$(peak_mb "$decode" "$tmp/$name" $spi_args)" && big_file="$tmp/$name"
-    [ "$s" != "$big" ] && rm -f "$tmp/$name"
+    k=$((k + 1))
 done
-row "doubling curve (SPI VCD, CPU seconds)" "" "$curve" "each doubling ~x2" "linear" "see curve"
+big_file="$tmp/curve_$big.vcd"
+# shellcheck disable=SC2086
+mem_big="$(peak_mb "$decode" "$big_file" $spi_args)"
+for s in "${sizes[@]}"; do [ "$s" != "$big" ] && rm -f "$tmp/curve_$s.vcd"; done
+row "doubling curve (SPI VCD, median CPU seconds, the four side by side)" "" "$curve" "each doubling ~x2" "linear" "see curve"
 
 # 4. Peak memory: 1 GB and 5 GB
 row "peak memory, $(mb "$big_file") MB VCD" "" "**$mem_big MB**" "" "< 64 MB" "$(verdict "$mem_big < 64")"
