@@ -13,11 +13,13 @@ namespace {
 // with `home`, the pool the session gives them back to.
 class KeepEvents final : public EventSink {
 public:
-    KeepEvents(std::vector<EventPtr>& events, EventPool* pool, std::uint8_t home)
-        : events_(events), store_(0, pool), home_(home) {}
+    KeepEvents(std::vector<EventPtr>& events, EventPool* pool, std::uint8_t home,
+               const std::string& instance)
+        : events_(events), store_(0, pool), home_(home), instance_(instance) {}
     void onEvent(Event&& e) override { onOwnedEvent(store_.adopt(std::move(e))); }
     void onOwnedEvent(EventPtr e) override {
         e->home = home_;
+        e->instance = instance_;
         events_.push_back(std::move(e));
     }
     EventPtr freshEvent() override { return store_.fresh(); }
@@ -26,6 +28,7 @@ private:
     std::vector<EventPtr>& events_;
     RecycledEvents store_;
     const std::uint8_t home_;
+    const std::string& instance_;
 };
 
 // Tells an edge that follows a pause: a gap since the edge before it more than kPauseGaps
@@ -49,13 +52,14 @@ private:
 PieceSpeculator::PieceSpeculator(const DecoderFactory& factory, Options options, DecoderContext ctx,
                                  std::vector<int> role_of_line,
                                  std::shared_ptr<EventPool> decoding_pool,
-                                 std::shared_ptr<EventPool> other_pool)
+                                 std::shared_ptr<EventPool> other_pool, std::string instance)
     : factory_(factory),
       options_(std::move(options)),
       ctx_(std::move(ctx)),
       role_of_line_(std::move(role_of_line)),
       decoding_pool_(std::move(decoding_pool)),
-      other_pool_(std::move(other_pool)) {}
+      other_pool_(std::move(other_pool)),
+      instance_(std::move(instance)) {}
 
 std::unique_ptr<PieceWork::Result> PieceSpeculator::run(const Piece& piece) {
     // Every line's first edge in the piece may repeat the level it had before (the reader
@@ -81,7 +85,7 @@ std::unique_ptr<PieceWork::Result> PieceSpeculator::run(const Piece& piece) {
     // On the decoding thread, the session's pool and home 0; on the other, that one's.
     const bool other = piece.thread != 0 && other_pool_;
     KeepEvents keep(spec->events, other ? other_pool_.get() : decoding_pool_.get(),
-                    std::uint8_t(other ? 1 : 0));
+                    std::uint8_t(other ? 1 : 0), instance_);
     Decoder* d = nullptr;
     std::vector<int> level(lines, -1);
     Pauses pauses;

@@ -16,6 +16,7 @@
 // byte, whatever the traffic (tests/piece_speculation_test.cpp).
 #include <cstdint>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "capture/capture_reader.h"
@@ -47,10 +48,11 @@ public:
     // the session's, line -> role; decoding_pool: where the session gives back the events
     // it is done with (or null), for pieces run on the decoding thread (Piece::thread 0);
     // other_pool: where it gives back those of pieces run on the other thread, marked
-    // Event::home 1 (or null: they use decoding_pool too).
+    // Event::home 1 (or null: they use decoding_pool too); instance: what the session
+    // sets Event::instance to, set here already.
     PieceSpeculator(const DecoderFactory& factory, Options options, DecoderContext ctx,
                     std::vector<int> role_of_line, std::shared_ptr<EventPool> decoding_pool,
-                    std::shared_ptr<EventPool> other_pool = nullptr);
+                    std::shared_ptr<EventPool> other_pool = nullptr, std::string instance = {});
     std::unique_ptr<Result> run(const Piece& piece) override;
 
     // Splice points kept per piece. A fresh decoder's state meets the other's once it has
@@ -81,6 +83,7 @@ private:
     const std::vector<int> role_of_line_;
     const std::shared_ptr<EventPool> decoding_pool_;
     const std::shared_ptr<EventPool> other_pool_;
+    const std::string instance_;
 };
 
 // The decoding thread's side: takes each piece's Speculation and splices it in.

@@ -140,7 +140,10 @@ struct Session::Impl : EventSink {
     void onEvent(Event&& e) override { onOwnedEvent(spare.adopt(std::move(e))); }
 
     void onOwnedEvent(EventPtr e) override {
-        e->instance = slots[emitting].instance;
+        // Compared first: an event filled on the other reader thread has it already
+        // (PieceSpeculator), and writing it here would pull the event's storage to this
+        // core, from which that thread must pull it back (bench/README.md, "Two dies").
+        if (e->instance != slots[emitting].instance) e->instance = slots[emitting].instance;
         const Tick start = e->start;
         if (pending.empty() || pending.back()->start <= start) {  // the rule: in order
             pending.push_back(std::move(e));
@@ -431,8 +434,9 @@ void Session::run() {
         ctx.sink = nullptr;
         auto pool = std::make_shared<EventPool>();
         auto other_pool = std::make_shared<EventPool>();
-        if (reader.setPieceWork(std::make_shared<PieceSpeculator>(
-                *slot.factory, slot.options, ctx, im.role_of_line, pool, other_pool))) {
+        if (reader.setPieceWork(std::make_shared<PieceSpeculator>(*slot.factory, slot.options, ctx,
+                                                                  im.role_of_line, pool, other_pool,
+                                                                  slot.instance))) {
             splicer.emplace(slot.decoder, im, im.role_of_line.data());
             im.shared_pool = std::move(pool);
             im.other_pool = std::move(other_pool);
