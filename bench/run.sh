@@ -104,7 +104,7 @@ around() {
         [ $i = 1 ] && [ -n "$sargs" ] && read -r t_sig c_sig < <(median 1 sigrok-cli -I vcd -i "$f" $sargs)
     done
     # Command K (0: decode, 1: wc -l) over both stretches: "median-wall mean-cpu".
-    local q='[.[].results[$k]] | [(map(.times[]) | sort | if length % 2 == 1 then .[length / 2 | floor] else (.[length / 2 - 1] + .[length / 2]) / 2 end), (map(.cpu[]) | add / length)] | "\(.[0]) \(.[1])"'
+    local q="$jq_median"'[.[].results[$k]] | [(map(.times[]) | median), (map(.cpu[]) | add / length)] | "\(.[0]) \(.[1])"'
     read -r t_dec c_dec < <(jq -rs --argjson k 0 "$q" "$tmp/side1.json" "$tmp/side2.json")
     read -r t_wc c_wc < <(jq -rs --argjson k 1 "$q" "$tmp/side1.json" "$tmp/side2.json")
 }
@@ -113,6 +113,9 @@ peak_mb() {  # peak resident set of a command, MB
     awk '/Maximum resident set size/ {printf "%.1f", $6 / 1024}' "$tmp/time.txt"
 }
 ratio() { echo "scale=2; $1 / $2" | bc -l; }
+# jq: the median of an array of numbers (prefix a filter with it).
+jq_median='def median: sort | if length % 2 == 1 then .[length / 2 | floor] else (.[length / 2 - 1] + .[length / 2]) / 2 end; '
+
 # A row with what two_cores_probe said before each of around()'s two stretches.
 probe_row() {
     row "$1: between the two cores, before each stretch (two_cores_probe)" "" \
@@ -289,7 +292,7 @@ echo "timing the doubling curve ..." >&2
 python3 "$src/bench/time_runs.py" -n "$runs" -w 1 --json "$tmp/curve.json" "${cmds[@]}" >/dev/null
 k=0
 for s in "${sizes[@]}"; do
-    c="$(jq -r --argjson k "$k" '.results[$k].cpu | sort | .[length / 2 | floor]' "$tmp/curve.json")"
+    c="$(jq -r --argjson k "$k" "$jq_median"'.results[$k].cpu | median' "$tmp/curve.json")"
     if [ -n "$prev" ]; then curve+=" -> ${s} MB $(fmt_s "$c") s (x$(ratio "$c" "$prev"))"; else curve="${s} MB $(fmt_s "$c") s"; fi
     prev="$c"
     k=$((k + 1))

@@ -45,9 +45,10 @@ double roundTripNs() {
     return std::chrono::duration<double, std::nano>(t1 - t0).count() / kTrips;
 }
 
+constexpr std::size_t kBlock = 256 << 10, kInFlight = 8;
+constexpr int kBlocks = 2000;
+
 double handoverGBs(std::uint64_t& checksum) {
-    constexpr std::size_t kBlock = 256 << 10, kInFlight = 8;
-    constexpr int kBlocks = 2000;
     std::vector<std::uint64_t> buf(kBlock * kInFlight / 8);
     alignas(64) std::atomic<int> written{0};
     alignas(64) std::atomic<int> read{0};
@@ -86,8 +87,9 @@ int main(int argc, char**) {
     const double ns = roundTripNs();
     std::uint64_t checksum = 0;
     const double gbs = handoverGBs(checksum);
-    // Each block b holds 32768 copies of b: the sum proves every block was read whole.
-    const std::uint64_t expected = std::uint64_t(32768) * (1999ull * 2000ull / 2);
+    // Block b holds kBlock / 8 copies of b: the sum proves every block was read whole.
+    const std::uint64_t expected =
+        std::uint64_t(kBlock / 8) * (std::uint64_t(kBlocks) * (kBlocks - 1) / 2);
     if (checksum != expected) {
         std::fprintf(stderr, "two_cores_probe: read %llu, expected %llu\n",
                      static_cast<unsigned long long>(checksum),

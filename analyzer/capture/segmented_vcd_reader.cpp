@@ -151,13 +151,14 @@ private:
     bool claimable() const { return next_claim_ < count_ && next_claim_ < head_ + pieces_.size(); }
 
     // Claims the next piece (claimable(), `lock` held) and tokenises it with `tok`, the
-    // lock released meanwhile. Returns its index.
-    std::uint64_t tokeniseNext(std::unique_lock<std::mutex>& lock, VcdTokeniser& tok) {
+    // lock released meanwhile, on `thread` (0: the decoding thread; 1: the helper).
+    // Returns its index.
+    std::uint64_t tokeniseNext(std::unique_lock<std::mutex>& lock, VcdTokeniser& tok, int thread) {
         const std::uint64_t k = next_claim_++;
         Piece& p = slot(k);
         p.state = Piece::State::Working;
         lock.unlock();
-        work(k, tok, &tok == main_tok_.get() ? 0 : 1, p);
+        work(k, tok, thread, p);
         lock.lock();
         p.state = Piece::State::Done;
         return k;
@@ -171,7 +172,7 @@ private:
         Piece& h = slot(head_);
         while (!(h.state == Piece::State::Done && h.index == head_)) {
             if (claimable()) {
-                tokeniseNext(lock, *main_tok_);
+                tokeniseNext(lock, *main_tok_, 0);
                 continue;
             }
             consumer_waiting_ = true;
@@ -195,7 +196,7 @@ private:
                 helper_waiting_ = false;
                 continue;
             }
-            const std::uint64_t k = tokeniseNext(lock, *helper_tok_);
+            const std::uint64_t k = tokeniseNext(lock, *helper_tok_, 1);
             if (consumer_waiting_ && k == head_) ready_.notify_one();
         }
     }
