@@ -515,6 +515,8 @@ void Session::run() {
     for (const auto& slot : im.slots)
         for (const auto& a : slot.decoder->advice())
             facts_.advice.push_back(slot.instance + ": " + a);
+    for (const auto& note : reader.notes())
+        facts_.advice.push_back(note);
     facts_.bytes = reader.bytesRead();
     for (auto* s : sinks_)
         s->end(facts_);

@@ -30,6 +30,8 @@ int runVerify(const DecodeArgs& args) {
 
         OpenOptions open;
         open.rate_hz = args.rate_hz > 0 ? args.rate_hz : rules.decode.rate_hz;
+        open.thresholds = args.thresholds;
+        open.hysteresis = args.hysteresis;
         open.read_ahead = args.threads > 1;
         BatchOptions batch;
         batch.jobs = args.jobs;
