@@ -8,6 +8,7 @@
 
 #include "analog_lines.h"
 #include "core/options.h"
+#include "differential_pairs.h"
 
 namespace busdecode {
 
@@ -24,10 +25,12 @@ class AnalogReader : public CaptureReader {
 public:
     AnalogReader(std::unique_ptr<SampleSource> src, const OpenOptions& opts)
         : src_(std::move(src)), opts_(opts) {
-        for (const auto& c : src_->channels())
+        channels_ = src_->channels();
+        for (const auto& c : channels_)
             signals_.push_back({c.name, c.full_name, 1});
+        addPairs();
         checkThresholdNames();
-        row_.resize(src_->slots());
+        row_.resize(src_->slots() + pairs_.size());
         readPrefix();
         chooseTimebase();
     }
@@ -42,12 +45,16 @@ public:
         for (const auto& ref : lines) {
             if (ref.signal < 0 || ref.signal >= int(signals_.size()))
                 throw std::out_of_range("AnalogReader::select");
-            const AnalogChannel& c = src_->channels()[std::size_t(ref.signal)];
+            const AnalogChannel& c = channels_[std::size_t(ref.signal)];
             Line l;
             l.channel = std::size_t(ref.signal);
             l.slot = c.slot;
             l.bit = c.bit;
-            lines_.push_back(l);
+            if (l.slot >= src_->slots()) {
+                l.pair = pairs_[l.slot - src_->slots()];
+                l.watch = std::make_unique<PairWatch>(graceTicks());
+            }
+            lines_.push_back(std::move(l));
         }
     }
 
@@ -72,6 +79,8 @@ public:
             double t;
             if (!nextSample(t)) {
                 done_ = true;
+                for (auto& l : lines_)
+                    if (l.watch) l.watch->finish(end_tick_);
                 order_.release(kMaxEdgeTick, block.edges);
                 block.known_until = end_tick_;
                 return !block.edges.empty();
@@ -85,9 +94,17 @@ public:
     std::vector<std::string> notes() const override;
 
 private:
+    // A differential pair: its line is the difference of two channels' voltages.
+    struct Pair {
+        std::size_t slot[2] = {0, 0};
+    };
     struct Line {
         std::size_t channel = 0, slot = 0;
         int bit = -1;
+        // A pair's wires, each with a trigger of its own, for its PairWatch.
+        Pair pair;
+        std::unique_ptr<PairWatch> watch;
+        SchmittLine wire[2];
         SchmittLine trigger;
         SchmittSettings settings;
         std::pair<double, double> levels;
@@ -95,6 +112,36 @@ private:
         Tick last = kMinEdgeTick;
         std::uint64_t edges = 0;
     };
+
+    // OpenOptions::pairs whose two wires are analog channels of this capture.
+    void addPairs() {
+        for (const auto& text : opts_.pairs) {
+            std::string p, n;
+            if (!splitPair(text, p, n) || findSignal(signals_, text) >= 0) continue;
+            const int wp = findSignal(signals_, p), wn = findSignal(signals_, n);
+            if (wp < 0 || wn < 0 || channels_[std::size_t(wp)].bit >= 0 ||
+                channels_[std::size_t(wn)].bit >= 0)
+                continue;
+            pairs_.push_back({{channels_[std::size_t(wp)].slot, channels_[std::size_t(wn)].slot}});
+            channels_.push_back({text, text, src_->slots() + pairs_.size() - 1, -1});
+            signals_.push_back({text, text, 1});
+        }
+    }
+    void computePairs() {
+        const std::size_t base = src_->slots();
+        for (std::size_t k = 0; k < pairs_.size(); ++k)
+            row_[base + k] = row_[pairs_[k].slot[0]] - row_[pairs_[k].slot[1]];
+    }
+    float prefixValue(std::size_t row, std::size_t slot) const {
+        const std::size_t n = src_->slots();
+        if (slot < n) return prefix_v_[row * n + slot];
+        const Pair& p = pairs_[slot - n];
+        return prefix_v_[row * n + p.slot[0]] - prefix_v_[row * n + p.slot[1]];
+    }
+    // Equal wire levels for up to three samples (or 100 ns) are skew, not a fault.
+    Tick graceTicks() const {
+        return Tick(std::max(3 * period_ * ticks_per_s_, 1e-7 * ticks_per_s_)) + 1;
+    }
 
     void checkThresholdNames() const {
         for (const auto& [name, v] : opts_.thresholds)
@@ -107,6 +154,7 @@ private:
 
     bool nextRow(double& t) {
         if (!src_->next(t, row_.data())) return false;
+        computePairs();
         if (have_time_ && t < last_t_)
             src_->fail(fmt::format("time going backwards ({} s after {} s)", t, last_t_));
         have_time_ = true;
@@ -118,7 +166,8 @@ private:
         double t;
         while (prefix_t_.size() < kPrefixRows && nextRow(t)) {
             prefix_t_.push_back(t);
-            prefix_v_.insert(prefix_v_.end(), row_.begin(), row_.end());
+            prefix_v_.insert(prefix_v_.end(), row_.begin(),
+                             row_.begin() + std::ptrdiff_t(src_->slots()));
         }
     }
 
@@ -131,6 +180,7 @@ private:
             ++r;
         tb_ = Timebase{1, std::int64_t(std::llround(std::pow(10.0, r)))};
         ticks_per_s_ = double(tb_.den);
+        period_ = period > 0 ? period : 0;
     }
 
     void start();
@@ -140,8 +190,9 @@ private:
     bool nextSample(double& t) {
         if (prefix_at_ < prefix_t_.size()) {
             t = prefix_t_[prefix_at_];
-            std::memcpy(row_.data(), &prefix_v_[prefix_at_ * row_.size()],
-                        row_.size() * sizeof(float));
+            const std::size_t n = src_->slots();
+            std::memcpy(row_.data(), &prefix_v_[prefix_at_ * n], n * sizeof(float));
+            computePairs();
             if (++prefix_at_ == prefix_t_.size()) {
                 prefix_t_ = {};
                 prefix_v_ = {};
@@ -174,6 +225,7 @@ private:
                 edge = l.trigger.feed(t, row_[l.slot], et);
                 l.level = l.trigger.level();
                 bound = std::min(bound, l.trigger.earliestNext());
+                if (l.watch) watchWires(l, t);
             }
             if (edge) {
                 l.last = std::max({l.last, start_tick_, toTick(et)});
@@ -185,7 +237,18 @@ private:
         order_.release(bound_, out);
     }
 
+    void watchWires(Line& l, double t) {
+        for (int w = 0; w < 2; ++w) {
+            double et;
+            if (l.wire[w].feed(t, row_[l.pair.slot[w]], et))
+                l.watch->edge(toTick(et), w, l.wire[w].level());
+        }
+    }
+
     std::unique_ptr<SampleSource> src_;
+    std::vector<AnalogChannel> channels_;
+    std::vector<Pair> pairs_;
+    double period_ = 0;
     OpenOptions opts_;
     std::vector<SignalInfo> signals_;
     std::vector<float> row_;
@@ -202,9 +265,8 @@ private:
 };
 
 SchmittSettings AnalogReader::settingsFor(const Line& l, LevelEstimator& est) const {
-    const std::size_t n = row_.size();
     for (std::size_t r = 0; r < prefix_t_.size(); ++r)
-        est.add(prefix_v_[r * n + l.slot]);
+        est.add(prefixValue(r, l.slot));
     SchmittSettings s = est.settings();
     const SignalInfo& sig = signals_[l.channel];
     bool given = false;
@@ -230,6 +292,12 @@ void AnalogReader::start() {
         l.settings = settingsFor(l, est);
         l.levels = est.levels();
         l.trigger.configure(l.settings);
+        for (int w = 0; l.watch && w < 2; ++w) {
+            LevelEstimator wire;
+            for (std::size_t r = 0; r < prefix_t_.size(); ++r)
+                wire.add(prefixValue(r, l.pair.slot[w]));
+            l.wire[w].configure(wire.settings());
+        }
     }
     double t;
     if (!nextSample(t)) {
@@ -238,9 +306,13 @@ void AnalogReader::start() {
     }
     const double ticks = t * ticks_per_s_;
     start_tick_ = end_tick_ = bound_ = toTick(ticks);
-    for (auto& l : lines_)
+    for (auto& l : lines_) {
         l.level = l.bit >= 0 ? (unsigned(row_[l.slot]) >> l.bit) & 1u
                              : l.trigger.start(ticks, row_[l.slot]);
+        if (l.watch)
+            l.watch->start(start_tick_, l.wire[0].start(ticks, row_[l.pair.slot[0]]),
+                           l.wire[1].start(ticks, row_[l.pair.slot[1]]));
+    }
 }
 
 std::vector<std::string> AnalogReader::notes() const {
@@ -260,6 +332,9 @@ std::vector<std::string> AnalogReader::notes() const {
                 "{} never crossed its threshold {} (its range {} to {}): give --threshold {}=VOLTS",
                 name, volts(s.threshold), volts(l.trigger.minSeen()), volts(l.trigger.maxSeen()),
                 name));
+        if (l.watch)
+            for (auto& n : pairFaultNotes(name, *l.watch, tb_))
+                out.push_back(std::move(n));
     }
     return out;
 }

@@ -131,6 +131,8 @@ struct OpenOptions {
     // SIGNAL=VOLTS, --hysteresis VOLTS (< 0: a tenth of the swing); unset: from the data.
     std::vector<std::pair<std::string, double>> thresholds;
     double hysteresis = -1;
+    // Differential pairs named in --map ("MA+,MA-"): each becomes a signal of that name.
+    std::vector<std::string> pairs;
 };
 
 // Picks the reader by content (and extension as a hint). Throws InputError naming the
