@@ -41,13 +41,25 @@ int modeIn(const Histogram& h, int from, int to) {
     return best;
 }
 
+// The two main levels: the fullest bin, and the fullest an eighth of the range or more
+// away from it (a third level, such as an open wire's, then does not hide the valley).
+std::pair<int, int> twoModes(const Histogram& h) {
+    const int first = modeIn(h, 0, kBins);
+    const int gap = kBins / 8;
+    int second = -1;
+    for (int b = 0; b < kBins; ++b)
+        if (std::abs(b - first) >= gap && (second < 0 || h.count[b] > h.count[second])) second = b;
+    return {std::min(first, second), std::max(first, second)};
+}
+
 }  // namespace
 
 std::pair<double, double> LevelEstimator::levels() const {
     if (values_.empty()) return {0, 0};
     const Histogram h = histogramOf(values_);
     if (!(h.width > 0)) return {h.lo, h.lo};
-    return {h.centre(modeIn(h, 0, kBins / 2)), h.centre(modeIn(h, kBins / 2, kBins))};
+    const auto [low, high] = twoModes(h);
+    return {h.centre(low), h.centre(high)};
 }
 
 SchmittSettings LevelEstimator::settings() const {
@@ -55,14 +67,14 @@ SchmittSettings LevelEstimator::settings() const {
     s.from_data = true;
     if (values_.empty()) return s;
     const Histogram h = histogramOf(values_);
-    const int low = h.width > 0 ? modeIn(h, 0, kBins / 2) : 0;
-    const int high = h.width > 0 ? modeIn(h, kBins / 2, kBins) : 0;
+    const auto [low, high] = h.width > 0 ? twoModes(h) : std::pair<int, int>{0, 0};
     // Two levels show as two peaks with a valley between them; noise around one level
-    // fills the bins between its two half-modes.
+    // fills the bins between.
     std::uint32_t valley = ~0u;
     for (int b = low + 1; b < high; ++b)
         valley = std::min(valley, h.count[b]);
-    const bool two_levels = high - low >= 4 && valley * 5 < std::min(h.count[low], h.count[high]);
+    const bool two_levels =
+        high - low >= kBins / 8 && valley * 5 < h.count[low] && valley * 5 < h.count[high];
     if (!two_levels) {
         s.flat = true;
         s.threshold = (h.lo + h.hi) / 2;

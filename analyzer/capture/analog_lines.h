@@ -4,6 +4,7 @@
 // the threshold, interpolated between the two samples around the crossing, so edges
 // come out finer than the sample grid. Thresholds are given or found from a bounded
 // prefix of the samples (the two main levels of the line); memory stays constant.
+#include <cmath>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -38,29 +39,36 @@ private:
 };
 
 // One line's trigger. feed() takes samples in time order (time in ticks, fractional)
-// and returns true with `edge_t` when the line changes level.
+// and returns true with `edge_t` when the line changes level. An edge is timed by a
+// straight line fitted to the samples within a window around the threshold (a quarter
+// of the swing either side: 2.5 hysteresis bands), so noise on a slow edge averages out;
+// the edge is handed out once the signal leaves that window, and a return across the
+// band inside it is noise, not two edges.
 class SchmittLine {
 public:
     void configure(const SchmittSettings& s) {
         high_ = s.threshold + s.hysteresis / 2;
         low_ = s.threshold - s.hysteresis / 2;
         thr_ = s.threshold;
+        win_ = 2.5 * s.hysteresis;
     }
     // The level before the first sample: above the threshold or not.
     std::uint8_t start(double t, double v) {
         level_ = v > thr_ ? 1 : 0;
         prev_t_ = t;
         prev_v_ = v;
-        armed_ = false;
+        armed_ = pending_ = false;
         seen_min_ = seen_max_ = v;
+        fit_ = {};
         return level_;
     }
     bool feed(double t, double v, double& edge_t) {
         seen_min_ = v < seen_min_ ? v : seen_min_;
         seen_max_ = v > seen_max_ ? v : seen_max_;
-        // The last crossing of the threshold towards the other level times the edge.
+        // The last crossing of the threshold towards the other level: the edge's time
+        // when too few samples lie in the window to fit a line.
         const bool crossed = level_ ? (prev_v_ >= thr_ && v < thr_) : (prev_v_ <= thr_ && v > thr_);
-        if (crossed) {
+        if (crossed && !pending_) {
             cross_t_ = prev_t_ + (t - prev_t_) * (thr_ - prev_v_) / (v - prev_v_);
             armed_ = true;
         }
@@ -68,23 +76,61 @@ public:
         prev_v_ = v;
         if (level_ ? v < low_ : v > high_) {
             level_ ^= 1;
-            edge_t = armed_ ? cross_t_ : t;
+            pending_ = !pending_;  // a second crossing inside the window undoes the first
+            if (pending_) fallback_t_ = armed_ ? cross_t_ : t;
             armed_ = false;
-            return true;
         }
-        return false;
+        const bool inside = std::abs(v - thr_) <= win_;
+        if (inside) fit_.add(t, v);
+        if (!pending_ || (inside && fit_.n < kMaxFit)) {
+            if (!inside) fit_ = {};
+            return false;
+        }
+        edge_t = fit_.crossing(thr_, fallback_t_);
+        pending_ = false;
+        fit_ = {};
+        return true;
     }
     // No edge of this line can come before this time any more.
-    double earliestNext() const { return armed_ ? cross_t_ : prev_t_; }
+    double earliestNext() const {
+        if (pending_) return fit_.n ? std::min(fit_.t0, fallback_t_) : fallback_t_;
+        if (fit_.n) return std::min(fit_.t0, armed_ ? cross_t_ : prev_t_);
+        return armed_ ? cross_t_ : prev_t_;
+    }
     std::uint8_t level() const { return level_; }
     double minSeen() const { return seen_min_; }
     double maxSeen() const { return seen_max_; }
 
 private:
-    double thr_ = 0, high_ = 0, low_ = 0;
-    double prev_t_ = 0, prev_v_ = 0, cross_t_ = 0;
+    static constexpr int kMaxFit = 256;
+    // Least squares t = a + b v over the window's samples (t from the first of them).
+    struct Fit {
+        int n = 0;
+        double t0 = 0, st = 0, sv = 0, svv = 0, svt = 0, last = 0;
+        void add(double t, double v) {
+            if (n == 0) t0 = t;
+            const double x = t - t0;
+            ++n;
+            st += x;
+            sv += v;
+            svv += v * v;
+            svt += v * x;
+            last = t;
+        }
+        double crossing(double thr, double fallback) const {
+            if (n < 3) return fallback;
+            const double var = svv - sv * sv / n;
+            if (!(var > 0)) return fallback;
+            const double b = (svt - sv * st / n) / var;
+            const double t = t0 + st / n + b * (thr - sv / n);
+            return t < t0 ? t0 : t > last ? last : t;
+        }
+    };
+    double thr_ = 0, high_ = 0, low_ = 0, win_ = 0;
+    double prev_t_ = 0, prev_v_ = 0, cross_t_ = 0, fallback_t_ = 0;
     double seen_min_ = 0, seen_max_ = 0;
-    bool armed_ = false;
+    Fit fit_;
+    bool armed_ = false, pending_ = false;
     std::uint8_t level_ = 0;
 };
 
