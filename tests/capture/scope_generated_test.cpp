@@ -6,6 +6,7 @@
 #include <random>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "capture/differential_pairs.h"
 #include "capture/scope_csv_writer.h"
