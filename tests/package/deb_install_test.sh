@@ -13,7 +13,8 @@ fail() { echo "deb_install_test: $*" >&2; exit 1; }
 debs=("$tmp"/out/busdecode_*.deb)
 [ -f "${debs[0]}" ] || fail "no busdecode_*.deb in $tmp/out"
 deb="${debs[0]}"
-dpkg-deb --info "$deb" | grep -q "Package: busdecode" || fail "control file has no Package: busdecode"
+info="$(dpkg-deb --info "$deb")"
+grep -q "Package: busdecode" <<<"$info" || fail "control file has no Package: busdecode"
 
 root="$tmp/root"
 dpkg-deb -x "$deb" "$root"
