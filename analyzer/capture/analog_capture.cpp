@@ -9,6 +9,7 @@
 #include "analog_lines.h"
 #include "core/options.h"
 #include "differential_pairs.h"
+#include "signal_quality.h"
 
 namespace busdecode {
 
@@ -105,6 +106,7 @@ private:
         Pair pair;
         std::unique_ptr<PairWatch> watch;
         SchmittLine wire[2];
+        SignalQuality quality;
         SchmittLine trigger;
         SchmittSettings settings;
         std::pair<double, double> levels;
@@ -210,6 +212,8 @@ private:
     }
 
     void takeSample(double t_s, std::vector<Edge>& out) {
+        for (auto& l : lines_)
+            if (l.bit < 0) l.quality.feed(t_s, row_[l.slot]);
         const double t = t_s * ticks_per_s_;
         end_tick_ = toTick(t);
         double bound = t;
@@ -292,6 +296,7 @@ void AnalogReader::start() {
         l.settings = settingsFor(l, est);
         l.levels = est.levels();
         l.trigger.configure(l.settings);
+        l.quality.configure(l.levels.first, l.levels.second);
         for (int w = 0; l.watch && w < 2; ++w) {
             LevelEstimator wire;
             for (std::size_t r = 0; r < prefix_t_.size(); ++r)
@@ -327,6 +332,9 @@ std::vector<std::string> AnalogReader::notes() const {
                                         : "as given";
         out.push_back(fmt::format("{}: threshold {}, hysteresis {} ({})", name, volts(s.threshold),
                                   volts(s.hysteresis), how));
+        if (!s.flat)
+            out.push_back(
+                fmt::format("{} signal: {}", name, l.quality.summary(l.trigger.reversals())));
         if (l.edges == 0)
             out.push_back(fmt::format(
                 "{} never crossed its threshold {} (its range {} to {}): give --threshold {}=VOLTS",

@@ -77,6 +77,7 @@ public:
         if (level_ ? v < low_ : v > high_) {
             level_ ^= 1;
             pending_ = !pending_;  // a second crossing inside the window undoes the first
+            if (!pending_) ++reversals_;
             if (pending_) fallback_t_ = armed_ ? cross_t_ : t;
             armed_ = false;
         }
@@ -98,6 +99,8 @@ public:
         return armed_ ? cross_t_ : prev_t_;
     }
     std::uint8_t level() const { return level_; }
+    // Returns across the band while inside the window (noise or a runt pulse).
+    std::uint64_t reversals() const { return reversals_; }
     double minSeen() const { return seen_min_; }
     double maxSeen() const { return seen_max_; }
 
@@ -132,6 +135,7 @@ private:
     Fit fit_;
     bool armed_ = false, pending_ = false;
     std::uint8_t level_ = 0;
+    std::uint64_t reversals_ = 0;
 };
 
 // Edges of several lines put back in time order: a slow edge is timed at its threshold

@@ -6,6 +6,7 @@
 #include <random>
 
 #include "capture/analog_lines.h"
+#include "capture/signal_quality.h"
 #include "core/options.h"
 
 namespace busdecode {
@@ -93,6 +94,29 @@ TEST(AnalogLines, EdgeOrdererReleasesInTimeOrderUpToTheBound) {
     EXPECT_EQ(o.held(), 1u);
     o.release(kMaxEdgeTick, out);
     EXPECT_EQ(out.back().t, 50);
+}
+
+TEST(AnalogLines, SignalQualityMeasuresRiseFallAndOvershoot) {
+    // Ramps of 100 ns (10-90 %: 80 ns) every 500 ns, sampled each ns, a 15 % overshoot
+    // held for 20 ns after each rise.
+    Square sq;
+    sq.period = 1000;
+    sq.rise = 100;
+    std::mt19937 rng(4);
+    SignalQuality q;
+    q.configure(sq.lo, sq.hi);
+    for (int t = 0; t < 100'000; ++t) {
+        double v = sq.at(t, rng);
+        const int phase = t % 1000;
+        if (phase >= 100 && phase < 120) v += 0.15 * (sq.hi - sq.lo);
+        q.feed(t * 1e-9, v);
+    }
+    const std::string s = q.summary(3);
+    EXPECT_NE(s.find("rise (10-90 %) median 80 ns p99 80 ns"), std::string::npos) << s;
+    EXPECT_NE(s.find("fall median 80 ns p99 80 ns"), std::string::npos) << s;
+    EXPECT_NE(s.find("overshoot 15 %"), std::string::npos) << s;
+    EXPECT_NE(s.find("swing 2.9 V"), std::string::npos) << s;
+    EXPECT_NE(s.find("3 reversals"), std::string::npos) << s;
 }
 
 TEST(AnalogLines, ThresholdOptionParses) {
