@@ -64,7 +64,8 @@ bool splitPair(const std::string& text, std::string& positive, std::string& nega
     if (comma == std::string::npos || text.find(',', comma + 1) != std::string::npos) return false;
     positive = text.substr(0, comma);
     negative = text.substr(comma + 1);
-    return !positive.empty() && !negative.empty();
+    // "sclk=A,cs=B" is two roles written as one, not a pair (the session words that).
+    return !positive.empty() && !negative.empty() && text.find('=') == std::string::npos;
 }
 
 int findSignal(const std::vector<SignalInfo>& signals, const std::string& text) {
@@ -107,9 +108,7 @@ public:
             std::string p, n;
             if (findSignal(signals_, text) >= 0 || !splitPair(text, p, n)) continue;
             const int wp = findSignal(in_->signals(), p), wn = findSignal(in_->signals(), n);
-            if (wp < 0 || wn < 0)
-                throw InputError(
-                    fmt::format("--map {}: the capture has no signal '{}'", text, wp < 0 ? p : n));
+            if (wp < 0 || wn < 0) continue;  // the session names the signal it cannot bind
             pairs_.push_back({text, wp, wn});
             signals_.push_back({text, text, 1});
         }
