@@ -164,6 +164,8 @@ int runDecode(const DecodeArgs& a) {
     const std::vector<std::string> reports = a.report.empty()
                                                  ? std::vector<std::string>(a.captures.size())
                                                  : reportPaths(a.report, a.captures);
+    for (const auto& report : reports)
+        if (!report.empty()) refuseOutputOnCapture("--report", report, a.captures);
     for (std::size_t i = 0; i < a.captures.size(); ++i) {
         const std::string& capture = a.captures[i];
         std::vector<std::unique_ptr<OutputSink>> owned;

@@ -1,6 +1,11 @@
 #include "report_paths.h"
 
+#include <sys/stat.h>
 #include <set>
+
+#include <fmt/format.h>
+
+#include "core/options.h"
 
 namespace busdecode {
 
@@ -37,6 +42,19 @@ std::vector<std::string> reportPaths(const std::string& report,
         out.push_back(path);
     }
     return out;
+}
+
+void refuseOutputOnCapture(const std::string& option, const std::string& output,
+                           const std::vector<std::string>& captures) {
+    struct stat out {};
+    if (::stat(output.c_str(), &out) != 0 || !S_ISREG(out.st_mode)) return;
+    for (const auto& capture : captures) {
+        struct stat in {};
+        if (capture != "-" && ::stat(capture.c_str(), &in) == 0 && in.st_dev == out.st_dev &&
+            in.st_ino == out.st_ino)
+            throw InputError(
+                fmt::format("{} {}: is the capture {}, not an output", option, output, capture));
+    }
 }
 
 }  // namespace busdecode

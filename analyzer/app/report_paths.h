@@ -13,4 +13,9 @@ namespace busdecode {
 std::vector<std::string> reportPaths(const std::string& report,
                                      const std::vector<std::string>& captures);
 
+// Throws InputError "OPTION PATH: is the capture CAPTURE, not an output" when `output`
+// names the same file as one of the captures (a link or another spelling included).
+void refuseOutputOnCapture(const std::string& option, const std::string& output,
+                           const std::vector<std::string>& captures);
+
 }  // namespace busdecode

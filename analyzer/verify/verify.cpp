@@ -9,6 +9,7 @@
 #include "app/decode_args.h"
 #include "app/interruption.h"
 #include "app/plugin_loader.h"
+#include "app/report_paths.h"
 #include "app/standard_streams.h"
 #include "batch.h"
 #include "core/atomic_file.h"
@@ -28,7 +29,10 @@ int runVerify(const DecodeArgs& args) {
         const DecodeChoice choice = combineDecodeChoice(rules, args.protos, args.maps, args.opts);
         const auto requests = buildRequests(choice.protos, choice.maps, choice.opts);
         if (args.captures.empty()) throw InputError("decode verify: no capture given");
-        if (!args.junit.empty()) checkWritable(args.junit);  // before a long batch, not after
+        if (!args.junit.empty()) {
+            refuseOutputOnCapture("--junit", args.junit, args.captures);
+            checkWritable(args.junit);  // before a long batch, not after
+        }
 
         OpenOptions open;
         open.rate_hz = args.rate_hz > 0 ? args.rate_hz : rules.decode.rate_hz;

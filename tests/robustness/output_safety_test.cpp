@@ -146,4 +146,25 @@ TEST(OutputSafety, ReplacedReportKeepsItsMode) {
     EXPECT_EQ(readFile(report).rfind("busdecode report\n", 0), 0u);
 }
 
+TEST(OutputSafety, ReportOnTheCaptureIsRefused) {
+    const std::string capture = spiCapture("self.vcd", 3, 10'000);
+    const std::string before = readFile(capture);
+    const std::string link = tempDir() + "/self_link.vcd";
+    fs::create_symlink(capture, link);
+    for (const auto& report : {capture, link}) {
+        const RunResult r = runCommand(decode() + " " + shellQuote(capture) +
+                                       " --proto spi --report " + shellQuote(report));
+        EXPECT_EQ(r.status, 2);
+        EXPECT_EQ(r.err, "decode: --report " + report + ": is the capture " + capture +
+                             ", not an output\n");
+        EXPECT_EQ(readFile(capture), before);
+    }
+    const RunResult v = runCommand(decode() + " verify " + shellQuote(capture) + " --rules " +
+                                   shellQuote(spiRules()) + " --junit " + shellQuote(capture));
+    EXPECT_EQ(v.status, 2);
+    EXPECT_EQ(v.err, "decode verify: --junit " + capture + ": is the capture " + capture +
+                         ", not an output\n");
+    EXPECT_EQ(readFile(capture), before);
+}
+
 }  // namespace
