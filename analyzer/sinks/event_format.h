@@ -3,6 +3,7 @@
 // line. Shared by the stdout sinks, the report, verify and the LCM annotation message,
 // so every output says exactly the same thing.
 #include <string>
+#include <string_view>
 
 #include "core/event.h"
 #include "core/session.h"
@@ -15,6 +16,12 @@ std::string eventToJson(const Event& e, const Timebase& tb);
 void appendEventJson(std::string& out, const Event& e, const Timebase& tb);
 // JSON text of one value (numbers as integers when integral, strings escaped).
 std::string valueToJson(const Value& v);
+// The jsonl mapping, for every writer of events as objects (jsonl, the Python module):
+// a decoder's field named like a common key is never written (the keys are the session's).
+bool isCommonEventKey(std::string_view key);
+// How jsonl writes a double: non-finite as null, whole numbers below 1e15 as integers.
+enum class JsonNumber { Null, Integer, Real };
+JsonNumber jsonNumberKind(double x);
 // "   12.345678 ms  bissc  frame  pos=0x... crc ok  [crc, short_frame]"
 std::string eventToText(const Event& e, const Timebase& tb);
 void appendEventText(std::string& out, const Event& e, const Timebase& tb);
