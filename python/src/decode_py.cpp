@@ -43,10 +43,17 @@ public:
             batch_.clear();
             at_ = 0;
             EventStream::Got got = EventStream::Got::Waiting;
-            waitInterruptibly([&] {
-                got = stream_->next(batch_, kPollMs);
-                return got != EventStream::Got::Waiting;
-            });
+            busy_ = true;
+            try {
+                waitInterruptibly([&] {
+                    got = stream_->next(batch_, kPollMs);
+                    return got != EventStream::Got::Waiting;
+                });
+            } catch (...) {
+                busy_ = false;
+                throw;
+            }
+            busy_ = false;
             if (got == EventStream::Got::End) {
                 facts_ = stream_->facts();
                 close();
@@ -56,7 +63,13 @@ public:
         return dict_(batch_[at_++]);
     }
     void close() {
+        batch_.clear();
+        at_ = 0;
         if (!stream_) return;
+        if (busy_) {  // another thread waits in next(): it ends the iteration
+            stream_->stop();
+            return;
+        }
         facts_ = stream_->facts();
         pyb::gil_scoped_release nogil;
         stream_.reset();  // stops the decode and joins its thread
@@ -67,6 +80,7 @@ private:
     std::unique_ptr<EventStream> stream_;
     std::vector<TimedEvent> batch_;
     std::size_t at_ = 0;
+    bool busy_ = false;  // next() waits with the GIL released
     DictMaker dict_;
     CaptureFacts facts_;
 };

@@ -5,6 +5,7 @@
 #include "app/plugin_loader.h"
 #include "bindings.h"
 #include "core/options.h"
+#include "core/registry.h"
 
 namespace busdecode::py {
 
@@ -13,7 +14,14 @@ std::vector<DecoderRequest> requestsFor(const std::vector<std::string>& protos,
                                         const std::vector<std::string>& opts) {
     try {
         loadPlugins(protos);
-        return buildRequests(protos, maps, opts);
+        auto requests = buildRequests(protos, maps, opts);
+        // Option values too, here rather than when the capture is open: a wrong call.
+        for (const auto& r : requests) {
+            auto options = r.options;
+            options.erase("glitch_ns");  // the session's own option, checked there
+            Options::resolve(Registry::instance().find(r.proto)->info(), options);
+        }
+        return requests;
     } catch (const InputError& e) {
         throw UsageError(e.what());
     }
