@@ -32,6 +32,15 @@ void Column::appendNumber(Kind k, std::uint64_t bits) {
     nulls.push_back(0);
 }
 
+void Column::appendText(const std::string& s) {
+    auto it = text_codes_.find(s);
+    if (it == text_codes_.end()) {
+        it = text_codes_.emplace(s, texts.size()).first;
+        texts.push_back(s);
+    }
+    appendNumber(Kind::Text, it->second);
+}
+
 void Column::toReal() {
     for (std::size_t i = 0; i < lanes.size(); ++i)
         if (!nulls[i])
@@ -52,11 +61,15 @@ void Column::toObjects() {
             objects.emplace_back(b);
         else if (kind == Kind::Real)
             objects.emplace_back(std::bit_cast<double>(b));
+        else if (kind == Kind::Text)
+            objects.emplace_back(texts[b]);
         else
             objects.emplace_back(std::int64_t(b));
     }
     lanes = {};
     nulls = {};
+    texts = {};
+    text_codes_ = {};
     kind = Kind::Object;
 }
 
@@ -87,6 +100,8 @@ void Column::append(const Value& v) {
         if (kind == Kind::Int || kind == Kind::UInt) toReal();
         if (kind == Kind::Empty || kind == Kind::Real)
             return appendNumber(Kind::Real, std::bit_cast<std::uint64_t>(*d));
+    } else if (auto t = std::get_if<std::string>(&v)) {
+        if (kind == Kind::Empty || kind == Kind::Text) return appendText(*t);
     } else if (isNull(v)) {
         return appendNull();
     }

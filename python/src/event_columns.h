@@ -13,15 +13,17 @@
 
 namespace busdecode::py {
 
-// One field of one table. Numbers stay in `lanes` as long as every value fits one kind;
-// anything else (strings, lists, a mix of kinds) makes it a column of Values.
+// One field of one table. Numbers stay in `lanes` as long as every value fits one kind,
+// strings as codes into the column's distinct strings; anything else (lists, a mix of
+// kinds) makes it a column of Values.
 struct Column {
-    enum class Kind { Empty, Bool, Int, UInt, Real, Object };
+    enum class Kind { Empty, Bool, Int, UInt, Real, Text, Object };
     std::string key;
     Kind kind = Kind::Empty;
     std::vector<std::uint64_t> lanes;  // int64 / uint64 / double bits / 0-1, per row
     std::vector<std::uint8_t> nulls;   // 1 where the row has no value
     std::vector<Value> objects;        // Kind::Object: every row
+    std::vector<std::string> texts;    // Kind::Text: the distinct strings, by code
     bool negative = false;             // an int64 below 0 was seen
 
     std::size_t rows() const { return kind == Kind::Object ? objects.size() : nulls.size(); }
@@ -31,6 +33,8 @@ struct Column {
 
 private:
     void appendNumber(Kind k, std::uint64_t bits);
+    void appendText(const std::string& s);
+    std::unordered_map<std::string, std::uint64_t> text_codes_;
     void toReal();
     void toObjects();
 };

@@ -56,6 +56,15 @@ pyb::tuple columnToPython(Column& c) {
             c.nulls = {};
             return pyb::make_tuple(c.key, "float64", ownedArray(std::move(c.lanes), "float64"),
                                    pyb::none());
+        case K::Text: {
+            std::vector<pyb::object> texts;
+            for (const auto& t : c.texts)
+                texts.push_back(pyb::str(t));
+            pyb::list out(c.lanes.size());
+            for (std::size_t i = 0; i < c.lanes.size(); ++i)
+                out[i] = c.nulls[i] ? pyb::none() : texts[c.lanes[i]];
+            return pyb::make_tuple(c.key, "object", out, pyb::none());
+        }
         case K::Empty:
             return pyb::make_tuple(c.key, "object",
                                    objectColumn(std::vector<Value>(c.nulls.size())), pyb::none());
