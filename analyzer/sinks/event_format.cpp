@@ -114,16 +114,6 @@ std::string valueToText(const Value& v) {
 
 }  // namespace
 
-bool isCommonEventKey(std::string_view key) {
-    return key == "proto" || key == "type" || key == "start_ns" || key == "end_ns" ||
-           key == "errors";
-}
-
-JsonNumber jsonNumberKind(double x) {
-    if (!std::isfinite(x)) return JsonNumber::Null;
-    return x == std::floor(x) && std::fabs(x) < 1e15 ? JsonNumber::Integer : JsonNumber::Real;
-}
-
 std::string valueToJson(const Value& v) {
     std::string out;
     appendValue(out, v);
