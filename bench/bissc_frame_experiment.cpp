@@ -42,8 +42,8 @@
 #include "bench_captures.h"
 #include "bissc_decoder.h"
 #include "capture/capture_reader.h"
+#include "core/block_decoding.h"
 #include "core/crc.h"
-#include "core/decoder.h"
 #include "core/options.h"
 #include "core/registry.h"
 #include "read_edges.h"
@@ -262,12 +262,12 @@ public:
             std::uint64_t events = 0;
             void onEvent(busdecode::Event&&) override { ++events; }
         } sink;
-        std::unique_ptr<busdecode::Decoder> decoder = factory_->create(options_);
+        std::unique_ptr<busdecode::Decoder> owned = factory_->create(options_);
+        busdecode::FastDecoder* decoder = busdecode::fastPathOf(*owned);
         busdecode::DecoderContext ctx;
         ctx.timebase = in_.timebase;
         ctx.sink = &sink;
-        ctx.fields_wanted = false;
-        ctx.lines_are_roles = busdecode::linesAreRoles(role_of_line_);
+        decoder->setHints({false, busdecode::linesAreRoles(role_of_line_)});
         ctx.initial_levels = {in_.ma_initial ? 1 : 0, in_.sl_initial ? 1 : 0};  // MA, SL
         decoder->start(ctx);
         const Edge* e = in_.edges.data();

@@ -10,11 +10,13 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include "block_decoding.h"
 #include "event_pool.h"
 #include "event_window.h"
 #include "glitch_filter.h"
 #include "piece_speculation.h"
 #include "registry.h"
+#include "splicing.h"
 #include "waveform.h"
 
 namespace busdecode {
@@ -87,6 +89,8 @@ struct Session::Impl : EventSink {
         std::vector<int> role_line;  // role index -> selected line, -1 unbound
         std::optional<GlitchFilter> glitch;
         DecoderContext ctx;
+        FastDecoder* fast = nullptr;  // the decoder's fast path (block_decoding.h), if any
+        FastPathHints hints;
     };
     // Where a selected line's edges go; the decoder and its glitch filter (or null) are
     // resolved once here, not per edge.
@@ -108,7 +112,7 @@ struct Session::Impl : EventSink {
     std::deque<int> pending_slot;
     EventWindow window;
     bool keep_window = false;  // some decoder correlates: remember released events
-    // One decoder, no glitch filter, one role per line: blocks go to Decoder::edges.
+    // One decoder, no glitch filter, one role per line: blocks go to the decoder whole.
     bool block_path = false;
     std::vector<int> role_of_line;
     int emitting = -1;
@@ -410,8 +414,10 @@ void Session::run() {
         fields_wanted |= sink->readsFields();
     for (int s = 0; s < int(im.slots.size()); ++s) {
         auto& slot = im.slots[s];
-        slot.ctx.fields_wanted = fields_wanted;
-        slot.ctx.lines_are_roles = im.block_path && linesAreRoles(im.role_of_line);
+        slot.hints.fields_wanted = fields_wanted;
+        slot.hints.lines_are_roles = im.block_path && linesAreRoles(im.role_of_line);
+        slot.fast = fastPathOf(*slot.decoder);
+        if (slot.fast) slot.fast->setHints(slot.hints);
         slot.ctx.timebase = reader.timebase();
         slot.ctx.capture_start = facts_.start;
         for (int line : slot.role_line)
@@ -428,15 +434,15 @@ void Session::run() {
     // decoder takes whole blocks and can be spliced.
     std::optional<SpeculationSplicer> splicer;
     if (im.speculate && im.block_path && !im.keep_window && reader.changesOnly() &&
-        im.slots[0].decoder->splices()) {
+        im.slots[0].fast && splicingOf(*im.slots[0].decoder)) {
         Impl::Slot& slot = im.slots[0];
         DecoderContext ctx = slot.ctx;
         ctx.sink = nullptr;
         auto pool = std::make_shared<EventPool>();
         auto other_pool = std::make_shared<EventPool>();
         if (reader.setPieceWork(std::make_shared<PieceSpeculator>(*slot.factory, slot.options, ctx,
-                                                                  im.role_of_line, pool, other_pool,
-                                                                  slot.instance))) {
+                                                                  slot.hints, im.role_of_line, pool,
+                                                                  other_pool, slot.instance))) {
             splicer.emplace(slot.decoder, im, im.role_of_line.data());
             im.shared_pool = std::move(pool);
             im.other_pool = std::move(other_pool);
@@ -475,7 +481,8 @@ void Session::run() {
             advance = splicer->decode(kept, kept + n, before);
         } else if (im.block_path) {  // the whole block in one call
             im.emitting = 0;
-            im.slots[0].decoder->edges(kept, kept + n, im.role_of_line.data());
+            feedEdges(*im.slots[0].decoder, im.slots[0].fast, kept, kept + n,
+                      im.role_of_line.data());
         } else {
             for (std::size_t i = 0; i < n; ++i)
                 for (const auto& tg : im.targets[kept[i].line])

@@ -25,7 +25,8 @@ constexpr double kMinQuietNs = 20000.0;
 }  // namespace
 
 BisscDecoder::BisscDecoder(const Options& options)
-    : s_(BisscSettings::from(options)),
+    : FastDecoder("bissc"),
+      s_(BisscSettings::from(options)),
       crc_(BitCrc::fromFullPoly(s_.crc_poly, s_.crc_init, s_.crc_inverted), s_.bits + 2),
       control_([this](Event&& e) { emit(std::move(e)); }) {}
 
@@ -183,8 +184,8 @@ void BisscDecoder::edges(const Edge* first, const Edge* last, const int* role_of
             // (a decoder started for each piece of a file, piece_speculation.h, would
             // otherwise clear and fault in a block's worth, 128 KiB, each).
             const Edge* end = last - first > kMaxRun ? first + kMaxRun : last;
-            first = context().lines_are_roles ? dataRun<true>(first, end, role_of_line)
-                                              : dataRun<false>(first, end, role_of_line);
+            first = hints().lines_are_roles ? dataRun<true>(first, end, role_of_line)
+                                            : dataRun<false>(first, end, role_of_line);
             if (first == last) break;
             if (first == end) continue;  // the run's limit, not an edge it could not take
         }
@@ -473,12 +474,9 @@ void BisscDecoder::takeSample(int index, bool level, double t) {
 }
 
 void BisscDecoder::closeFrame(Tick end, Tick timeout_end, const char* error, bool feed_control) {
-    EventPtr owned = freshEvent();
+    EventPtr owned =
+        newEvent("frame", f_.start, std::max(timeout_end != kNoTick ? timeout_end : end, f_.start));
     Event& e = *owned;
-    e.proto = "bissc";
-    e.type = "frame";
-    e.start = f_.start;
-    e.end = std::max(timeout_end != kNoTick ? timeout_end : end, f_.start);
     for (const auto& err : f_.errors)
         e.error(err);
     if (error) e.error(error);

@@ -32,7 +32,7 @@ std::int64_t median(std::vector<std::int64_t> v) {
 
 SsiDecoder::SsiDecoder(const Options& o) : SsiDecoder(SsiConfig::fromOptions(o)) {}
 
-SsiDecoder::SsiDecoder(SsiConfig cfg) : cfg_(std::move(cfg)) {}
+SsiDecoder::SsiDecoder(SsiConfig cfg) : BlockDecoder("ssi"), cfg_(std::move(cfg)) {}
 
 void SsiDecoder::start(const DecoderContext& ctx) {
     Decoder::start(ctx);
@@ -217,13 +217,9 @@ void SsiDecoder::close(bool capture_end) {
 
     const SsiWord w = assembleWord(samples, cfg_);
     const SsiFields f = w.short_frame ? SsiFields{} : splitFields(w.raw, cfg_);
-    pending_ = freshEvent();
+    pending_ = newEvent("frame", b_.start, last);
     Event& e = *pending_;
     e.fields.reserve(20 + cfg_.status.size());
-    e.proto = "ssi";
-    e.type = "frame";
-    e.start = b_.start;
-    e.end = last;
     e.set("raw", w.raw);
     e.set("bits", std::int64_t(w.bits));
     std::vector<std::int64_t> diff = w.diff_bits;
@@ -367,12 +363,8 @@ void SsiDecoder::emitFrame(std::optional<Tick> tm_end, bool deadline_passed) {
 }
 
 void SsiDecoder::emitSummary(Tick end) {
-    EventPtr owned = freshEvent();
+    EventPtr owned = newEvent("summary", end, end);
     Event& e = *owned;
-    e.proto = "ssi";
-    e.type = "summary";
-    e.start = end;
-    e.end = end;
     e.set("frames", frames_);
     Value tmin = Null{}, tmed = Null{}, tmax = Null{};
     if (!tm_values_.empty()) {

@@ -12,7 +12,7 @@
 #include <optional>
 #include <vector>
 
-#include "core/decoder.h"
+#include "core/block_decoding.h"
 #include "ssi_config.h"
 
 namespace busdecode {

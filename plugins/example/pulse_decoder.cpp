@@ -33,7 +33,7 @@ const DecoderInfo& pulseInfo() {
 }
 
 PulseDecoder::PulseDecoder(const Options& o)
-    : active_high_(o.text("active") == "high"), min_ns_(o.number("min_ns")) {}
+    : Decoder("pulse"), active_high_(o.text("active") == "high"), min_ns_(o.number("min_ns")) {}
 
 void PulseDecoder::start(const DecoderContext& ctx) {
     Decoder::start(ctx);
@@ -48,15 +48,11 @@ void PulseDecoder::edge(Tick t, int, bool level) {
         return;
     }
     if (since_ == kNoTick) return;  // the capture started inside a pulse
-    Event e;
-    e.proto = "pulse";
-    e.type = "pulse";
-    e.start = since_;
-    e.end = t;
+    EventPtr e = newEvent("pulse", since_, t);
     const double width = tb().toNsF(double(t - since_));
-    e.set("width_ns", width);
-    if (width < min_ns_) e.error("short");
-    e.summary = "width " + std::to_string(width) + " ns";
+    e->add("width_ns", width);
+    if (width < min_ns_) e->error("short");
+    e->summary = "width " + std::to_string(width) + " ns";
     emit(std::move(e));
     since_ = kNoTick;
     idle();
