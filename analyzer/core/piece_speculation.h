@@ -20,7 +20,7 @@
 #include <vector>
 
 #include "block_decoding.h"
-#include "capture/capture_reader.h"
+#include "capture/piece_work.h"
 #include "decoder.h"
 #include "event_pool.h"
 #include "options.h"

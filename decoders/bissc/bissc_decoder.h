@@ -391,6 +391,20 @@ private:
     // Emits the frame in progress. timeout_end = the SL rising edge ending the slave's
     // timeout, or kNoTick; feed_control passes its CDM/CDS bits on to the reassembler.
     void closeFrame(Tick end, Tick timeout_end, const char* error, bool feed_control);
+    // closeFrame()'s steps: what the frame came to (its faults added to `e`), its fields,
+    // its summary, and the running totals.
+    struct FrameOutcome {
+        bool complete = false, crc_good = true, timed_out = false, acked = false;
+        bool clocked = false;
+        std::uint64_t pos = 0;
+        int cdm = -1;
+        std::int64_t timeout_ns = 0, delay_ns = 0;
+        double period = 0;
+    };
+    FrameOutcome checkFrame(Event& e, Tick timeout_end);
+    void addFrameFields(Event& e, const FrameOutcome& out) const;
+    void setFrameSummary(Event& e, const FrameOutcome& out) const;
+    void countFrame(const Event& e, const FrameOutcome& out);
     void addError(const std::string& e);
     // Closes a frame whose clock went quiet. Called on every edge: the inline part only
     // rules out the usual case (clock running, well within kMinQuietNs and, before the

@@ -26,7 +26,7 @@
 #include "byte_stream.h"
 #include "capture/capture_reader.h"
 #include "capture/capture_writer.h"
-#include "core/direct_feed.h"
+#include "support/feed/direct_feed.h"
 #include "core/registry.h"
 #include "core/scratch_dir.h"
 #include "core/session.h"

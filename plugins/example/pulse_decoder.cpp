@@ -13,19 +13,9 @@ const DecoderInfo& pulseInfo() {
         d.name = "Pulse widths (example plugin)";
         d.description = "Reports each active pulse on one line with its width.";
         d.roles = {{"line", true, {"line", "in", "sig"}, "the line to watch"}};
-        OptionSpec pol;
-        pol.key = "active";
-        pol.kind = OptionSpec::Kind::Choice;
-        pol.choices = {"high", "low"};
-        pol.default_value = "high";
-        pol.help = "which level is a pulse";
-        OptionSpec min;
-        min.key = "min_ns";
-        min.kind = OptionSpec::Kind::Float;
-        min.default_value = "0";
-        min.min = 0;
-        min.help = "flag pulses shorter than this as `short`";
-        d.options = {pol, min};
+        d.options = {
+            choiceOption("active", {"high", "low"}, "which level is a pulse"),
+            numberOption("min_ns", "0", 0, 1e300, "flag pulses shorter than this as `short`")};
         d.events = {{"pulse", "one active pulse", {"width_ns"}}};
         return d;
     }();
@@ -35,13 +25,7 @@ const DecoderInfo& pulseInfo() {
 PulseDecoder::PulseDecoder(const Options& o)
     : Decoder("pulse"), active_high_(o.text("active") == "high"), min_ns_(o.number("min_ns")) {}
 
-void PulseDecoder::start(const DecoderContext& ctx) {
-    Decoder::start(ctx);
-    level_ = ctx.initial_levels[0] == 1;
-}
-
 void PulseDecoder::edge(Tick t, int, bool level) {
-    level_ = level;
     if (level == active_high_) {
         since_ = t;
         busyFrom(t);

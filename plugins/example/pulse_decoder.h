@@ -8,14 +8,12 @@ namespace pulse {
 class PulseDecoder : public busdecode::Decoder {
 public:
     explicit PulseDecoder(const busdecode::Options& o);
-    void start(const busdecode::DecoderContext& ctx) override;
     void edge(busdecode::Tick t, int role, bool level) override;
     void finish(busdecode::Tick end) override;
 
 private:
     bool active_high_;
     double min_ns_;
-    bool level_ = false;
     busdecode::Tick since_ = busdecode::kNoTick;
 };
 

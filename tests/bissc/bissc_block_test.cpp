@@ -12,7 +12,7 @@
 #include "bissc_generator.h"
 #include "bissc_random_capture.h"
 #include "bissc_test_util.h"
-#include "core/direct_feed.h"
+#include "support/feed/direct_feed.h"
 
 namespace busdecode::test {
 namespace {

@@ -134,7 +134,7 @@ struct RegisterTrace {
 // event may reach the even one filled in its storage.
 class AlternateDecoder : public Decoder {
 public:
-    explicit AlternateDecoder(const Options&) {}
+    explicit AlternateDecoder(const Options&) : Decoder("alternate") {}
     void edge(Tick t, int, bool level) override {
         if (!level) return;
         EventPtr owned = newEvent("rise", t, t);

@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "core/block_decoding.h"
-#include "core/direct_feed.h"
+#include "support/feed/direct_feed.h"
 #include "core/registry.h"
 #include "sinks/event_format.h"
 #include "spi_generator.h"

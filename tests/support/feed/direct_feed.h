@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "decoder.h"
-#include "options.h"
-#include "waveform.h"
+#include "core/decoder.h"
+#include "core/options.h"
+#include "core/waveform.h"
 
 namespace busdecode {
 

@@ -1,10 +1,10 @@
-#include "direct_feed.h"
+#include "support/feed/direct_feed.h"
 
 #include <algorithm>
 #include <cstdint>
 #include <memory>
 
-#include "block_decoding.h"
+#include "core/block_decoding.h"
 #include "sinks/event_format.h"
 
 namespace busdecode {
