@@ -26,10 +26,12 @@ CaptureFacts decodeCapture(const std::string& path, const std::vector<DecoderReq
         reader =
             prefetchReader(std::move(reader), kReadAheadBlocks, whole_file ? kWholeFileBatch : 1);
     }
-    if (realtime) reader = std::make_unique<PacedReader>(std::move(reader));
+    if (realtime) reader = std::make_unique<PacedReader>(std::move(reader), stop);
     Session session(requests, *reader, path);
     session.setPieceSpeculation(open.decode_ahead);
     if (stop) session.setStopFlag(stop);
+    // Stopped before its end, a capture that is not followed is not reported at all.
+    if (stop && !open.follow) session.abandonWhenStopped();
     for (auto* s : sinks)
         session.addSink(s);
     session.run();

@@ -14,6 +14,7 @@
 #include "event_pool.h"
 #include "event_window.h"
 #include "glitch_filter.h"
+#include "interrupted.h"
 #include "parallel_pipeline.h"
 #include "registry.h"
 #include "splicing.h"
@@ -116,6 +117,7 @@ struct Session::Impl : EventSink {
     Session::PieceStats piece_stats;
     std::atomic<bool> stop{false};
     const std::atomic<bool>* external_stop = nullptr;
+    bool abandon_when_stopped = false;
     bool stopped() const { return stop || (external_stop && *external_stop); }
     std::vector<OutputSink*>* sinks = nullptr;
     CaptureFacts* facts = nullptr;
@@ -416,6 +418,9 @@ void Session::requestStop() {
 void Session::setStopFlag(const std::atomic<bool>* flag) {
     impl_->external_stop = flag;
 }
+void Session::abandonWhenStopped() {
+    impl_->abandon_when_stopped = true;
+}
 
 void Session::run() {
     Impl& im = *impl_;
@@ -441,6 +446,12 @@ void Session::run() {
         facts_.edges = edges;
     }
     if (im.parallel) endParallelPath();
+    if (im.stopped() && im.abandon_when_stopped) {
+        const double seconds = double(im.now - facts_.start) * reader.timebase().secondsPerTick();
+        throw Interrupted(interruptedAt(facts_.file,
+                                        fmt::format("{:.6g} s into the capture", seconds),
+                                        reader.bytesRead(), reader.bytesTotal()));
+    }
     // Drain the reader's end (a stopped follow has no end tick yet).
     facts_.end = im.stopped() ? im.now : std::max(reader.endTick(), im.now);
     finishDecoders();
