@@ -175,7 +175,7 @@ void expectTruncationReported(const std::string& name, const std::string& text,
 TEST(SignalExit, CaptureTruncatedWhileReadIsAnInputError) {
     busdecode::OpenOptions one_thread;
     one_thread.read_ahead = false;
-    expectTruncationReported("truncated.vcd", spiVcd(8000, 4000), one_thread);
+    expectTruncationReported("truncated.vcd", spiVcd(2000, 4000), one_thread);
     // A CSV read ahead on a thread of its own (FileReadAhead).
     std::string csv = "Time [s],cs,sclk\n";
     for (int i = 0; i < 600000; ++i)
