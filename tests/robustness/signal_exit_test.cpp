@@ -102,7 +102,7 @@ TEST(SignalExit, InterruptedReadLeavesTheEarlierReport) {
         signalWhen(shellQuote(f) + " --proto spi --report " + shellQuote(report) + " >/dev/null",
                    "exec 3>" + shellQuote(f) + "; cat " + shellQuote(part) + " >&3", ":", "INT");
     EXPECT_EQ(r.status, 130) << r.err;
-    EXPECT_EQ(r.err.rfind("decode: " + f + ": interrupted ", 0), 0u) << r.err;
+    EXPECT_EQ(r.err.rfind("decode: " + f + ": interrupted", 0), 0u) << r.err;
     EXPECT_NE(r.err.find(", after reading "), std::string::npos) << r.err;
     EXPECT_NE(r.err.find(" bytes (SIGINT); nothing written to the report\n"), std::string::npos)
         << r.err;
