@@ -185,11 +185,11 @@ int runDecode(const DecodeArgs& a) {
     return 0;
 }
 
-// "decode: FILE: interrupted at byte N of M (SIGINT); no report written"
+// "decode: FILE: interrupted, after reading N of M bytes (SIGINT); nothing written to the
+// report"
 std::string interruptionLine(const std::string& what, const DecodeArgs& a) {
-    const bool outputs = !a.report.empty() || !a.junit.empty();
     return fmt::format("decode: {} ({}){}\n", what, interruptingSignalName(),
-                       outputs ? "; nothing written to the report" : "");
+                       a.report.empty() ? "" : "; nothing written to the report");
 }
 
 int run(int argc, char** argv, DecodeArgs& args) {
