@@ -22,6 +22,7 @@
 #include "core/options.h"
 #include "core/registry.h"
 #include "lcm/lcm_sink.h"
+#include "lcm/monitor.h"
 #include "report/report_sink.h"
 #include "sinks/stream_sinks.h"
 #include "verify/verify.h"
