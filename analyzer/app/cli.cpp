@@ -119,11 +119,7 @@ Parsed parse(const QStringList& argv, bool verify) {
     if (p.isSet(lcm))
         a.lcm_url = p.value(lcm) == "default" ? std::string() : p.value(lcm).toStdString();
     if (p.isSet(rate)) {
-        auto r = parseNumber(p.value(rate).toStdString());
-        if (!r || *r <= 0)
-            throw InputError(fmt::format("--rate {}: expected a positive number of Hz",
-                                         p.value(rate).toStdString()));
-        a.rate_hz = *r;
+        a.rate_hz = parseRateOption(p.value(rate).toStdString());
     }
     a.follow = p.isSet(follow);
     a.realtime = p.isSet(realtime);
@@ -215,11 +211,11 @@ int runCli(int argc, char** argv) {
         return runDecode(parsed.args);
     } catch (const InputError& e) {
         std::fflush(stdout);
-        fmt::print(stderr, "decode: {}\n", e.what());
+        fmt::print(stderr, "decode: {}\n", oneLine(e.what()));
         return 2;
     } catch (const std::exception& e) {
         std::fflush(stdout);
-        fmt::print(stderr, "decode: internal error: {}\n", e.what());
+        fmt::print(stderr, "decode: internal error: {}\n", oneLine(e.what()));
         return 2;
     }
 }

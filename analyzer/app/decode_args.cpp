@@ -7,7 +7,9 @@
 #include <fmt/ranges.h>
 
 #include "capture/prefetch_reader.h"
+#include "capture/readers.h"
 #include "core/registry.h"
+#include "core/sample_rate.h"
 #include "plugin_loader.h"
 
 namespace busdecode {
@@ -130,6 +132,7 @@ public:
         }
         return true;
     }
+    std::vector<std::string> notes() const override { return in_->notes(); }
     Tick endTick() const override { return in_->endTick(); }
     std::uint64_t bytesRead() const override { return in_->bytesRead(); }
     std::uint64_t bytesTotal() const override { return in_->bytesTotal(); }
@@ -141,8 +144,19 @@ private:
 
 }  // namespace
 
+double parseRateOption(const std::string& text) {
+    const auto r = parseNumber(text);
+    if (!r || *r <= 0)
+        throw InputError(
+            fmt::format("--rate {}: expected a positive number of Hz", printable(text)));
+    const SampleRate rate = sampleRateOf(*r);
+    if (!rate.timebase)
+        throw InputError(fmt::format("--rate {}: {}", printable(text), rate.problem));
+    return *r;
+}
+
 std::string hintLine(const std::string& capture, const std::string& hint) {
-    return fmt::format("decode: {}: hint: {}\n", capture, hint);
+    return fmt::format("decode: {}: hint: {}\n", oneLine(capture), oneLine(hint));
 }
 
 CaptureFacts decodeCapture(const std::string& path, const std::vector<DecoderRequest>& requests,

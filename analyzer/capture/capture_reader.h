@@ -80,6 +80,9 @@ public:
     // True if next() already reads ahead on a thread of its own (a reader that is not
     // to be wrapped in prefetchReader()).
     virtual bool readsAhead() const { return false; }
+    // Remarks on the capture for the summary's hints, one line each (after the initial
+    // levels): what a user should know to read the results right.
+    virtual std::vector<std::string> notes() const { return {}; }
     // Asks the reader to run `work` on every piece it tokenises ahead but the first; call
     // before the first next(). False: this reader has no pieces (work is never run).
     // The reader keeps `work` as long as it may still run it.

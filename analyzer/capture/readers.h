@@ -17,9 +17,6 @@ std::unique_ptr<CaptureReader> openCsv(std::unique_ptr<TextSource> src, const Op
 std::unique_ptr<CaptureReader> openSr(const std::string& path, int fd, const std::string& name,
                                       const OpenOptions& opts);
 
-// "24 MHz", "1MHz", "5 Hz", "100 kHz", "24000000" -> Hz (0 if it is not a rate).
-std::int64_t parseRateHz(std::string_view text);
-
 // Text for a message: bytes that are not printable ASCII shown as \xNN, cut at `max`.
 std::string printable(std::string_view s, std::size_t max = 40);
 

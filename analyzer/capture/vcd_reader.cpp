@@ -11,9 +11,11 @@
 // - Several changes may follow a timestamp on its line (`#0 1! 1"`, as sigrok writes).
 // - `$dumpvars/$dumpon/$dumpoff/$dumpall` and `$end` are transparent; `$comment` (and
 //   any other keyword block) is skipped up to its `$end`, on the same or a later line.
-// - x and z are not levels: a line keeps its previous level through x/z; before any
-//   known level it reads 1 (the idle level of most buses). The same holds per bit of a
-//   vector. A selected real reads 1 when nonzero.
+// - States: IEEE 1364/1800 `0 1 x z` and VHDL's (GHDL, NVC) `U X 0 1 Z W L H -`, in
+//   either case. L and H (weak) are levels 0 and 1; x, z, u, w and - are not levels: a
+//   line keeps its previous level through them; before any known level it reads 1 (the
+//   idle level of most buses). The same holds per bit of a vector. A selected real reads
+//   1 when nonzero.
 // - Bit k of a vector (LineRef::bit) counts from the LSB; a value shorter than the
 //   vector is extended the VCD way (0 for a leading 1 or 0, else the leading x/z).
 // - Initial levels are those at the first timestamp (including `$dumpvars` before it);
@@ -31,6 +33,7 @@
 
 #include "core/options.h"
 #include "core/own_cache_lines.h"
+#include "core/sample_rate.h"
 #include "decimal_scan.h"
 #include "readers.h"
 #include "segmented_vcd_reader.h"
@@ -47,6 +50,21 @@ constexpr auto kSeparator = [] {
     for (char c : {' ', '\t', '\r', '\f', '\v'})
         k[static_cast<unsigned char>(c)] = 1;
     k['\n'] = 3;
+    return k;
+}();
+
+// The level of a state letter: IEEE 1364/1800 `0 1 x z` and VHDL's `U X 0 1 Z W L H -`
+// (either case); weak levels are levels. kKeepLevel: unknown, the line keeps its level.
+inline constexpr std::uint8_t kKeepLevel = 2, kNotAState = 3;
+constexpr auto kStateLevel = [] {
+    std::array<std::uint8_t, 256> k{};
+    k.fill(kNotAState);
+    for (char c : {'0', 'l', 'L'})
+        k[static_cast<unsigned char>(c)] = 0;
+    for (char c : {'1', 'h', 'H'})
+        k[static_cast<unsigned char>(c)] = 1;
+    for (char c : {'x', 'X', 'z', 'Z', 'u', 'U', 'w', 'W', '-'})
+        k[static_cast<unsigned char>(c)] = kKeepLevel;
     return k;
 }();
 
@@ -150,6 +168,16 @@ public:
     std::uint64_t bytesRead() const override { return src_->bytesRead(); }
     std::uint64_t bytesTotal() const override { return src_->bytesTotal(); }
     bool changesOnly() const override { return true; }  // see set()
+    std::vector<std::string> notes() const override {
+        // Vivado's hardware ILA: sample indices as 1 ps times (a simulation at 1 ps steps
+        // further apart); without --rate every duration is off by the sample period.
+        if (vivado_ && tb_.num == 1 && tb_.den == 1'000'000'000'000 && opts_.rate_hz <= 0 &&
+            first_step_ > 0 && first_step_ < 1000)
+            return {
+                "times look like Vivado ILA sample indices under $timescale 1ps: give the "
+                "sample clock with --rate HZ for real times"};
+        return {};
+    }
 
     // ---- pieces, for SegmentedVcdReader (vcd_tokeniser.h) ----------------------
 
@@ -223,7 +251,9 @@ private:
           short2_(o.short2_),
           long_(o.long_),
           start_(o.start_),
-          time_digits_(o.time_digits_) {
+          time_digits_(o.time_digits_),
+          vivado_(o.vivado_),
+          first_step_(o.first_step_) {
         scalar1_.assign(o.scalar1_.size(), 0);
         std::copy_n(o.scalar1_.data(), o.scalar1_.size(), scalar1_.data());
         scalar2_.assign(o.scalar2_.size(), 0);
@@ -332,6 +362,7 @@ private:
             const std::uint64_t line = src_->lineNo();
             if (tok == "$enddefinitions") {
                 blockTokens(tok, line);
+                if (opts_.rate_hz > 0) rateOverridesTimescale();
                 break;
             } else if (tok == "$timescale") {
                 parseTimescale(blockTokens(tok, line), line);
@@ -343,14 +374,25 @@ private:
                 if (!scope.empty()) scope.pop_back();
             } else if (tok == "$var") {
                 declare(blockTokens(tok, line), scope, line);
+            } else if (tok == "$version") {
+                for (const auto& t : blockTokens(tok, line))
+                    vivado_ |= t == "Vivado";
             } else if (tok.size() > 1 && tok[0] == '$') {
-                skipBlock();  // $date, $version, $comment, ...
+                skipBlock();  // $date, $comment, ...
             } else {
                 failAt(line, fmt::format("expected a $keyword in the VCD header, found '{}'",
                                          printable(tok)));
             }
         }
     }
+    // --rate: one sample per time unit, whatever $timescale says (Vivado's hardware ILA
+    // writes sample indices as 1 ps times).
+    void rateOverridesTimescale() {
+        const SampleRate r = sampleRateOf(opts_.rate_hz);
+        if (!r.timebase) throw InputError(fmt::format("--rate {}: {}", opts_.rate_hz, r.problem));
+        tb_ = *r.timebase;
+    }
+
     void skipBlock() {
         std::string_view tok;
         const std::uint64_t line = src_->lineNo();
@@ -456,6 +498,7 @@ private:
             }
         }
         initial_ = false;
+        if (seen_time_ && cur_ > start_) first_step_ = cur_ - start_;
     }
 
     [[gnu::always_inline]] void set(std::uint32_t line, std::uint8_t level, EdgeBlock* block) {
@@ -547,7 +590,16 @@ private:
                 case 'x':
                 case 'X':
                 case 'z':
-                case 'Z': {
+                case 'Z':
+                case 'u':  // VHDL's (GHDL, NVC) nine states
+                case 'U':
+                case 'w':
+                case 'W':
+                case 'l':
+                case 'L':
+                case 'h':
+                case 'H':
+                case '-': {
                     const char* id = p_ + 1;
                     const char* q = tokenEnd(id);
                     if (q == id) {  // tolerate `1 !`
@@ -558,10 +610,10 @@ private:
                     }
                     const Code& code = codeFor(id, q);
                     p_ = q;
-                    if (code.tbegin != code.tend && (c == '0' || c == '1')) {
+                    const std::uint8_t level = kStateLevel[static_cast<unsigned char>(c)];
+                    if (code.tbegin != code.tend && level != kKeepLevel) {
                         for (std::uint32_t k = code.tbegin; k < code.tend; ++k)
-                            set(targets_[k].line, targets_[k].bit == 0 ? std::uint8_t(c - '0') : 0,
-                                block);
+                            set(targets_[k].line, targets_[k].bit == 0 ? level : 0, block);
                     }
                     break;
                 }
@@ -594,9 +646,14 @@ private:
                         if (len == 0) fail("expected binary digits after 'b'");
                         for (std::uint32_t k = code.tbegin; k < code.tend; ++k) {
                             const std::size_t bit = std::size_t(targets_[k].bit);
-                            char b = bit < len ? v[len - 1 - bit] : (v[0] == '1' ? '0' : v[0]);
-                            if (b == '0' || b == '1')
-                                set(targets_[k].line, std::uint8_t(b - '0'), block);
+                            // Extended the VCD way: a known leading level by 0, else itself.
+                            const std::uint8_t lead = kStateLevel[static_cast<unsigned char>(v[0])];
+                            const std::uint8_t level =
+                                bit < len
+                                    ? kStateLevel[static_cast<unsigned char>(v[len - 1 - bit])]
+                                : lead <= 1 ? 0
+                                            : kKeepLevel;
+                            if (level <= 1) set(targets_[k].line, level, block);
                         }
                     }
                     break;
@@ -838,6 +895,8 @@ private:
     bool done_ = false;
     Tick start_ = 0, cur_ = 0, end_ = 0;
     int time_digits_ = 1;  // fastRun()'s loop: for times of this many digits
+    bool vivado_ = false;  // $version names Vivado
+    Tick first_step_ = 0;  // from the first timestamp to the second (0: none)
     // tokenise(): the piece's bytes not yet handed to pump() (piece_ set).
     bool piece_ = false;
     const char* piece_next_ = nullptr;

@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include "edit_distance.h"
 #include "event_pool.h"
 #include "event_window.h"
 #include "glitch_filter.h"
@@ -53,11 +54,29 @@ std::optional<LineRef> findSignal(const std::vector<SignalInfo>& sigs, const std
     return std::nullopt;
 }
 
-std::string signalList(const std::vector<SignalInfo>& sigs) {
+// The capture's signals for a message: all of a short list; of a long one (a simulator's
+// VCD may declare 10^5), the few closest to `wanted` and how many there are.
+std::string signalList(const std::vector<SignalInfo>& sigs, const std::string& wanted) {
+    constexpr std::size_t kAll = 24, kClosest = 8;
+    auto shown = [](const SignalInfo& s) {
+        return s.width > 1 ? fmt::format("{}[{}]", s.full_name, s.width) : s.full_name;
+    };
     std::vector<std::string> names;
-    for (const auto& s : sigs)
-        names.push_back(s.width > 1 ? fmt::format("{}[{}]", s.full_name, s.width) : s.full_name);
-    return names.empty() ? "none" : fmt::format("{}", fmt::join(names, ", "));
+    if (sigs.size() <= kAll) {
+        for (const auto& s : sigs)
+            names.push_back(shown(s));
+        return names.empty() ? "none" : fmt::format("{}", fmt::join(names, ", "));
+    }
+    std::vector<std::pair<std::size_t, std::size_t>> by_distance;  // (distance, index)
+    by_distance.reserve(sigs.size());
+    for (std::size_t i = 0; i < sigs.size(); ++i)
+        by_distance.emplace_back(
+            std::min(editDistance(sigs[i].name, wanted), editDistance(sigs[i].full_name, wanted)),
+            i);
+    std::partial_sort(by_distance.begin(), by_distance.begin() + kClosest, by_distance.end());
+    for (std::size_t k = 0; k < kClosest; ++k)
+        names.push_back(shown(sigs[by_distance[k].second]));
+    return fmt::format("{} in all; the closest: {}", sigs.size(), fmt::join(names, ", "));
 }
 
 OptionSpec glitchOption() {
@@ -66,6 +85,7 @@ OptionSpec glitchOption() {
     o.kind = OptionSpec::Kind::Float;
     o.default_value = "0";
     o.min = 0;
+    o.max = 1e9;  // one second: wider is no glitch, and its ticks must fit an Edge's time
     o.help = "ignore pulses shorter than this on every mapped line (ns)";
     return o;
 }
@@ -279,7 +299,13 @@ Session::Session(std::vector<DecoderRequest> requests, CaptureReader& reader, st
         slot.factory = f;
         slot.decoder = f->create(slot.options);
         if (glitch_ns > 0) {
-            Tick w = Tick(std::llround(reader.timebase().fromNs(glitch_ns)));
+            const double ticks = reader.timebase().fromNs(glitch_ns);
+            if (!(ticks < double(kMaxEdgeTick)))
+                throw InputError(
+                    fmt::format("decoder {}: option glitch_ns={}: more ticks than a "
+                                "capture time holds",
+                                info.id, glitch_ns));
+            Tick w = Tick(std::llround(ticks));
             if (w > 0) slot.glitch.emplace(w);
         }
 
@@ -306,9 +332,9 @@ Session::Session(std::vector<DecoderRequest> requests, CaptureReader& reader, st
                     const bool several = it->second.find(',') != std::string::npos &&
                                          it->second.find('=') != std::string::npos;
                     throw InputError(fmt::format(
-                        "decoder {}: --map {}={}: no such signal in the capture (signals: "
+                        "{}: decoder {}: --map {}={}: no such signal in the capture (signals: "
                         "{}){}",
-                        info.id, rs.name, it->second, signalList(sigs),
+                        facts_.file, info.id, rs.name, it->second, signalList(sigs, it->second),
                         several ? "; one --map per role: --map ROLE=SIGNAL --map ROLE=SIGNAL"
                                 : ""));
                 }
@@ -327,8 +353,8 @@ Session::Session(std::vector<DecoderRequest> requests, CaptureReader& reader, st
                 slot.role_line.push_back(-1);
                 if (rs.required)
                     throw InputError(fmt::format(
-                        "decoder {}: role '{}' is not bound: use --map {}=SIGNAL (signals: {})",
-                        info.id, rs.name, rs.name, signalList(sigs)));
+                        "{}: decoder {}: role '{}' is not bound: use --map {}=SIGNAL (signals: {})",
+                        facts_.file, info.id, rs.name, rs.name, signalList(sigs, rs.name)));
                 continue;
             }
             bound_refs.push_back(*ref);
@@ -355,8 +381,9 @@ Session::Session(std::vector<DecoderRequest> requests, CaptureReader& reader, st
                     any |= info.roles[r].name == name && slot.role_line[r] >= 0;
             if (!any)
                 throw InputError(
-                    fmt::format("decoder {}: bind at least one of the roles {} (signals: {})",
-                                info.id, fmt::join(info.need_one_of, ", "), signalList(sigs)));
+                    fmt::format("{}: decoder {}: bind at least one of the roles {} (signals: {})",
+                                facts_.file, info.id, fmt::join(info.need_one_of, ", "),
+                                signalList(sigs, info.need_one_of.front())));
         }
         facts_.protos.push_back(slot.instance);
         impl_->slots.push_back(std::move(slot));
@@ -515,6 +542,8 @@ void Session::run() {
     for (const auto& slot : im.slots)
         for (const auto& a : slot.decoder->advice())
             facts_.advice.push_back(slot.instance + ": " + a);
+    for (const auto& n : reader.notes())
+        facts_.advice.push_back(n);
     facts_.bytes = reader.bytesRead();
     for (auto* s : sinks_)
         s->end(facts_);

@@ -60,7 +60,7 @@ int runVerify(const DecodeArgs& args) {
         return any_error ? 2 : any_fail ? 1 : 0;
     } catch (const InputError& e) {
         std::fflush(stdout);
-        fmt::print(stderr, "decode verify: {}\n", e.what());
+        fmt::print(stderr, "decode verify: {}\n", oneLine(e.what()));
         return 2;
     }
 }
