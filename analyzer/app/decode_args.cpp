@@ -164,6 +164,22 @@ CaptureFacts decodeCapture(const std::string& path, const std::vector<DecoderReq
     return decodeCapture(path, requests, open, sinks, false, nullptr);
 }
 
+// The names the session may bind signals by (Session's findSignal): a wide VCD keeps
+// only these (OpenOptions::wanted_signals).
+std::vector<std::string> wantedSignals(const std::vector<DecoderRequest>& requests) {
+    std::vector<std::string> names;
+    for (const auto& req : requests) {
+        for (const auto& [role, ref] : req.map)
+            names.push_back(ref);
+        if (const DecoderFactory* f = Registry::instance().find(req.proto))
+            for (const auto& r : f->info().roles) {
+                names.push_back(r.name);
+                names.insert(names.end(), r.aliases.begin(), r.aliases.end());
+            }
+    }
+    return names;
+}
+
 CaptureFacts decodeCapture(const std::string& path, const std::vector<DecoderRequest>& requests,
                            const OpenOptions& open, const std::vector<OutputSink*>& sinks,
                            bool realtime, const std::atomic<bool>* stop) {
@@ -172,15 +188,17 @@ CaptureFacts decodeCapture(const std::string& path, const std::vector<DecoderReq
     // file read to its end, never waiting for input, is handed over a few blocks at a
     // time: one whose size the reader knows (a regular file; a pipe's is unknown), not
     // followed.
-    std::unique_ptr<CaptureReader> reader = openCapture(path, open);
-    if (open.read_ahead && !reader->readsAhead()) {
-        const bool whole_file = !open.follow && reader->bytesTotal() > 0;
+    OpenOptions opened = open;
+    if (opened.wanted_signals.empty()) opened.wanted_signals = wantedSignals(requests);
+    std::unique_ptr<CaptureReader> reader = openCapture(path, opened);
+    if (opened.read_ahead && !reader->readsAhead()) {
+        const bool whole_file = !opened.follow && reader->bytesTotal() > 0;
         reader =
             prefetchReader(std::move(reader), kReadAheadBlocks, whole_file ? kWholeFileBatch : 1);
     }
     if (realtime) reader = std::make_unique<PacedReader>(std::move(reader));
     Session session(requests, *reader, path);
-    session.setPieceSpeculation(open.decode_ahead);
+    session.setPieceSpeculation(opened.decode_ahead);
     if (stop) session.setStopFlag(stop);
     for (auto* s : sinks)
         session.addSink(s);

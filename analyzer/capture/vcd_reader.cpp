@@ -22,10 +22,13 @@
 //   startTick is the first timestamp, endTick the last one.
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <charconv>
 #include <cstring>
+#include <memory>
 #include <string>
 #include <unordered_map>
+#include <unordered_set>
 #include <utility>
 #include <vector>
 
@@ -169,14 +172,19 @@ public:
     std::uint64_t bytesTotal() const override { return src_->bytesTotal(); }
     bool changesOnly() const override { return true; }  // see set()
     std::vector<std::string> notes() const override {
+        std::vector<std::string> out;
+        if (kept_only_)
+            out.push_back(
+                fmt::format("{} signals declared: only the {} that --map or a role names were kept",
+                            declared_, signals_.size()));
         // Vivado's hardware ILA: sample indices as 1 ps times (a simulation at 1 ps steps
         // further apart); without --rate every duration is off by the sample period.
         if (vivado_ && tb_.num == 1 && tb_.den == 1'000'000'000'000 && opts_.rate_hz <= 0 &&
             first_step_ > 0 && first_step_ < 1000)
-            return {
+            out.push_back(
                 "times look like Vivado ILA sample indices under $timescale 1ps: give the "
-                "sample clock with --rate HZ for real times"};
-        return {};
+                "sample clock with --rate HZ for real times");
+        return out;
     }
 
     // ---- pieces, for SegmentedVcdReader (vcd_tokeniser.h) ----------------------
@@ -250,6 +258,8 @@ private:
           short1_(o.short1_),
           short2_(o.short2_),
           long_(o.long_),
+          unkept_ids_(o.unkept_ids_),
+          unkept_code_(o.unkept_code_),
           start_(o.start_),
           time_digits_(o.time_digits_),
           vivado_(o.vivado_),
@@ -362,6 +372,10 @@ private:
             const std::uint64_t line = src_->lineNo();
             if (tok == "$enddefinitions") {
                 blockTokens(tok, line);
+                std::sort(unkept_ids_->begin(), unkept_ids_->end());
+                unkept_ids_->erase(std::unique(unkept_ids_->begin(), unkept_ids_->end()),
+                                   unkept_ids_->end());
+                unkept_ids_->shrink_to_fit();
                 if (opts_.rate_hz > 0) rateOverridesTimescale();
                 break;
             } else if (tok == "$timescale") {
@@ -442,8 +456,10 @@ private:
         full += ref;
 
         const std::string& id = t[2];
+        ++declared_;
+        if (kept_only_ && !wanted(ref, full)) return unkept(id);
         int code = lookup(id.data(), id.size());
-        if (code < 0) {
+        if (code < 0 || code == unkept_code_) {
             code = int(codes_.size());
             Code c;
             c.width = width;
@@ -460,7 +476,57 @@ private:
         }
         sig_code_.push_back(code);
         signals_.push_back({ref, full, width});
+        if (!kept_only_ && signals_.size() > kKeepAllSignals && !opts_.wanted_signals.empty())
+            keepOnlyWanted();
     }
+
+    // ---- wide headers: memory bounded by what is mapped ----------------------------
+
+    // Past kKeepAllSignals declarations, the signals a decode cannot bind (no --map value,
+    // role name or alias names them) are dropped; their identifiers are still known, so
+    // their changes are skipped, not refused: a short one's code is unkept_code_, a long
+    // one leaves only its hash in unkept_ids_ (8 bytes).
+    static constexpr std::size_t kKeepAllSignals = std::size_t(1) << 16;
+
+    bool wanted(const std::string& name, const std::string& full) const {
+        return wanted_.count(lowerCase(name)) != 0 || wanted_.count(lowerCase(full)) != 0;
+    }
+    static std::string lowerCase(std::string s) {
+        for (auto& c : s)
+            c = char(std::tolower(static_cast<unsigned char>(c)));
+        return s;
+    }
+    void keepOnlyWanted() {
+        kept_only_ = true;
+        for (const auto& w : opts_.wanted_signals) {
+            wanted_.insert(lowerCase(w));
+            if (const auto lb = w.rfind('['); lb != std::string::npos && lb > 0 && w.back() == ']')
+                wanted_.insert(lowerCase(w.substr(0, lb)));  // a bit of a vector
+        }
+        unkept_code_ = int(codes_.size());
+        codes_.push_back(Code{});
+        std::vector<SignalInfo> kept;
+        std::vector<int> kept_code;
+        for (std::size_t i = 0; i < signals_.size(); ++i)
+            if (wanted(signals_[i].name, signals_[i].full_name)) {
+                kept.push_back(std::move(signals_[i]));
+                kept_code.push_back(sig_code_[i]);
+            }
+        signals_ = std::move(kept);
+        sig_code_ = std::move(kept_code);
+    }
+    void unkept(const std::string& id) {
+        const auto* u = reinterpret_cast<const unsigned char*>(id.data());
+        if (id.size() == 1 && unsigned(u[0] - 33) < 94) {
+            if (short1_[u[0] - 33] < 0) short1_[u[0] - 33] = unkept_code_;
+        } else if (id.size() == 2 && unsigned(u[0] - 33) < 94 && unsigned(u[1] - 33) < 94) {
+            int& c = short2_[(u[0] - 33) * 94 + (u[1] - 33)];
+            if (c < 0) c = unkept_code_;
+        } else if (long_.find(std::string_view(id)) == long_.end()) {
+            unkept_ids_->push_back(idHash(id));
+        }
+    }
+    static std::uint64_t idHash(std::string_view id) { return std::hash<std::string_view>{}(id); }
 
     [[gnu::always_inline]] int lookup(const char* s, std::size_t n) const {
         const auto* u = reinterpret_cast<const unsigned char*>(s);
@@ -471,9 +537,13 @@ private:
             unsigned i = unsigned(u[0]) - 33, j = unsigned(u[1]) - 33;
             if (i < 94 && j < 94) return short2_[i * 94 + j];
         }
-        if (long_.empty()) return -1;
+        if (long_.empty() && unkept_ids_->empty()) return -1;
         auto it = long_.find(std::string_view(s, n));
-        return it == long_.end() ? -1 : it->second;
+        if (it != long_.end()) return it->second;
+        if (!unkept_ids_->empty() && std::binary_search(unkept_ids_->begin(), unkept_ids_->end(),
+                                                        idHash(std::string_view(s, n))))
+            return unkept_code_;
+        return -1;
     }
 
     // ---- value changes -------------------------------------------------------
@@ -881,6 +951,14 @@ private:
     // decoding thread writes shares a line with them (own_cache_lines.h).
     OwnLinesArray<std::int32_t> scalar1_, scalar2_;
     std::unordered_map<std::string, int, StringHash, std::equal_to<>> long_;
+    // keepOnlyWanted(): the long identifiers of dropped signals (hashes, sorted once the
+    // header ends; shared with clones), the code that stands for them all, the names kept.
+    std::shared_ptr<std::vector<std::uint64_t>> unkept_ids_ =
+        std::make_shared<std::vector<std::uint64_t>>();
+    int unkept_code_ = -1;
+    bool kept_only_ = false;
+    std::uint64_t declared_ = 0;
+    std::unordered_set<std::string> wanted_;
     OwnLinesArray<std::uint8_t> level_;  // written per edge, on the reading thread
 
     // The rest of the current line (header), or of the current run of lines.
