@@ -18,6 +18,7 @@
 #include "app/plugin_loader.h"
 #include "core/options.h"
 #include "core/registry.h"
+#include "core/sample_rate.h"
 #include "lcm/lcm_sink.h"
 #include "report/report_sink.h"
 #include "sinks/stream_sinks.h"
@@ -119,7 +120,7 @@ Parsed parse(const QStringList& argv, bool verify) {
     if (p.isSet(lcm))
         a.lcm_url = p.value(lcm) == "default" ? std::string() : p.value(lcm).toStdString();
     if (p.isSet(rate)) {
-        a.rate_hz = parseRateOption(p.value(rate).toStdString());
+        a.rate_hz = rateArgument("--rate", p.value(rate).toStdString());
     }
     a.follow = p.isSet(follow);
     a.realtime = p.isSet(realtime);

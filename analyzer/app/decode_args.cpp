@@ -7,9 +7,7 @@
 #include <fmt/ranges.h>
 
 #include "capture/prefetch_reader.h"
-#include "capture/readers.h"
 #include "core/registry.h"
-#include "core/sample_rate.h"
 #include "plugin_loader.h"
 
 namespace busdecode {
@@ -143,17 +141,6 @@ private:
 };
 
 }  // namespace
-
-double parseRateOption(const std::string& text) {
-    const auto r = parseNumber(text);
-    if (!r || *r <= 0)
-        throw InputError(
-            fmt::format("--rate {}: expected a positive number of Hz", printable(text)));
-    const SampleRate rate = sampleRateOf(*r);
-    if (!rate.timebase)
-        throw InputError(fmt::format("--rate {}: {}", printable(text), rate.problem));
-    return *r;
-}
 
 std::string hintLine(const std::string& capture, const std::string& hint) {
     return fmt::format("decode: {}: hint: {}\n", oneLine(capture), oneLine(hint));

@@ -36,9 +36,6 @@ std::vector<DecoderRequest> buildRequests(const std::vector<std::string>& protos
                                           const std::vector<std::string>& maps,
                                           const std::vector<std::string>& opts);
 
-// --rate TEXT as Hz, range-checked (core/sample_rate.h); InputError naming --rate.
-double parseRateOption(const std::string& text);
-
 // A decoder's advice (CaptureFacts::advice) as a line for stderr (with --format jsonl and
 // verify, whose stdout has no room for it): "decode: CAPTURE: hint: TEXT\n".
 std::string hintLine(const std::string& capture, const std::string& hint);

@@ -482,11 +482,12 @@ private:
 
     // ---- wide headers: memory bounded by what is mapped ----------------------------
 
-    // Past kKeepAllSignals declarations, the signals a decode cannot bind (no --map value,
+    // Past kKeepAllSignals declarations (2^17: a simulator's 10^5 are still listed in
+    // messages), the signals a decode cannot bind (no --map value,
     // role name or alias names them) are dropped; their identifiers are still known, so
     // their changes are skipped, not refused: a short one's code is unkept_code_, a long
     // one leaves only its hash in unkept_ids_ (8 bytes).
-    static constexpr std::size_t kKeepAllSignals = std::size_t(1) << 16;
+    static constexpr std::size_t kKeepAllSignals = std::size_t(1) << 17;
 
     bool wanted(const std::string& name, const std::string& full) const {
         return wanted_.count(lowerCase(name)) != 0 || wanted_.count(lowerCase(full)) != 0;
@@ -678,6 +679,10 @@ private:
                         id = q;
                         q = tokenEnd(q);
                     }
+                    if (!std::strchr("01xXzZ", c) && lookup(id, std::size_t(q - id)) < 0)
+                        fail(fmt::format(  // "hello": a stray word, not h on 'ello'
+                            "expected a value change, #time or $keyword, found '{}'",
+                            printable(std::string_view(p_, std::size_t(tokenEnd(p_) - p_)))));
                     const Code& code = codeFor(id, q);
                     p_ = q;
                     const std::uint8_t level = kStateLevel[static_cast<unsigned char>(c)];

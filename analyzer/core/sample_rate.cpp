@@ -6,6 +6,8 @@
 
 #include <fmt/format.h>
 
+#include "options.h"
+
 namespace busdecode {
 
 namespace {
@@ -114,6 +116,15 @@ SampleRate sampleRateOf(double hz) {
     auto [end, ec] = std::to_chars(buf, buf + sizeof buf, hz);  // shortest round trip
     if (ec != std::errc()) return {std::nullopt, "is not a number of Hz"};
     return parseSampleRate(std::string_view(buf, std::size_t(end - buf)), false);
+}
+
+double rateArgument(const std::string& option, const std::string& text) {
+    const auto hz = parseNumber(text);
+    if (!hz || *hz <= 0)
+        throw InputError(fmt::format("{} {}: expected a positive number of Hz", option, text));
+    const SampleRate rate = sampleRateOf(*hz);
+    if (!rate.timebase) throw InputError(fmt::format("{} {}: {}", option, text, rate.problem));
+    return *hz;
 }
 
 }  // namespace busdecode

@@ -1,4 +1,4 @@
-// Costs bounded by what is mapped: a VCD declaring more than 2^16 signals keeps only the
+// Costs bounded by what is mapped: a VCD declaring more than 2^17 signals keeps only the
 // ones a decode can bind (their changes still read right, the others' skipped, an
 // undeclared identifier still refused); a CSV header of 10^5 columns is checked in linear
 // time. The time and memory figures are benchmark notes (bench/hostile_headers.py), not
@@ -23,17 +23,17 @@ std::string wideVcd(int n, const std::string& extra = "") {
         v += "$var wire 1 i" + std::to_string(i) + " s" + std::to_string(i) + " $end\n";
     v += "$var wire 1 # late $end\n";  // a short identifier declared past the limit
     v += "$upscope $end\n$enddefinitions $end\n#0\n1!\n1\"\n0i7\n";
-    v += "#10\n0!\n1i70000\n0#\n#20\n0\"\n1i3\n#30\n1!\n1\"\n" + extra;
+    v += "#10\n0!\n1i140000\n0#\n#20\n0\"\n1i3\n#30\n1!\n1\"\n" + extra;
     return v;
 }
 
 TEST(BoundedCost, WideVcdKeepsOnlyTheSignalsADecodeCanBind) {
-    const auto p = caseFile("wide.vcd", wideVcd(70'001));
+    const auto p = caseFile("wide.vcd", wideVcd(140'001));
     OpenOptions o;
     o.read_ahead = false;
     o.wanted_signals = {"s0", "S1", "clk"};
     auto r = openCapture(p, o);
-    ASSERT_EQ(r->signals().size(), 2u);  // 70,002 declared
+    ASSERT_EQ(r->signals().size(), 2u);  // 140,002 declared
     EXPECT_EQ(r->signals()[0].full_name, "top.s0");
     EXPECT_EQ(r->signals()[1].full_name, "top.s1");
     r->select({{0, -1}, {1, -1}});
@@ -48,7 +48,7 @@ TEST(BoundedCost, WideVcdKeepsOnlyTheSignalsADecodeCanBind) {
     EXPECT_EQ(got, want);
     ASSERT_EQ(r->notes().size(), 1u);
     EXPECT_EQ(r->notes()[0],
-              "70002 signals declared: only the 2 that --map or a role names "
+              "140002 signals declared: only the 2 that --map or a role names "
               "were kept");
 }
 
@@ -61,17 +61,17 @@ TEST(BoundedCost, NarrowVcdKeepsEverySignal) {
 }
 
 TEST(BoundedCost, WideVcdStillRefusesAnUndeclaredIdentifier) {
-    const auto p = caseFile("wide_bad.vcd", wideVcd(70'001, "#40\n1nosuch\n"));
+    const auto p = caseFile("wide_bad.vcd", wideVcd(140'001, "#40\n1nosuch\n"));
     const std::string err = oneLineFailure({p, "--proto", "uart", "--map", "rx=s0"});
     EXPECT_NE(err.find("value change for undeclared identifier 'nosuch'"), std::string::npos)
         << err;
 }
 
 TEST(BoundedCost, WideVcdDecodesThroughTheCli) {
-    const auto p = caseFile("wide_cli.vcd", wideVcd(70'001));
+    const auto p = caseFile("wide_cli.vcd", wideVcd(140'001));
     const RunResult r = runDecode({p, "--proto", "uart", "--map", "rx=s0", "--map", "tx=s1"});
     EXPECT_EQ(r.status, 0) << r.err;
-    EXPECT_NE(r.out.find("# hint: 70002 signals declared: only the 2 that --map or a role names "
+    EXPECT_NE(r.out.find("# hint: 140002 signals declared: only the 2 that --map or a role names "
                          "were kept"),
               std::string::npos)
         << r.out.substr(0, 2000);

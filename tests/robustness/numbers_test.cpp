@@ -6,6 +6,7 @@
 
 #include "capture/capture_reader.h"
 #include "core/sample_rate.h"
+#include "fuzz_harness.h"
 #include "robustness_cli.h"
 
 using namespace busdecode;
@@ -96,6 +97,21 @@ TEST(Numbers, CsvTimesWithPlusExponent) {
     ASSERT_EQ(times.size(), 2u);
     EXPECT_EQ(r->timebase().toNs(times[0]), 1'500'000'000);
     EXPECT_EQ(r->timebase().toNs(times[1]), 3'000'000'000);
+}
+
+}  // namespace
+
+namespace {
+
+// The cli_args fuzz target's seeds (fuzz/seeds/cli_args) through its harness: the out of
+// range numbers refused the documented way, nothing else thrown.
+TEST(Numbers, CliArgsFuzzSeedsPassTheHarness) {
+    for (const char* seed : {"out_of_range", "spi_rate", "two_decoders", "tmc"}) {
+        const std::string bytes = readFile(sourceDir() + "/fuzz/seeds/cli_args/" + seed);
+        EXPECT_NO_THROW(busdecode::fuzz::runTarget(
+            "cli_args", reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size()))
+            << seed;
+    }
 }
 
 }  // namespace
