@@ -1,12 +1,8 @@
 #include "decode_args.h"
 
-#include <chrono>
-#include <thread>
-
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
-#include "capture/prefetch_reader.h"
 #include "core/registry.h"
 #include "plugin_loader.h"
 
@@ -105,92 +101,8 @@ std::vector<DecoderRequest> buildRequests(const std::vector<std::string>& protos
     return reqs;
 }
 
-namespace {
-
-// --realtime: hands out blocks no faster than the capture's own time runs.
-class PacedReader : public CaptureReader {
-public:
-    explicit PacedReader(std::unique_ptr<CaptureReader> inner) : in_(std::move(inner)) {}
-    const std::vector<SignalInfo>& signals() const override { return in_->signals(); }
-    Timebase timebase() const override { return in_->timebase(); }
-    std::string formatName() const override { return in_->formatName(); }
-    void select(const std::vector<LineRef>& l) override { in_->select(l); }
-    std::vector<std::uint8_t> initialLevels() override {
-        auto v = in_->initialLevels();
-        t0_ = std::chrono::steady_clock::now();
-        return v;
-    }
-    Tick startTick() const override { return in_->startTick(); }
-    bool next(EdgeBlock& b) override {
-        if (!in_->next(b)) return false;
-        Tick last = b.edges.empty() ? b.known_until : b.edges.back().t;
-        if (last != kNoTick) {
-            const double s = double(last - in_->startTick()) * in_->timebase().secondsPerTick();
-            std::this_thread::sleep_until(t0_ + std::chrono::duration<double>(s));
-        }
-        return true;
-    }
-    std::vector<std::string> notes() const override { return in_->notes(); }
-    Tick endTick() const override { return in_->endTick(); }
-    std::uint64_t bytesRead() const override { return in_->bytesRead(); }
-    std::uint64_t bytesTotal() const override { return in_->bytesTotal(); }
-
-private:
-    std::unique_ptr<CaptureReader> in_;
-    std::chrono::steady_clock::time_point t0_;
-};
-
-}  // namespace
-
 std::string hintLine(const std::string& capture, const std::string& hint) {
     return fmt::format("decode: {}: hint: {}\n", oneLine(capture), oneLine(hint));
-}
-
-CaptureFacts decodeCapture(const std::string& path, const std::vector<DecoderRequest>& requests,
-                           const OpenOptions& open, const std::vector<OutputSink*>& sinks) {
-    return decodeCapture(path, requests, open, sinks, false, nullptr);
-}
-
-// The names the session may bind signals by (Session's findSignal): a wide VCD keeps
-// only these (OpenOptions::wanted_signals).
-std::vector<std::string> wantedSignals(const std::vector<DecoderRequest>& requests) {
-    std::vector<std::string> names;
-    for (const auto& req : requests) {
-        for (const auto& [role, ref] : req.map)
-            names.push_back(ref);
-        if (const DecoderFactory* f = Registry::instance().find(req.proto))
-            for (const auto& r : f->info().roles) {
-                names.push_back(r.name);
-                names.insert(names.end(), r.aliases.begin(), r.aliases.end());
-            }
-    }
-    return names;
-}
-
-CaptureFacts decodeCapture(const std::string& path, const std::vector<DecoderRequest>& requests,
-                           const OpenOptions& open, const std::vector<OutputSink*>& sinks,
-                           bool realtime, const std::atomic<bool>* stop) {
-    // Read ahead on a second thread while this one decodes (two cores, pipelined), unless
-    // told to keep to one (--threads 1: several decodes side by side, one core each). A
-    // file read to its end, never waiting for input, is handed over a few blocks at a
-    // time: one whose size the reader knows (a regular file; a pipe's is unknown), not
-    // followed.
-    OpenOptions opened = open;
-    if (opened.wanted_signals.empty()) opened.wanted_signals = wantedSignals(requests);
-    std::unique_ptr<CaptureReader> reader = openCapture(path, opened);
-    if (opened.read_ahead && !reader->readsAhead()) {
-        const bool whole_file = !opened.follow && reader->bytesTotal() > 0;
-        reader =
-            prefetchReader(std::move(reader), kReadAheadBlocks, whole_file ? kWholeFileBatch : 1);
-    }
-    if (realtime) reader = std::make_unique<PacedReader>(std::move(reader));
-    Session session(requests, *reader, path);
-    session.setPieceSpeculation(opened.decode_ahead);
-    if (stop) session.setStopFlag(stop);
-    for (auto* s : sinks)
-        session.addSink(s);
-    session.run();
-    return session.facts();
 }
 
 }  // namespace busdecode

@@ -26,6 +26,34 @@ std::string printable(std::string_view s, std::size_t max) {
     return out;
 }
 
+std::int64_t parseRateHz(std::string_view text) {
+    auto isSp = [](char c) { return c == ' ' || c == '\t' || c == '\r'; };
+    while (!text.empty() && isSp(text.front()))
+        text.remove_prefix(1);
+    while (!text.empty() && isSp(text.back()))
+        text.remove_suffix(1);
+    std::size_t i = 0;
+    while (i < text.size() && ((text[i] >= '0' && text[i] <= '9') || text[i] == '.'))
+        ++i;
+    if (i == 0) return 0;
+    const double v = std::strtod(std::string(text.substr(0, i)).c_str(), nullptr);
+    std::string unit;
+    for (char c : text.substr(i))
+        if (!isSp(c)) unit += char(std::tolower(static_cast<unsigned char>(c)));
+    double mul = 0;
+    if (unit.empty() || unit == "hz")
+        mul = 1;
+    else if (unit == "khz")
+        mul = 1e3;
+    else if (unit == "mhz")
+        mul = 1e6;
+    else if (unit == "ghz")
+        mul = 1e9;
+    const double hz = v * mul;
+    if (!(hz >= 1) || hz > 1e15) return 0;
+    return std::int64_t(std::llround(hz));
+}
+
 namespace {
 
 bool looksBinary(std::string_view head) {
@@ -69,6 +97,7 @@ std::unique_ptr<CaptureReader> openCapture(const std::string& path, const OpenOp
         }
         const std::string name = src->name();
         src.reset();
+        if (auto analog = openSrAnalogIfAnalog(path, name, opts)) return analog;
         return openSr(path, -1, name, opts);
     }
     std::string_view text = head;
@@ -82,6 +111,7 @@ std::unique_ptr<CaptureReader> openCapture(const std::string& path, const OpenOp
             src->name() +
             ": unknown format: binary data that is neither VCD, CSV nor a sigrok .sr session");
     if (!text.empty() && text.front() == '$') return openVcd(std::move(src), opts);
+    if (auto scope = openScopeCsvIfScope(src, opts)) return scope;
     return openCsv(std::move(src), opts);
 }
 

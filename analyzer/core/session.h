@@ -66,6 +66,9 @@ public:
     void requestStop();
     // An external flag (set from a SIGINT handler) checked between blocks as well.
     void setStopFlag(const std::atomic<bool>* flag);
+    // A stop then makes run() throw Interrupted (core/interrupted.h) without ending the
+    // sinks: for a capture read to its end, whose part is not the whole.
+    void abandonWhenStopped();
     const CaptureFacts& facts() const { return facts_; }
     // Decoding pieces of the capture ahead on the reader's threads (piece_speculation.h),
     // where the reader cuts the file in pieces and the one decoder can be spliced. On by
@@ -81,6 +84,13 @@ public:
     struct Impl;
 
 private:
+    // run()'s steps.
+    void startDecoders();
+    // Decodes one block read, `before` edges before it; returns the edges so far.
+    std::uint64_t decodeBlock(EdgeBlock& block, std::uint64_t before);
+    void endParallelPath();
+    void finishDecoders();
+
     std::unique_ptr<Impl> impl_;
     std::vector<OutputSink*> sinks_;
     CaptureFacts facts_;
