@@ -22,6 +22,7 @@
 #include "core/interrupted.h"
 #include "core/options.h"
 #include "core/registry.h"
+#include "core/sample_rate.h"
 #include "lcm/lcm_sink.h"
 #include "lcm/monitor.h"
 #include "report/report_sink.h"
@@ -123,11 +124,7 @@ Parsed parse(const QStringList& argv, bool verify) {
     if (p.isSet(lcm))
         a.lcm_url = p.value(lcm) == "default" ? std::string() : p.value(lcm).toStdString();
     if (p.isSet(rate)) {
-        auto r = parseNumber(p.value(rate).toStdString());
-        if (!r || *r <= 0)
-            throw InputError(fmt::format("--rate {}: expected a positive number of Hz",
-                                         p.value(rate).toStdString()));
-        a.rate_hz = *r;
+        a.rate_hz = rateArgument("--rate", p.value(rate).toStdString());
     }
     for (const auto& t : toStd(p.values(threshold)))
         a.thresholds.push_back(parseThresholdOption(t));
@@ -202,11 +199,11 @@ int runDecode(const DecodeArgs& a) {
     return 0;
 }
 
-// "decode: FILE: interrupted at byte N of M (SIGINT); no report written"
+// "decode: FILE: interrupted, after reading N of M bytes (SIGINT); nothing written to the
+// report"
 std::string interruptionLine(const std::string& what, const DecodeArgs& a) {
-    const bool outputs = !a.report.empty() || !a.junit.empty();
     return fmt::format("decode: {} ({}){}\n", what, interruptingSignalName(),
-                       outputs ? "; nothing written to the report" : "");
+                       a.report.empty() ? "" : "; nothing written to the report");
 }
 
 int run(int argc, char** argv, DecodeArgs& args) {
@@ -255,10 +252,10 @@ int runCli(int argc, char** argv) {
         std::fflush(stdout);
         // Interrupted while opening or reading: the error is the interruption's doing.
         if (interrupted()) {
-            printError(interruptionLine(fmt::format("interrupted: {}", e.what()), args));
+            printError(interruptionLine(fmt::format("interrupted: {}", oneLine(e.what())), args));
             return interruptedStatus();
         }
-        printError(fmt::format("decode: {}\n", e.what()));
+        printError(fmt::format("decode: {}\n", oneLine(e.what())));
         return 2;
     } catch (const std::system_error& e) {
         // fmt::print's, writing help or the decoder list to a stdout that fails.
@@ -268,7 +265,7 @@ int runCli(int argc, char** argv) {
         return 2;
     } catch (const std::exception& e) {
         std::fflush(stdout);
-        printError(fmt::format("decode: internal error: {}\n", e.what()));
+        printError(fmt::format("decode: internal error: {}\n", oneLine(e.what())));
         return 2;
     }
     return standardErrorFailed() && status == 0 ? 2 : status;

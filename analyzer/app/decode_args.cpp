@@ -102,7 +102,7 @@ std::vector<DecoderRequest> buildRequests(const std::vector<std::string>& protos
 }
 
 std::string hintLine(const std::string& capture, const std::string& hint) {
-    return fmt::format("decode: {}: hint: {}\n", capture, hint);
+    return fmt::format("decode: {}: hint: {}\n", oneLine(capture), oneLine(hint));
 }
 
 }  // namespace busdecode

@@ -4,6 +4,7 @@
 
 #include "capture/differential_pairs.h"
 #include "capture/prefetch_reader.h"
+#include "core/registry.h"
 #include "paced_reader.h"
 
 namespace busdecode {
@@ -12,6 +13,29 @@ CaptureFacts decodeCapture(const std::string& path, const std::vector<DecoderReq
                            const OpenOptions& open, const std::vector<OutputSink*>& sinks) {
     return decodeCapture(path, requests, open, sinks, false, nullptr);
 }
+
+namespace {
+
+// The names the session may bind signals by (Session's findSignal): a wide VCD keeps
+// only these (OpenOptions::wanted_signals).
+std::vector<std::string> wantedSignals(const std::vector<DecoderRequest>& requests) {
+    std::vector<std::string> names;
+    for (const auto& req : requests) {
+        for (const auto& [role, ref] : req.map) {
+            names.push_back(ref);
+            std::string wire_p, wire_n;  // a differential pair's wires
+            if (splitPair(ref, wire_p, wire_n)) names.insert(names.end(), {wire_p, wire_n});
+        }
+        if (const DecoderFactory* f = Registry::instance().find(req.proto))
+            for (const auto& r : f->info().roles) {
+                names.push_back(r.name);
+                names.insert(names.end(), r.aliases.begin(), r.aliases.end());
+            }
+    }
+    return names;
+}
+
+}  // namespace
 
 CaptureFacts decodeCapture(const std::string& path, const std::vector<DecoderRequest>& requests,
                            const OpenOptions& open, const std::vector<OutputSink*>& sinks,
@@ -23,6 +47,7 @@ CaptureFacts decodeCapture(const std::string& path, const std::vector<DecoderReq
     // followed.
     // Differential pairs named in --map ("MA+,MA-") become signals of the capture.
     OpenOptions with_pairs = open;
+    if (with_pairs.wanted_signals.empty()) with_pairs.wanted_signals = wantedSignals(requests);
     std::string wire_p, wire_n;
     for (const auto& r : requests)
         for (const auto& [role, signal] : r.map)

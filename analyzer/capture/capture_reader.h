@@ -83,6 +83,10 @@ struct OpenOptions {
     // defaults there. Tests and the vcd_pieces fuzz target cut files finer.
     std::uint64_t vcd_piece_bytes = 0;
     std::uint64_t vcd_boundary_search = 0;
+    // The names a decode may look signals up by (--map values, the decoders' role names
+    // and aliases; case-insensitive). A VCD declaring more than kKeepAllSignals keeps only
+    // the signals named so (memory bounded by what is mapped); empty: keep every signal.
+    std::vector<std::string> wanted_signals;
     // Set (e.g. by Ctrl-C) to make a following reader return at its next poll.
     const std::atomic<bool>* stop = nullptr;
     // Analog lines (scope captures): --threshold VOLTS for every line ("" signal) or

@@ -111,6 +111,7 @@ public:
             handing_ = 0;
         }
     }
+    std::vector<std::string> notes() const override { return vcd_->notes(); }
     Tick endTick() const override { return sequential_ ? vcd_->endTick() : end_; }
     std::uint64_t bytesRead() const override {
         return sequential_ ? vcd_->bytesRead() : expected_begin_;

@@ -11,6 +11,7 @@
 #include <fmt/ranges.h>
 
 #include "block_decoding.h"
+#include "edit_distance.h"
 #include "event_pool.h"
 #include "event_window.h"
 #include "glitch_filter.h"
@@ -56,15 +57,34 @@ std::optional<LineRef> findSignal(const std::vector<SignalInfo>& sigs, const std
     return std::nullopt;
 }
 
-std::string signalList(const std::vector<SignalInfo>& sigs) {
+// The capture's signals for a message: all of a short list; of a long one (a simulator's
+// VCD may declare 10^5), the few closest to `wanted` and how many there are.
+std::string signalList(const std::vector<SignalInfo>& sigs, const std::string& wanted) {
+    constexpr std::size_t kAll = 24, kClosest = 8;
+    auto shown = [](const SignalInfo& s) {
+        return s.width > 1 ? fmt::format("{}[{}]", s.full_name, s.width) : s.full_name;
+    };
     std::vector<std::string> names;
-    for (const auto& s : sigs)
-        names.push_back(s.width > 1 ? fmt::format("{}[{}]", s.full_name, s.width) : s.full_name);
-    return names.empty() ? "none" : fmt::format("{}", fmt::join(names, ", "));
+    if (sigs.size() <= kAll) {
+        for (const auto& s : sigs)
+            names.push_back(shown(s));
+        return names.empty() ? "none" : fmt::format("{}", fmt::join(names, ", "));
+    }
+    std::vector<std::pair<std::size_t, std::size_t>> by_distance;  // (distance, index)
+    by_distance.reserve(sigs.size());
+    for (std::size_t i = 0; i < sigs.size(); ++i)
+        by_distance.emplace_back(
+            std::min(editDistance(sigs[i].name, wanted), editDistance(sigs[i].full_name, wanted)),
+            i);
+    std::partial_sort(by_distance.begin(), by_distance.begin() + kClosest, by_distance.end());
+    for (std::size_t k = 0; k < kClosest; ++k)
+        names.push_back(shown(sigs[by_distance[k].second]));
+    return fmt::format("{} in all; the closest: {}", sigs.size(), fmt::join(names, ", "));
 }
 
 OptionSpec glitchOption() {
-    return numberOption("glitch_ns", "0", 0, 1e300,
+    // At most one second: wider is no glitch, and its ticks must fit an Edge's time.
+    return numberOption("glitch_ns", "0", 0, 1e9,
                         "ignore pulses shorter than this on every mapped line (ns)");
 }
 
@@ -247,7 +267,12 @@ struct Session::Impl : EventSink {
         slot.factory = f;
         slot.decoder = f->create(slot.options);
         if (glitch_ns > 0) {
-            Tick w = Tick(std::llround(reader->timebase().fromNs(glitch_ns)));
+            const double ticks = reader->timebase().fromNs(glitch_ns);
+            if (!(ticks < double(kMaxEdgeTick)))
+                throw InputError(fmt::format(
+                    "decoder {}: option glitch_ns={}: more ticks than a capture time holds",
+                    info.id, glitch_ns));
+            Tick w = Tick(std::llround(ticks));
             if (w > 0) slot.glitch.emplace(w);
         }
         return slot;
@@ -264,8 +289,9 @@ struct Session::Impl : EventSink {
                 slot.role_line.push_back(-1);
                 if (rs.required)
                     throw InputError(fmt::format(
-                        "decoder {}: role '{}' is not bound: use --map {}=SIGNAL (signals: {})",
-                        info.id, rs.name, rs.name, signalList(reader->signals())));
+                        "{}: decoder {}: role '{}' is not bound: use --map {}=SIGNAL (signals: {})",
+                        facts->file, info.id, rs.name, rs.name,
+                        signalList(reader->signals(), rs.name)));
                 continue;
             }
             bound_refs.push_back(*ref);
@@ -305,8 +331,8 @@ struct Session::Impl : EventSink {
             const bool several = it->second.find(',') != std::string::npos &&
                                  it->second.find('=') != std::string::npos;
             throw InputError(fmt::format(
-                "decoder {}: --map {}={}: no such signal in the capture (signals: {}){}", info.id,
-                rs.name, it->second, signalList(sigs),
+                "{}: decoder {}: --map {}={}: no such signal in the capture (signals: {}){}",
+                facts->file, info.id, rs.name, it->second, signalList(sigs, it->second),
                 several ? "; one --map per role: --map ROLE=SIGNAL --map ROLE=SIGNAL" : ""));
         }
         std::vector<std::string> names = {rs.name};
@@ -329,8 +355,9 @@ struct Session::Impl : EventSink {
                 any |= info.roles[r].name == name && role_line[r] >= 0;
         if (!any)
             throw InputError(
-                fmt::format("decoder {}: bind at least one of the roles {} (signals: {})", info.id,
-                            fmt::join(info.need_one_of, ", "), signalList(reader->signals())));
+                fmt::format("{}: decoder {}: bind at least one of the roles {} (signals: {})",
+                            facts->file, info.id, fmt::join(info.need_one_of, ", "),
+                            signalList(reader->signals(), info.need_one_of.front())));
     }
 
     // The selected line of `ref`, selected now if no decoder has it yet.

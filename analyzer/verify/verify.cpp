@@ -87,7 +87,7 @@ int runVerify(const DecodeArgs& args) {
         return any_error ? 2 : any_fail ? 1 : 0;
     } catch (const InputError& e) {
         std::fflush(stdout);
-        printError(fmt::format("decode verify: {}\n", e.what()));
+        printError(fmt::format("decode verify: {}\n", oneLine(e.what())));
         return 2;
     }
 }

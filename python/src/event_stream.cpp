@@ -57,7 +57,8 @@ void EventStream::run(DecodeJob job) {
         QueueSink sink(*this);
         decodeCapture(job.path, job.requests, job.open, {&sink}, job.realtime, &stop_);
     } catch (...) {
-        error = std::current_exception();
+        // Stopped on request, the decode may throw that it was cut short: no error then.
+        if (!stop_) error = std::current_exception();
     }
     std::lock_guard<std::mutex> lock(mu_);
     error_ = error;

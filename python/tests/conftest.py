@@ -45,9 +45,15 @@ def cli_args(capture, protos, opts=None, maps=None):
     return args
 
 
+def plain_env():
+    """The environment for programs other than Python: without the sanitizer runtimes
+    that a sanitizer build preloads into the interpreter (its own programs link them)."""
+    return {k: v for k, v in os.environ.items() if k != "LD_PRELOAD"}
+
+
 def run_cli(args):
     """(exit status, stdout, stderr) of `decode ARGS`."""
-    r = subprocess.run(args, capture_output=True, text=True, timeout=60)
+    r = subprocess.run(args, capture_output=True, text=True, timeout=60, env=plain_env())
     return r.returncode, r.stdout, r.stderr
 
 

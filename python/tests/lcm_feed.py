@@ -19,6 +19,9 @@ import threading
 import busdecode
 
 CLONE_NEWNET = 0x40000000
+# For the programs it runs: without the sanitizer runtimes a sanitizer build preloads
+# into the interpreter.
+PLAIN_ENV = {k: v for k, v in os.environ.items() if k != "LD_PRELOAD"}
 
 
 def private_network():
@@ -27,7 +30,7 @@ def private_network():
         return False
     for cmd in (["ip", "link", "set", "lo", "up", "multicast", "on"],
                 ["ip", "route", "add", "224.0.0.0/4", "dev", "lo"]):
-        subprocess.run(cmd, check=True)
+        subprocess.run(cmd, check=True, env=PLAIN_ENV)
     return True
 
 
@@ -46,7 +49,7 @@ def main():
     args = [decode, capture, "--lcm", url]
     for p in protos:
         args += ["--proto", p]
-    env = dict(os.environ, BUSDECODE_LCM_RATE="2000")
+    env = dict(PLAIN_ENV, BUSDECODE_LCM_RATE="2000")
     publisher = subprocess.Popen(args, stdout=subprocess.DEVNULL, env=env)
     got["all"] = list(every)
     reader.join()

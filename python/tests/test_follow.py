@@ -74,3 +74,4 @@ def test_close_from_another_thread_ends_a_waiting_follow(tmp_path):
     threading.Timer(0.5, events.close).start()
     got = list(events)  # waits for more input until closed
     assert 0 < len(got) < len(cli_events(CAPTURE, ["uart"]))
+

@@ -8,7 +8,7 @@ import sys
 
 import pytest
 
-from conftest import BIN, CAPTURES, cli_events
+from conftest import BIN, CAPTURES, cli_events, plain_env
 
 BUILD = BIN.parent
 CMAKE = os.environ.get("BUSDECODE_CMAKE", "cmake")
@@ -17,7 +17,7 @@ CMAKE = os.environ.get("BUSDECODE_CMAKE", "cmake")
 def test_the_installed_module_decodes_with_the_installed_plugins(tmp_path):
     prefix = tmp_path / "prefix"
     subprocess.run([CMAKE, "--install", str(BUILD), "--prefix", str(prefix)], check=True,
-                   capture_output=True)
+                   capture_output=True, env=plain_env())
     packages = list(prefix.glob("lib/python3*/dist-packages"))
     assert len(packages) == 1
     env = {k: v for k, v in os.environ.items() if k != "BUSDECODE_PLUGIN_PATH"}
