@@ -164,10 +164,11 @@ int runDecode(const DecodeArgs& a) {
         std::setvbuf(stdout, buffer, _IOFBF, sizeof buffer);
 
     std::unique_ptr<OutputSink> lcm;
-    if (a.lcm_url) lcm = makeLcmSink(*a.lcm_url);
+    if (a.lcm_url) lcm = makeLcmSink(*a.lcm_url, a.captures.size() > 1);
     for (const auto& capture : a.captures) {
         std::vector<std::unique_ptr<OutputSink>> owned;
-        owned.push_back(a.format == "jsonl" ? makeJsonlSink(stdout) : makeTextSink(stdout));
+        owned.push_back(a.format == "jsonl" ? makeJsonlSink(stdout, a.captures.size() > 1)
+                                            : makeTextSink(stdout));
         if (!a.report.empty()) {
             std::string path = a.report;
             if (a.captures.size() > 1) {

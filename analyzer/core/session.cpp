@@ -248,6 +248,7 @@ Session::Session(std::vector<DecoderRequest> requests, CaptureReader& reader, st
     impl_->facts = &facts_;
     facts_.file = std::move(file_name);
     facts_.format = reader.formatName();
+    facts_.capture_start = reader.wallClockStart();
     facts_.timebase = reader.timebase();
     if (requests.empty())
         throw InputError("no decoder chosen: use --proto NAME (see decode --list)");
@@ -346,7 +347,7 @@ Session::Session(std::vector<DecoderRequest> requests, CaptureReader& reader, st
             slot.role_line.push_back(line);
             std::string sname = sigs[ref->signal].full_name;
             if (ref->bit >= 0) sname += fmt::format("[{}]", ref->bit);
-            facts_.bindings.push_back({info.id, slot.instance, rs.name, sname});
+            facts_.bindings.push_back({info.id, slot.instance, rs.name, sname, line});
         }
         if (!info.need_one_of.empty()) {
             bool any = false;
@@ -359,6 +360,7 @@ Session::Session(std::vector<DecoderRequest> requests, CaptureReader& reader, st
                                 info.id, fmt::join(info.need_one_of, ", "), signalList(sigs)));
         }
         facts_.protos.push_back(slot.instance);
+        facts_.options[slot.instance] = slot.options.all();
         impl_->slots.push_back(std::move(slot));
     }
 
@@ -445,6 +447,9 @@ void Session::run() {
         }
     }
 
+    std::vector<OutputSink*> edge_sinks;
+    for (auto* s : sinks_)
+        if (s->wantsEdges()) edge_sinks.push_back(s);
     EdgeBlock block;
     block.edges.reserve(kEdgeBlockSize);
     const bool changes_only = reader.changesOnly();
@@ -461,6 +466,8 @@ void Session::run() {
                 kept[n++] = e;
             }
         }
+        for (auto* s : edge_sinks)
+            s->onEdges(kept, kept + n);
         const std::uint64_t before = edges;
         edges += n;
         bool advance = true;

@@ -3,16 +3,23 @@
 // line. Shared by the stdout sinks, the report, verify and the LCM annotation message,
 // so every output says exactly the same thing.
 #include <string>
+#include <string_view>
 
 #include "core/event.h"
 #include "core/session.h"
 
 namespace busdecode {
 
-// {"proto":..,"type":..,"start_ns":..,"end_ns":..,<fields in order>,"errors":[..]}
-std::string eventToJson(const Event& e, const Timebase& tb);
+// {"proto":..,"type":..,<capture fields>,"start_ns":..,"end_ns":..,<fields in order>,
+// "errors":[..]}; `capture_fields` is what captureJsonFields() made, or empty.
+std::string eventToJson(const Event& e, const Timebase& tb, std::string_view capture_fields = {});
 // The same appended to `out` (sinks reuse one buffer: no allocation per event).
-void appendEventJson(std::string& out, const Event& e, const Timebase& tb);
+void appendEventJson(std::string& out, const Event& e, const Timebase& tb,
+                     std::string_view capture_fields = {});
+// `,"capture":"a.vcd","capture_start":"2026-11-22T23:28:18"`: the capture an event came
+// from (when `name_capture`: several captures in one call) and its wall-clock start (when
+// the file gives one). Made once per capture (docs/contract-captures.md).
+std::string captureJsonFields(const CaptureFacts& facts, bool name_capture);
 // JSON text of one value (numbers as integers when integral, strings escaped).
 std::string valueToJson(const Value& v);
 // "   12.345678 ms  bissc  frame  pos=0x... crc ok  [crc, short_frame]"
