@@ -216,6 +216,7 @@ void SsiDecoder::close(bool capture_end) {
     }
 
     const SsiWord w = assembleWord(samples, cfg_);
+    noteRingWidth(samples, w);
     const SsiFields f = w.short_frame ? SsiFields{} : splitFields(w.raw, cfg_);
     pending_ = freshEvent();
     Event& e = *pending_;
@@ -407,7 +408,27 @@ void SsiDecoder::finish(Tick end) {
     idle();
 }
 
+void SsiDecoder::noteRingWidth(const std::vector<std::uint8_t>& samples, const SsiWord& w) {
+    // The first frames are enough to tell, and keep the search off long captures.
+    constexpr std::int64_t kFramesLooked = 64;
+    if (cfg_.lead || w.short_frame || ring_looked_ >= kFramesLooked) return;
+    const int n = ringWidth(samples, cfg_.ring_gap);
+    if (ring_looked_++ == 0) ring_first_raw_ = w.raw;
+    // A still encoder repeats a chance pattern in every frame: words that differ count.
+    ring_varied_ = ring_varied_ || w.raw != ring_first_raw_;
+    ring_width_ = ring_looked_ == 1 || ring_width_ == n ? n : 0;
+}
+
 std::vector<std::string> SsiDecoder::advice() const {
+    // Every frame looked at the same word again after `ring_width_` bits.
+    if (ring_varied_ && ring_width_ > 0 && ring_width_ < cfg_.bits)
+        return {fmt::format(
+            "every frame repeats a {}-bit word ({} zero bits between, the encoder's ring shift) "
+            "within bits={}: the words look {} bits long (--opt bits={}{})",
+            ring_width_, cfg_.ring_gap, cfg_.bits, ring_width_, ring_width_,
+            cfg_.st_bits + cfg_.mt_bits + cfg_.pos_shift <= ring_width_
+                ? ""
+                : ", with st_bits and mt_bits to fit")};
     // One short frame is a master that stopped early; all of them, each with the same
     // count, is a word of that length.
     if (frames_ < 2 || shorts_ != frames_ || short_bits_ <= 0) return {};

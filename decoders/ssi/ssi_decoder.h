@@ -14,6 +14,7 @@
 
 #include "core/decoder.h"
 #include "ssi_config.h"
+#include "ssi_word.h"
 
 namespace busdecode {
 
@@ -74,6 +75,12 @@ private:
     double clock_min_ = 0, clock_max_ = 0;
     std::int64_t frames_ = 0, mismatches_ = 0, shorts_ = 0, error_frames_ = 0;
     std::int64_t short_bits_ = -1;  // the bits every short frame had (-1: none, or they differ)
+    // The ring-shift width every frame looked at had (ringWidth(); 0: none, or they differ).
+    void noteRingWidth(const std::vector<std::uint8_t>& samples, const SsiWord& w);
+    std::int64_t ring_looked_ = 0;
+    int ring_width_ = 0;
+    std::uint64_t ring_first_raw_ = 0;
+    bool ring_varied_ = false;  // the frames looked at held different words
 };
 
 }  // namespace busdecode
