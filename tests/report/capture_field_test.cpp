@@ -63,14 +63,13 @@ TEST(CaptureField, OneCaptureKeepsItsLinesAsTheyWere) {
 
 TEST(CaptureField, SeveralCapturesNameTheirsAndTheirStart) {
     const std::string plain = ssiCapture(), dated = datedCopy(plain);
-    const auto r =
-        test::runDecode({plain, dated, "--proto", "ssi", "--format", "jsonl"});
+    const auto r = test::runDecode({plain, dated, "--proto", "ssi", "--format", "jsonl"});
     ASSERT_EQ(r.status, 0) << r.err;
     const auto out = lines(r.out);
     ASSERT_EQ(out.size() % 2, 0u);
     const std::size_t half = out.size() / 2;
-    const std::string first = "{\"proto\":\"ssi\",\"type\":\"frame\",\"capture\":\"" + plain +
-                              "\",\"start_ns\":";
+    const std::string first =
+        "{\"proto\":\"ssi\",\"type\":\"frame\",\"capture\":\"" + plain + "\",\"start_ns\":";
     const std::string second = "{\"proto\":\"ssi\",\"type\":\"frame\",\"capture\":\"" + dated +
                                "\",\"capture_start\":\"2026-11-22T23:28:18\",\"start_ns\":";
     EXPECT_EQ(out[0].rfind(first, 0), 0u) << out[0];
