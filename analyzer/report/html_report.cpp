@@ -146,18 +146,25 @@ std::string positionSvgs(const CaptureStats& stats, const std::string& inst,
 
 std::string faultsOverTimeSvg(const CaptureStats& stats, const std::string& inst,
                               const TimeCounts& c) {
-    const auto& bins = c.bins();
-    if (bins.empty()) return "";
+    if (c.bins().empty()) return "";
     const TimeAxis ta =
-        captureTime(stats, c.originNs(), c.originNs() + c.binNs() * double(bins.size()));
+        captureTime(stats, c.originNs(), c.originNs() + c.binNs() * double(c.bins().size()));
+    // About a hundred bars over the capture, whatever the bins were when it ended.
+    std::size_t merge = 1;
+    while (c.binNs() * double(merge) * 100 < ta.t1 - ta.t0)
+        merge *= 2;
+    std::vector<std::uint64_t> bins((c.bins().size() + merge - 1) / merge, 0);
+    for (std::size_t i = 0; i < c.bins().size(); ++i)
+        bins[i / merge] += c.bins()[i];
+    const double bin_ns = c.binNs() * double(merge);
     const std::uint64_t peak = *std::max_element(bins.begin(), bins.end());
     SvgPlot plot("faults-over-time", 900, 220,
-                 fmt::format("{}: events with errors per {}", inst, formatDuration(c.binNs())),
+                 fmt::format("{}: events with errors per {}", inst, formatDuration(bin_ns)),
                  ta.axis(), {0, double(peak) * 1.1, "events with errors"});
     for (std::size_t i = 0; i < bins.size(); ++i) {
         if (!bins[i]) continue;
-        const double xa = plot.x(ta.at(c.originNs() + c.binNs() * double(i)));
-        const double xb = plot.x(ta.at(c.originNs() + c.binNs() * double(i + 1)));
+        const double xa = plot.x(ta.at(c.originNs() + bin_ns * double(i)));
+        const double xb = plot.x(ta.at(c.originNs() + bin_ns * double(i + 1)));
         plot.body() += fmt::format(
             R"(<rect class="bar" x="{}" y="{}" width="{}" height="{}" fill="#c62828"><title>{}</title></rect>)",
             num(xa), num(plot.y(double(bins[i]))), num(std::max(xb - xa, 1.0)),
@@ -171,8 +178,10 @@ std::string histogramSvg(const std::string& title, const std::string& key,
                          const QuantileSketch& sk) {
     if (sk.count() < 1) return "";
     if (sk.min() == sk.max())
-        return fmt::format(R"(<p class="constant">{}: {} in all {} events.</p>)", esc(title),
-                           esc(formatFieldValue(key, sk.min())), sk.count());
+        return fmt::format(R"(<p class="constant">{}: {} in {}.</p>)", esc(title),
+                           esc(formatFieldValue(key, sk.min())),
+                           sk.count() == 1 ? std::string("the one event")
+                                           : fmt::format("all {} events", sk.count()));
     const FieldAxis fa = fieldAxis(key, std::max(std::fabs(sk.min()), std::fabs(sk.max())));
     // Whole numbers over a short range get one bar per value, centred on it.
     const double span = sk.max() - sk.min();
@@ -440,6 +449,17 @@ std::string renderHtmlReport(const CaptureStats& stats) {
         if (const auto* c = stats.faultsOverTime(inst)) h += faultsOverTimeSvg(stats, inst, *c);
     }
 
+    if (!stats.waveforms().empty()) {
+        h += "<h2>Captured waveforms</h2>\n<p>The first faulty events of each bus as captured, "
+             "with a clean one of each event type for comparison: the decoder's sample points "
+             "(orange), the bits read there, the decoded fields above them.</p>\n";
+        for (const FrameWave& w : stats.waveforms()) {
+            auto opts = f.options.find(w.event.instance);
+            h += waveformSvg(
+                w, tb,
+                opts == f.options.end() ? std::map<std::string, std::string>{} : opts->second);
+        }
+    }
     h += "<h2>Faults</h2>\n";
     if (stats.firstFaults().empty()) {
         h += "<p>None.</p>\n";
@@ -452,17 +472,6 @@ std::string renderHtmlReport(const CaptureStats& stats) {
         for (const auto& fr : stats.firstFaults())
             h += esc(fr.text) + "\n";
         h += "</pre>\n";
-        if (!stats.waveforms().empty()) {
-            h += "<h3>Captured waveforms</h3>\n<p>The first faulty events of each bus as "
-                 "captured, with a clean one for comparison: the decoder's sample points "
-                 "(orange), the bits read there, the decoded fields above them.</p>\n";
-            for (const FrameWave& w : stats.waveforms()) {
-                auto opts = f.options.find(w.event.instance);
-                h += waveformSvg(
-                    w, tb,
-                    opts == f.options.end() ? std::map<std::string, std::string>{} : opts->second);
-            }
-        }
         if (const auto& e = stats.firstFaultyEvent()) {
             h += "<h3>First faulty event</h3>\n";
             h += timingDiagramSvg(*e, tb, stats.waveforms().empty());

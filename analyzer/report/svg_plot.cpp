@@ -37,7 +37,8 @@ std::vector<double> niceTicks(double lo, double hi, int target) {
 std::string tickText(double v, double step) {
     int decimals = 0;
     if (step > 0 && step < 1) decimals = int(std::ceil(-std::log10(step) - 1e-9));
-    if (std::fabs(v) >= 1e7 && decimals == 0) return fmt::format("{:.3g}", v);
+    // Whole counts stay whole (67108800, not 6.71e+07: neighbours must differ).
+    if (std::fabs(v) >= 1e15) return fmt::format("{:.6g}", v);
     return fmt::format("{:.{}f}", v, std::min(decimals, 9));
 }
 

@@ -412,21 +412,28 @@ void SsiDecoder::noteRingWidth(const std::vector<std::uint8_t>& samples, const S
     // The first frames are enough to tell, and keep the search off long captures.
     constexpr std::int64_t kFramesLooked = 64;
     if (cfg_.lead || w.short_frame || ring_looked_ >= kFramesLooked) return;
-    const int n = ringWidth(samples, cfg_.ring_gap);
     if (ring_looked_++ == 0) ring_first_raw_ = w.raw;
     // A still encoder repeats a chance pattern in every frame: words that differ count.
     ring_varied_ = ring_varied_ || w.raw != ring_first_raw_;
-    ring_width_ = ring_looked_ == 1 || ring_width_ == n ? n : 0;
+    ++ring_votes_[std::size_t(ringWidth(samples, cfg_.ring_gap))];
+}
+
+int SsiDecoder::ringWidthFound() const {
+    // Some words repeat a shorter pattern by chance: three frames in four must agree.
+    if (!ring_varied_ || ring_looked_ < 4) return 0;
+    for (int n = 1; n < int(ring_votes_.size()); ++n)
+        if (ring_votes_[std::size_t(n)] * 4 >= ring_looked_ * 3) return n;
+    return 0;
 }
 
 std::vector<std::string> SsiDecoder::advice() const {
-    // Every frame looked at the same word again after `ring_width_` bits.
-    if (ring_varied_ && ring_width_ > 0 && ring_width_ < cfg_.bits)
+    // The frames looked at held the same word again after `ring` bits.
+    if (const int ring = ringWidthFound(); ring > 0 && ring < cfg_.bits)
         return {fmt::format(
             "every frame repeats a {}-bit word ({} zero bits between, the encoder's ring shift) "
             "within bits={}: the words look {} bits long (--opt bits={}{})",
-            ring_width_, cfg_.ring_gap, cfg_.bits, ring_width_, ring_width_,
-            cfg_.st_bits + cfg_.mt_bits + cfg_.pos_shift <= ring_width_
+            ring, cfg_.ring_gap, cfg_.bits, ring, ring,
+            cfg_.st_bits + cfg_.mt_bits + cfg_.pos_shift <= ring
                 ? ""
                 : ", with st_bits and mt_bits to fit")};
     // One short frame is a master that stopped early; all of them, each with the same

@@ -40,7 +40,8 @@ std::vector<std::string> adviceForThirteenBits(int clocks,
 
 // 13-bit words read as 25: a master clocking 14 times gives short frames; one clocking
 // 26 times gets the encoder's ring shift (13 bits, a zero, the word again), which looks
-// like a whole 25-bit word. Either way the hint says 13.
+// like a whole 25-bit word. Either way the hint says 13. (One of the six words, 0x13A7,
+// also repeats a 6-bit pattern by chance: the width is the one most frames agree on.)
 TEST(SsiAdvice, ThirteenBitWordsReadAsTwentyFiveGetTheirWidth) {
     auto advice = adviceForThirteenBits(14, {{"bits", "25"}});
     ASSERT_EQ(advice.size(), 1u);
