@@ -29,7 +29,7 @@ struct LcmSinkOptions {
     static constexpr double kDefaultUdpmEventsPerS = 20000;
     double max_events_per_s = 0;
     // Each annotation's json names its capture, as jsonl does with several captures in one
-    // call (docs/contract-captures.md).
+    // call (docs/contract.md, "JSON lines").
     bool name_capture = false;
     // Where the end-of-capture drop/failure counts go.
     std::FILE* report = stderr;

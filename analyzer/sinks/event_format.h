@@ -18,7 +18,7 @@ void appendEventJson(std::string& out, const Event& e, const Timebase& tb,
                      std::string_view capture_fields = {});
 // `,"capture":"a.vcd","capture_start":"2026-11-22T23:28:18"`: the capture an event came
 // from (when `name_capture`: several captures in one call) and its wall-clock start (when
-// the file gives one). Made once per capture (docs/contract-captures.md).
+// the file gives one). Made once per capture (docs/contract.md, "JSON lines").
 std::string captureJsonFields(const CaptureFacts& facts, bool name_capture);
 // JSON text of one value (numbers as integers when integral, strings escaped).
 std::string valueToJson(const Value& v);

@@ -1,6 +1,6 @@
 // Which capture a JSON line came from, and when the capture began: `capture` on every line
 // when several captures are decoded in one call, `capture_start` from a VCD's $date, and
-// times that restart with each capture (docs/contract-captures.md).
+// times that restart with each capture (docs/contract.md, "JSON lines").
 #include <gtest/gtest.h>
 
 #include <sstream>
