@@ -31,6 +31,7 @@ void EdgeWindows::addEdges(const Edge* first, const Edge* last) {
 }
 
 void EdgeWindows::offer(const Event& e) {
+    if (e.end <= e.start) return;  // a moment (a summary) has no waveform of its own
     const std::string& inst = e.instance.empty() ? e.proto : e.instance;
     if (!e.errors.empty()) {
         if (faulty_taken_[inst] >= kFaultyPerInstance) return;
