@@ -238,7 +238,7 @@ TEST(HtmlReport, SsiRepeatMismatchAsCaptured) {
     EXPECT_TRUE(has(dom, "time from the event's start (us)"));
     EXPECT_TRUE(has(dom, "position (counts)"));
     EXPECT_TRUE(has(dom, "velocity (rev/min)"));
-    EXPECT_GE(roundTicks(dom), 20);
+    EXPECT_GE(roundTicks(dom), 15);
 }
 
 TEST(HtmlReport, RendersInHeadlessChromium) {
