@@ -69,6 +69,7 @@ options_for() {  # TARGET -> libFuzzer options
         csv_*) echo "-dict=$src/fuzz/dict/csv.dict -max_len=4096" ;;
         sr) echo "-dict=$src/fuzz/dict/sr.dict -max_len=8192" ;;
         rules) echo "-dict=$src/fuzz/dict/rules.dict -max_len=2048" ;;
+        cli_args) echo "-dict=$src/fuzz/dict/cli_args.dict -max_len=512" ;;
         *) echo "-max_len=${DECODER_MAX_LEN:-4096}" ;;
     esac
 }

@@ -18,10 +18,13 @@
 #include "app/plugin_loader.h"
 #include "app/report_paths.h"
 #include "app/standard_streams.h"
+#include "capture/analog_lines.h"
 #include "core/interrupted.h"
 #include "core/options.h"
 #include "core/registry.h"
+#include "core/sample_rate.h"
 #include "lcm/lcm_sink.h"
+#include "lcm/monitor.h"
 #include "report/report_sink.h"
 #include "sinks/stream_sinks.h"
 #include "verify/verify.h"
@@ -75,6 +78,10 @@ Parsed parse(const QStringList& argv, bool verify) {
     QCommandLineOption report("report", "write a text or .html report", "FILE");
     QCommandLineOption lcm("lcm", "publish events over LCM (optional URL)", "URL");
     QCommandLineOption rate("rate", "sample rate for CSV files without time or rate", "HZ");
+    QCommandLineOption threshold("threshold",
+                                 "analog lines: switching threshold for all lines, or one line's",
+                                 "[SIGNAL=]V");
+    QCommandLineOption hysteresis("hysteresis", "analog lines: hysteresis band width", "V");
     QCommandLineOption follow("follow", "keep reading a growing capture (or a pipe)");
     QCommandLineOption realtime("realtime", "pace a recorded capture at its own time scale");
     QCommandLineOption list("list", "list decoders, roles, options and defaults");
@@ -87,8 +94,8 @@ Parsed parse(const QStringList& argv, bool verify) {
         "2");
     QCommandLineOption help({"h", "help"}, "show this help");
     QCommandLineOption version("version", "show the version");
-    for (auto* o : {&proto, &map, &opt, &format, &report, &lcm, &rate, &follow, &realtime, &list,
-                    &rules, &junit, &jobs, &threads, &help, &version})
+    for (auto* o : {&proto, &map, &opt, &format, &report, &lcm, &rate, &threshold, &hysteresis,
+                    &follow, &realtime, &list, &rules, &junit, &jobs, &threads, &help, &version})
         p.addOption(*o);
     if (!p.parse(argv)) throw InputError(p.errorText().toStdString());
     if (p.isSet(help)) {
@@ -117,11 +124,16 @@ Parsed parse(const QStringList& argv, bool verify) {
     if (p.isSet(lcm))
         a.lcm_url = p.value(lcm) == "default" ? std::string() : p.value(lcm).toStdString();
     if (p.isSet(rate)) {
-        auto r = parseNumber(p.value(rate).toStdString());
-        if (!r || *r <= 0)
-            throw InputError(fmt::format("--rate {}: expected a positive number of Hz",
-                                         p.value(rate).toStdString()));
-        a.rate_hz = *r;
+        a.rate_hz = rateArgument("--rate", p.value(rate).toStdString());
+    }
+    for (const auto& t : toStd(p.values(threshold)))
+        a.thresholds.push_back(parseThresholdOption(t));
+    if (p.isSet(hysteresis)) {
+        auto h = parseNumber(p.value(hysteresis).toStdString());
+        if (!h || *h < 0)
+            throw InputError(fmt::format("--hysteresis {}: expected a number of volts, 0 or more",
+                                         p.value(hysteresis).toStdString()));
+        a.hysteresis = *h;
     }
     a.follow = p.isSet(follow);
     a.realtime = p.isSet(realtime);
@@ -149,6 +161,8 @@ int runDecode(const DecodeArgs& a) {
     auto requests = buildRequests(a.protos, a.maps, a.opts);
     OpenOptions open;
     open.rate_hz = a.rate_hz;
+    open.thresholds = a.thresholds;
+    open.hysteresis = a.hysteresis;
     open.follow = a.follow;
     open.read_ahead = a.threads > 1;
     open.stop = interruptionFlag();
@@ -186,11 +200,11 @@ int runDecode(const DecodeArgs& a) {
     return 0;
 }
 
-// "decode: FILE: interrupted at byte N of M (SIGINT); no report written"
+// "decode: FILE: interrupted, after reading N of M bytes (SIGINT); nothing written to the
+// report"
 std::string interruptionLine(const std::string& what, const DecodeArgs& a) {
-    const bool outputs = !a.report.empty() || !a.junit.empty();
     return fmt::format("decode: {} ({}){}\n", what, interruptingSignalName(),
-                       outputs ? "; nothing written to the report" : "");
+                       a.report.empty() ? "" : "; nothing written to the report");
 }
 
 int run(int argc, char** argv, DecodeArgs& args) {
@@ -239,10 +253,10 @@ int runCli(int argc, char** argv) {
         std::fflush(stdout);
         // Interrupted while opening or reading: the error is the interruption's doing.
         if (interrupted()) {
-            printError(interruptionLine(fmt::format("interrupted: {}", e.what()), args));
+            printError(interruptionLine(fmt::format("interrupted: {}", oneLine(e.what())), args));
             return interruptedStatus();
         }
-        printError(fmt::format("decode: {}\n", e.what()));
+        printError(fmt::format("decode: {}\n", oneLine(e.what())));
         return 2;
     } catch (const std::system_error& e) {
         // fmt::print's, writing help or the decoder list to a stdout that fails.
@@ -252,7 +266,7 @@ int runCli(int argc, char** argv) {
         return 2;
     } catch (const std::exception& e) {
         std::fflush(stdout);
-        printError(fmt::format("decode: internal error: {}\n", e.what()));
+        printError(fmt::format("decode: internal error: {}\n", oneLine(e.what())));
         return 2;
     }
     return standardErrorFailed() && status == 0 ? 2 : status;

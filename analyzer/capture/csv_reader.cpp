@@ -18,12 +18,14 @@
 #include <cstring>
 #include <deque>
 #include <string>
+#include <unordered_set>
 #include <vector>
 
 #include <fmt/format.h>
 
 #include "core/options.h"
 #include "core/own_cache_lines.h"
+#include "core/sample_rate.h"
 #include "decimal_scan.h"
 #include "readers.h"
 
@@ -98,6 +100,7 @@ bool parseTime(std::string_view s, Decimal& out) {
     int exp = 0;
     if (i < s.size() && (s[i] == 'e' || s[i] == 'E')) {
         ++i;
+        if (i < s.size() && s[i] == '+') ++i;  // "1.5e+0": from_chars takes '-' only
         auto [p, ec] = std::from_chars(s.data() + i, s.data() + s.size(), exp);
         if (ec != std::errc() || exp < -30 || exp > 30) return false;
         i = std::size_t(p - s.data());
@@ -246,19 +249,29 @@ private:
     void parseHeader() {
         std::string_view line;
         std::vector<std::string> channel_names;
-        std::int64_t comment_rate = 0;
+        std::optional<SampleRate> comment_rate;
+        std::uint64_t comment_rate_line = 0;
+        // `#123` lines and no other comment so far: VCD value changes without their header?
+        std::uint64_t vcd_times = 0, other_comments = 0;
         for (;;) {
             auto st = src_->nextLine(line);
             if (st == TextSource::Status::NoData) {
                 src_->waitForData(5);
                 continue;
             }
-            if (st == TextSource::Status::Eof)
-                throw InputError(src_->name() + ": empty file (no CSV header)");
+            if (st == TextSource::Status::Eof) {
+                if (vcd_times > 0 && other_comments == 0)
+                    throw InputError(src_->name() +
+                                     ": VCD value changes without a VCD header: a VCD starts "
+                                     "with $timescale, $var ... and $enddefinitions");
+                throw InputError(src_->name() + ": no CSV header (only comment lines)");
+            }
             line_no_ = src_->lineNo();
             std::string_view t = trimView(line);
             if (t.empty()) continue;
             if (t.front() == ';' || t.front() == '#') {
+                ++(t.size() > 1 && t[0] == '#' && unsigned(t[1] - '0') < 10 ? vcd_times
+                                                                            : other_comments);
                 // sigrok: "; Channels (2/8): MA, SLO" and "; Samplerate: 24 MHz"
                 std::string_view body = trimView(t.substr(1));
                 const std::string lb = lower(body);
@@ -268,12 +281,18 @@ private:
                     split(body.substr(colon + 1), ',', parts);
                     channel_names.assign(parts.begin(), parts.end());
                 } else if (lb.rfind("samplerate", 0) == 0 && colon != std::string_view::npos) {
-                    comment_rate = parseRateHz(body.substr(colon + 1));
+                    comment_rate = parseSampleRate(body.substr(colon + 1), true);
+                    comment_rate_line = line_no_;
                 }
                 continue;
             }
             break;
         }
+        if (looksLikeVcdChange(line) &&
+            ((vcd_times > 0 && other_comments == 0) || src_->name().ends_with(".vcd")))
+            fail(
+                "VCD value changes without a VCD header: a VCD starts with $timescale, "
+                "$var ... and $enddefinitions");
         header_line_ = line_no_;
         // Separator: `;` (ScanaStudio), else `,`, else tab.
         sep_ = line.find(';') != std::string_view::npos    ? ';'
@@ -319,30 +338,46 @@ private:
                     names.push_back(std::to_string(i));
             }
         } else {
-            format_ = comment_rate > 0 ? "sigrok-csv" : "plain-csv";
+            format_ = comment_rate && comment_rate->timebase ? "sigrok-csv" : "plain-csv";
             names.assign(f.begin(), f.end());
         }
+        std::unordered_set<std::string_view> seen;  // linear in columns: 10^5 are not rare
+        seen.reserve(names.size());
+        signals_.reserve(names.size());
         for (std::size_t i = 0; i < names.size(); ++i) {
             if (names[i].empty())
                 fail(fmt::format("empty column name (column {})", i + 1 + first_col_));
-            for (std::size_t j = 0; j < i; ++j)
-                if (names[j] == names[i])
-                    fail(fmt::format("duplicate column name '{}'", printable(names[i])));
+            if (!seen.insert(names[i]).second)
+                fail(fmt::format("duplicate column name '{}'", printable(names[i])));
             signals_.push_back(signalFor(names[i]));
         }
         if (timed_) chooseResolution();  // the timebase is known before the first row
-        if (!timed_) {
-            const double rate = opts_.rate_hz > 0 ? opts_.rate_hz : double(comment_rate);
-            if (!(rate > 0))
-                throw InputError(
-                    src_->at(header_line_,
-                             "this CSV has no time column and no samplerate comment: give the "
-                             "sample rate with --rate HZ"));
-            if (rate == std::floor(rate) && rate < 9e18)
-                tb_ = Timebase{1, std::int64_t(rate)};
-            else
-                tb_ = Timebase{1'000'000, std::int64_t(std::llround(rate * 1e6))};
+        if (!timed_) denseTimebase(comment_rate, comment_rate_line);
+    }
+
+    static bool looksLikeVcdChange(std::string_view line) {
+        const std::string_view t = trimView(line);
+        return t.size() >= 2 && (t[0] == '0' || t[0] == '1' || t[0] == 'x' || t[0] == 'b') &&
+               t.find_first_of(",;\t") == std::string_view::npos;
+    }
+
+    // One tick per sample: --rate, else the sigrok comment's rate, exactly.
+    void denseTimebase(const std::optional<SampleRate>& comment_rate, std::uint64_t comment_line) {
+        if (opts_.rate_hz > 0) {
+            const SampleRate r = sampleRateOf(opts_.rate_hz);
+            if (!r.timebase)
+                throw InputError(fmt::format("--rate {}: {}", opts_.rate_hz, r.problem));
+            tb_ = *r.timebase;
+            return;
         }
+        if (comment_rate && !comment_rate->timebase)
+            throw InputError(
+                src_->at(comment_line, fmt::format("samplerate {}", comment_rate->problem)));
+        if (!comment_rate)
+            throw InputError(src_->at(header_line_,
+                                      "this CSV has no time column and no samplerate comment: "
+                                      "give the sample rate with --rate HZ"));
+        tb_ = *comment_rate->timebase;
     }
 
     // "CH1 MOSI" -> name MOSI (the user's label), "CH5 CH 5" -> CH5; full_name keeps the

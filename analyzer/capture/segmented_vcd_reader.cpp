@@ -15,6 +15,7 @@
 #include <unistd.h>
 
 #include "guarded_mapping.h"
+#include "piece_work.h"
 
 namespace busdecode {
 
@@ -54,7 +55,7 @@ struct Piece {
 };
 constexpr std::uint32_t kNoEdge = PieceWork::kNoEdge;
 
-class SegmentedVcdReader final : public CaptureReader {
+class SegmentedVcdReader final : public CaptureReader, public PieceReader {
 public:
     SegmentedVcdReader(std::unique_ptr<VcdTokeniser> vcd, std::uint64_t size,
                        std::uint64_t piece_bytes, std::uint64_t boundary_search)
@@ -111,6 +112,7 @@ public:
             handing_ = 0;
         }
     }
+    std::vector<std::string> notes() const override { return vcd_->notes(); }
     Tick endTick() const override { return sequential_ ? vcd_->endTick() : end_; }
     std::uint64_t bytesRead() const override {
         return sequential_ ? vcd_->bytesRead() : expected_begin_;

@@ -17,6 +17,7 @@
 #include <cmath>
 #include <cstring>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -26,6 +27,7 @@
 
 #include "core/options.h"
 #include "core/own_cache_lines.h"
+#include "core/sample_rate.h"
 #include "readers.h"
 
 namespace busdecode {
@@ -76,7 +78,7 @@ public:
     }
 
     const std::vector<SignalInfo>& signals() const override { return signals_; }
-    Timebase timebase() const override { return Timebase::fromSampleRate(rate_); }
+    Timebase timebase() const override { return tb_; }
     std::string formatName() const override { return "sigrok-sr"; }
 
     void select(const std::vector<LineRef>& lines) override {
@@ -215,9 +217,43 @@ private:
         return k;
     }
 
+    // An entry of the ZIP opened for reading; one that is there but cannot be read says
+    // why (sigrok writes Deflate; another tool's LZMA or zstd entry is not a missing one).
+    zip_file_t* openEntry(const std::string& entry) {
+        zip_stat_t st;
+        if (zip_stat(zip_, entry.c_str(), 0, &st) != 0) return nullptr;
+        if ((st.valid & ZIP_STAT_COMP_METHOD) &&
+            !zip_compression_method_supported(st.comp_method, 0))
+            throw InputError(fmt::format(
+                "{}: entry {} is compressed with a method this build cannot read (ZIP method "
+                "{}, {}); re-save the session with sigrok (Deflate)",
+                name_, printable(entry), st.comp_method, methodName(st.comp_method)));
+        zip_file_t* f = zip_fopen(zip_, entry.c_str(), 0);
+        if (!f)
+            throw InputError(fmt::format("{}: cannot read entry {}: {}", name_, printable(entry),
+                                         zip_strerror(zip_)));
+        return f;
+    }
+    static const char* methodName(std::int32_t m) {
+        switch (m) {
+            case ZIP_CM_BZIP2:
+                return "bzip2";
+            case 14:
+                return "LZMA";  // ZIP_CM_LZMA
+            case 93:
+                return "zstd";  // ZIP_CM_ZSTD
+            case 95:
+                return "xz";  // ZIP_CM_XZ
+            case 98:
+                return "PPMd";
+            default:
+                return "unknown";
+        }
+    }
+
     void readMetadata() {
         zip_stat_t st;
-        zip_file_t* f = zip_fopen(zip_, "metadata", 0);
+        zip_file_t* f = openEntry("metadata");
         if (!f || zip_stat(zip_, "metadata", 0, &st) != 0)
             throw InputError(fmt::format("{}: not a sigrok session: no metadata file", name_));
         std::string text(std::size_t(std::min<zip_uint64_t>(st.size, 1 << 20)), '\0');
@@ -228,7 +264,8 @@ private:
 
         std::map<int, std::string> probes;
         int total = 0;
-        bool in_device = false, have_rate = false;
+        bool in_device = false;
+        std::optional<SampleRate> rate;
         std::string rate_text;
         std::size_t at = 0;
         while (at < text.size()) {
@@ -246,9 +283,8 @@ private:
             if (eq == std::string::npos) continue;
             const std::string key = trim(line.substr(0, eq)), value = trim(line.substr(eq + 1));
             if (key == "samplerate") {
-                have_rate = true;
                 rate_text = value;
-                rate_ = parseRateHz(value);
+                rate = parseSampleRate(value, true);
             } else if (key == "unitsize") {
                 unit_ = std::size_t(std::atoi(value.c_str()));
                 if (unit_ < 1 || unit_ > 8)
@@ -263,9 +299,11 @@ private:
                 capturefile_ = value;
             }
         }
-        if (!have_rate) throw InputError(fmt::format("{}: metadata has no samplerate", name_));
-        if (rate_ <= 0)
-            throw InputError(fmt::format("{}: samplerate '{}' is not a rate", name_, rate_text));
+        if (!rate) throw InputError(fmt::format("{}: metadata has no samplerate", name_));
+        if (!rate->timebase)
+            throw InputError(
+                fmt::format("{}: samplerate '{}' {}", name_, printable(rate_text), rate->problem));
+        tb_ = *rate->timebase;
         if (unit_ == 0) throw InputError(fmt::format("{}: metadata has no unitsize", name_));
         if (!probes.empty()) total = std::max(total, probes.rbegin()->first);
         if (total > int(unit_ * 8))
@@ -328,7 +366,7 @@ private:
         while (len_ < unit_ || len_ < buf_.size() / 2) {
             if (!file_) {
                 if (next_chunk_ >= chunks_.size()) break;
-                file_ = zip_fopen(zip_, chunks_[next_chunk_].c_str(), 0);
+                file_ = openEntry(chunks_[next_chunk_]);
                 if (!file_)
                     throw InputError(
                         fmt::format("{}: cannot read chunk {}", name_, chunks_[next_chunk_]));
@@ -370,7 +408,7 @@ private:
     std::vector<std::string> chunks_;
     std::size_t next_chunk_ = 0;
     std::string capturefile_;
-    std::int64_t rate_ = 0;
+    Timebase tb_;  // one tick per sample
     std::size_t unit_ = 0;
     std::vector<SignalInfo> signals_;
     std::vector<Sel> sel_;

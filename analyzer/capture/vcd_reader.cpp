@@ -11,19 +11,24 @@
 // - Several changes may follow a timestamp on its line (`#0 1! 1"`, as sigrok writes).
 // - `$dumpvars/$dumpon/$dumpoff/$dumpall` and `$end` are transparent; `$comment` (and
 //   any other keyword block) is skipped up to its `$end`, on the same or a later line.
-// - x and z are not levels: a line keeps its previous level through x/z; before any
-//   known level it reads 1 (the idle level of most buses). The same holds per bit of a
-//   vector. A selected real reads 1 when nonzero.
+// - States: IEEE 1364/1800 `0 1 x z` and VHDL's (GHDL, NVC) `U X 0 1 Z W L H -`, in
+//   either case. L and H (weak) are levels 0 and 1; x, z, u, w and - are not levels: a
+//   line keeps its previous level through them; before any known level it reads 1 (the
+//   idle level of most buses). The same holds per bit of a vector. A selected real reads
+//   1 when nonzero.
 // - Bit k of a vector (LineRef::bit) counts from the LSB; a value shorter than the
 //   vector is extended the VCD way (0 for a leading 1 or 0, else the leading x/z).
 // - Initial levels are those at the first timestamp (including `$dumpvars` before it);
 //   startTick is the first timestamp, endTick the last one.
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <charconv>
 #include <cstring>
+#include <memory>
 #include <string>
 #include <unordered_map>
+#include <unordered_set>
 #include <utility>
 #include <vector>
 
@@ -31,6 +36,7 @@
 
 #include "core/options.h"
 #include "core/own_cache_lines.h"
+#include "core/sample_rate.h"
 #include "decimal_scan.h"
 #include "readers.h"
 #include "segmented_vcd_reader.h"
@@ -48,6 +54,21 @@ constexpr auto kSeparator = [] {
     for (char c : {' ', '\t', '\r', '\f', '\v'})
         k[static_cast<unsigned char>(c)] = 1;
     k['\n'] = 3;
+    return k;
+}();
+
+// The level of a state letter: IEEE 1364/1800 `0 1 x z` and VHDL's `U X 0 1 Z W L H -`
+// (either case); weak levels are levels. kKeepLevel: unknown, the line keeps its level.
+inline constexpr std::uint8_t kKeepLevel = 2, kNotAState = 3;
+constexpr auto kStateLevel = [] {
+    std::array<std::uint8_t, 256> k{};
+    k.fill(kNotAState);
+    for (char c : {'0', 'l', 'L'})
+        k[static_cast<unsigned char>(c)] = 0;
+    for (char c : {'1', 'h', 'H'})
+        k[static_cast<unsigned char>(c)] = 1;
+    for (char c : {'x', 'X', 'z', 'Z', 'u', 'U', 'w', 'W', '-'})
+        k[static_cast<unsigned char>(c)] = kKeepLevel;
     return k;
 }();
 
@@ -152,6 +173,21 @@ public:
     std::uint64_t bytesRead() const override { return src_->bytesRead(); }
     std::uint64_t bytesTotal() const override { return src_->bytesTotal(); }
     bool changesOnly() const override { return true; }  // see set()
+    std::vector<std::string> notes() const override {
+        std::vector<std::string> out;
+        if (kept_only_)
+            out.push_back(
+                fmt::format("{} signals declared: only the {} that --map or a role names were kept",
+                            declared_, signals_.size()));
+        // Vivado's hardware ILA: sample indices as 1 ps times (a simulation at 1 ps steps
+        // further apart); without --rate every duration is off by the sample period.
+        if (vivado_ && tb_.num == 1 && tb_.den == 1'000'000'000'000 && opts_.rate_hz <= 0 &&
+            first_step_ > 0 && first_step_ < 1000)
+            out.push_back(
+                "times look like Vivado ILA sample indices under $timescale 1ps: give the "
+                "sample clock with --rate HZ for real times");
+        return out;
+    }
 
     // ---- pieces, for SegmentedVcdReader (vcd_tokeniser.h) ----------------------
 
@@ -224,8 +260,12 @@ private:
           short1_(o.short1_),
           short2_(o.short2_),
           long_(o.long_),
+          unkept_ids_(o.unkept_ids_),
+          unkept_code_(o.unkept_code_),
           start_(o.start_),
-          time_digits_(o.time_digits_) {
+          time_digits_(o.time_digits_),
+          vivado_(o.vivado_),
+          first_step_(o.first_step_) {
         scalar1_.assign(o.scalar1_.size(), 0);
         std::copy_n(o.scalar1_.data(), o.scalar1_.size(), scalar1_.data());
         scalar2_.assign(o.scalar2_.size(), 0);
@@ -334,6 +374,11 @@ private:
             const std::uint64_t line = src_->lineNo();
             if (tok == "$enddefinitions") {
                 blockTokens(tok, line);
+                std::sort(unkept_ids_->begin(), unkept_ids_->end());
+                unkept_ids_->erase(std::unique(unkept_ids_->begin(), unkept_ids_->end()),
+                                   unkept_ids_->end());
+                unkept_ids_->shrink_to_fit();
+                if (opts_.rate_hz > 0) rateOverridesTimescale();
                 break;
             } else if (tok == "$timescale") {
                 parseTimescale(blockTokens(tok, line), line);
@@ -350,14 +395,25 @@ private:
                 for (const auto& t : blockTokens(tok, line))
                     text += (text.empty() ? "" : " ") + t;
                 date_ = wallClockFromText(text);
+            } else if (tok == "$version") {
+                for (const auto& t : blockTokens(tok, line))
+                    vivado_ |= t == "Vivado";
             } else if (tok.size() > 1 && tok[0] == '$') {
-                skipBlock();  // $version, $comment, ...
+                skipBlock();  // $comment, ...
             } else {
                 failAt(line, fmt::format("expected a $keyword in the VCD header, found '{}'",
                                          printable(tok)));
             }
         }
     }
+    // --rate: one sample per time unit, whatever $timescale says (Vivado's hardware ILA
+    // writes sample indices as 1 ps times).
+    void rateOverridesTimescale() {
+        const SampleRate r = sampleRateOf(opts_.rate_hz);
+        if (!r.timebase) throw InputError(fmt::format("--rate {}: {}", opts_.rate_hz, r.problem));
+        tb_ = *r.timebase;
+    }
+
     void skipBlock() {
         std::string_view tok;
         const std::uint64_t line = src_->lineNo();
@@ -407,8 +463,10 @@ private:
         full += ref;
 
         const std::string& id = t[2];
+        ++declared_;
+        if (kept_only_ && !wanted(ref, full)) return unkept(id);
         int code = lookup(id.data(), id.size());
-        if (code < 0) {
+        if (code < 0 || code == unkept_code_) {
             code = int(codes_.size());
             Code c;
             c.width = width;
@@ -425,7 +483,58 @@ private:
         }
         sig_code_.push_back(code);
         signals_.push_back({ref, full, width});
+        if (!kept_only_ && signals_.size() > kKeepAllSignals && !opts_.wanted_signals.empty())
+            keepOnlyWanted();
     }
+
+    // ---- wide headers: memory bounded by what is mapped ----------------------------
+
+    // Past kKeepAllSignals declarations (2^17: a simulator's 10^5 are still listed in
+    // messages), the signals a decode cannot bind (no --map value,
+    // role name or alias names them) are dropped; their identifiers are still known, so
+    // their changes are skipped, not refused: a short one's code is unkept_code_, a long
+    // one leaves only its hash in unkept_ids_ (8 bytes).
+    static constexpr std::size_t kKeepAllSignals = std::size_t(1) << 17;
+
+    bool wanted(const std::string& name, const std::string& full) const {
+        return wanted_.count(lowerCase(name)) != 0 || wanted_.count(lowerCase(full)) != 0;
+    }
+    static std::string lowerCase(std::string s) {
+        for (auto& c : s)
+            c = char(std::tolower(static_cast<unsigned char>(c)));
+        return s;
+    }
+    void keepOnlyWanted() {
+        kept_only_ = true;
+        for (const auto& w : opts_.wanted_signals) {
+            wanted_.insert(lowerCase(w));
+            if (const auto lb = w.rfind('['); lb != std::string::npos && lb > 0 && w.back() == ']')
+                wanted_.insert(lowerCase(w.substr(0, lb)));  // a bit of a vector
+        }
+        unkept_code_ = int(codes_.size());
+        codes_.push_back(Code{});
+        std::vector<SignalInfo> kept;
+        std::vector<int> kept_code;
+        for (std::size_t i = 0; i < signals_.size(); ++i)
+            if (wanted(signals_[i].name, signals_[i].full_name)) {
+                kept.push_back(std::move(signals_[i]));
+                kept_code.push_back(sig_code_[i]);
+            }
+        signals_ = std::move(kept);
+        sig_code_ = std::move(kept_code);
+    }
+    void unkept(const std::string& id) {
+        const auto* u = reinterpret_cast<const unsigned char*>(id.data());
+        if (id.size() == 1 && unsigned(u[0] - 33) < 94) {
+            if (short1_[u[0] - 33] < 0) short1_[u[0] - 33] = unkept_code_;
+        } else if (id.size() == 2 && unsigned(u[0] - 33) < 94 && unsigned(u[1] - 33) < 94) {
+            int& c = short2_[(u[0] - 33) * 94 + (u[1] - 33)];
+            if (c < 0) c = unkept_code_;
+        } else if (long_.find(std::string_view(id)) == long_.end()) {
+            unkept_ids_->push_back(idHash(id));
+        }
+    }
+    static std::uint64_t idHash(std::string_view id) { return std::hash<std::string_view>{}(id); }
 
     [[gnu::always_inline]] int lookup(const char* s, std::size_t n) const {
         const auto* u = reinterpret_cast<const unsigned char*>(s);
@@ -436,9 +545,13 @@ private:
             unsigned i = unsigned(u[0]) - 33, j = unsigned(u[1]) - 33;
             if (i < 94 && j < 94) return short2_[i * 94 + j];
         }
-        if (long_.empty()) return -1;
+        if (long_.empty() && unkept_ids_->empty()) return -1;
         auto it = long_.find(std::string_view(s, n));
-        return it == long_.end() ? -1 : it->second;
+        if (it != long_.end()) return it->second;
+        if (!unkept_ids_->empty() && std::binary_search(unkept_ids_->begin(), unkept_ids_->end(),
+                                                        idHash(std::string_view(s, n))))
+            return unkept_code_;
+        return -1;
     }
 
     // ---- value changes -------------------------------------------------------
@@ -463,6 +576,7 @@ private:
             }
         }
         initial_ = false;
+        if (seen_time_ && cur_ > start_) first_step_ = cur_ - start_;
     }
 
     [[gnu::always_inline]] void set(std::uint32_t line, std::uint8_t level, EdgeBlock* block) {
@@ -554,7 +668,16 @@ private:
                 case 'x':
                 case 'X':
                 case 'z':
-                case 'Z': {
+                case 'Z':
+                case 'u':  // VHDL's (GHDL, NVC) nine states
+                case 'U':
+                case 'w':
+                case 'W':
+                case 'l':
+                case 'L':
+                case 'h':
+                case 'H':
+                case '-': {
                     const char* id = p_ + 1;
                     const char* q = tokenEnd(id);
                     if (q == id) {  // tolerate `1 !`
@@ -563,12 +686,16 @@ private:
                         id = q;
                         q = tokenEnd(q);
                     }
+                    if (!std::strchr("01xXzZ", c) && lookup(id, std::size_t(q - id)) < 0)
+                        fail(fmt::format(  // "hello": a stray word, not h on 'ello'
+                            "expected a value change, #time or $keyword, found '{}'",
+                            printable(std::string_view(p_, std::size_t(tokenEnd(p_) - p_)))));
                     const Code& code = codeFor(id, q);
                     p_ = q;
-                    if (code.tbegin != code.tend && (c == '0' || c == '1')) {
+                    const std::uint8_t level = kStateLevel[static_cast<unsigned char>(c)];
+                    if (code.tbegin != code.tend && level != kKeepLevel) {
                         for (std::uint32_t k = code.tbegin; k < code.tend; ++k)
-                            set(targets_[k].line, targets_[k].bit == 0 ? std::uint8_t(c - '0') : 0,
-                                block);
+                            set(targets_[k].line, targets_[k].bit == 0 ? level : 0, block);
                     }
                     break;
                 }
@@ -601,9 +728,14 @@ private:
                         if (len == 0) fail("expected binary digits after 'b'");
                         for (std::uint32_t k = code.tbegin; k < code.tend; ++k) {
                             const std::size_t bit = std::size_t(targets_[k].bit);
-                            char b = bit < len ? v[len - 1 - bit] : (v[0] == '1' ? '0' : v[0]);
-                            if (b == '0' || b == '1')
-                                set(targets_[k].line, std::uint8_t(b - '0'), block);
+                            // Extended the VCD way: a known leading level by 0, else itself.
+                            const std::uint8_t lead = kStateLevel[static_cast<unsigned char>(v[0])];
+                            const std::uint8_t level =
+                                bit < len
+                                    ? kStateLevel[static_cast<unsigned char>(v[len - 1 - bit])]
+                                : lead <= 1 ? 0
+                                            : kKeepLevel;
+                            if (level <= 1) set(targets_[k].line, level, block);
                         }
                     }
                     break;
@@ -832,6 +964,14 @@ private:
     // decoding thread writes shares a line with them (own_cache_lines.h).
     OwnLinesArray<std::int32_t> scalar1_, scalar2_;
     std::unordered_map<std::string, int, StringHash, std::equal_to<>> long_;
+    // keepOnlyWanted(): the long identifiers of dropped signals (hashes, sorted once the
+    // header ends; shared with clones), the code that stands for them all, the names kept.
+    std::shared_ptr<std::vector<std::uint64_t>> unkept_ids_ =
+        std::make_shared<std::vector<std::uint64_t>>();
+    int unkept_code_ = -1;
+    bool kept_only_ = false;
+    std::uint64_t declared_ = 0;
+    std::unordered_set<std::string> wanted_;
     OwnLinesArray<std::uint8_t> level_;  // written per edge, on the reading thread
 
     // The rest of the current line (header), or of the current run of lines.
@@ -846,6 +986,8 @@ private:
     bool done_ = false;
     Tick start_ = 0, cur_ = 0, end_ = 0;
     int time_digits_ = 1;  // fastRun()'s loop: for times of this many digits
+    bool vivado_ = false;  // $version names Vivado
+    Tick first_step_ = 0;  // from the first timestamp to the second (0: none)
     // tokenise(): the piece's bytes not yet handed to pump() (piece_ set).
     bool piece_ = false;
     const char* piece_next_ = nullptr;

@@ -9,6 +9,19 @@
 
 namespace busdecode {
 
+std::string oneLine(std::string_view text) {
+    std::string out;
+    out.reserve(text.size());
+    for (const char c : text) {
+        const auto u = static_cast<unsigned char>(c);
+        if (u < 0x20 || u == 0x7f)
+            out += fmt::format("\\x{:02x}", u);
+        else
+            out += c;
+    }
+    return out;
+}
+
 std::optional<double> parseNumber(const std::string& s) {
     if (s.empty()) return std::nullopt;
     if (auto i = parseInteger(s)) return double(*i);

@@ -6,6 +6,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 #include "decoder_info.h"
 
@@ -38,6 +39,10 @@ public:
 private:
     std::map<std::string, std::string> values_;
 };
+
+// `text` with its control characters (newline, tab, ESC...) shown as \xNN: an error or
+// hint line stays one line whatever file name, option or header it quotes.
+std::string oneLine(std::string_view text);
 
 // Parses a number the way users write it: 9600, 1e6, 0x43, 2.5, -3.
 std::optional<double> parseNumber(const std::string& s);

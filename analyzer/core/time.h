@@ -29,7 +29,10 @@ struct Timebase {
             std::int64_t ns;
             if (!__builtin_mul_overflow(t, num * kNsPerSecond / den, &ns)) return ns;
         }
-        __int128 v = (__int128)t * num * 1'000'000'000;
+        __int128 v;
+        if (__builtin_mul_overflow((__int128)t, (__int128)num * 1'000'000'000, &v))
+            return (t < 0) == (num < 0) ? std::numeric_limits<std::int64_t>::max()
+                                        : std::numeric_limits<std::int64_t>::min();
         __int128 q = v / den, r = v % den;
         if (2 * (r < 0 ? -r : r) >= den) q += (v < 0 ? -1 : 1);  // round half away from zero
         // Saturated beyond +-292 years (a coarse timebase with huge tick counts).

@@ -13,7 +13,4 @@ namespace busdecode {
 // `name_capture`: the annotations' json names its capture (several in one call).
 std::unique_ptr<OutputSink> makeLcmSink(const std::string& url, bool name_capture = false);
 
-// `decode monitor [--lcm URL]`: the terminal dashboard. Returns the exit status.
-int runMonitor(int argc, char** argv);
-
 }  // namespace busdecode

@@ -77,10 +77,10 @@ CaptureVerdict verifyCapture(const std::string& capture, const Rules& rules,
         v.events = checker.eventSummary();
     } catch (const InputError& e) {
         v.input_error = true;
-        v.error = e.what();
+        v.error = oneLine(e.what());
     } catch (const std::exception& e) {
         v.input_error = true;
-        v.error = fmt::format("internal error: {}", e.what());
+        v.error = fmt::format("internal error: {}", oneLine(e.what()));
     }
     v.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return v;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -11,6 +12,7 @@
 
 #include "capture/readers.h"
 #include "core/options.h"
+#include "core/sample_rate.h"
 
 namespace busdecode {
 
@@ -122,6 +124,12 @@ public:
         ProtoRules r;
         r.proto = name;
         r.line = line;
+        // A table that checks nothing would pass every capture: most likely a mistake.
+        if (t.empty())
+            throw InputError(
+                fmt::format("{}:{}: [{}]: no rules in this table (it would check "
+                            "nothing; valid keys: {})",
+                            file_, line, printable(name, 80), fmt::join(kRuleKeys, ", ")));
         for (auto [kp, vp] : inFileOrder(t)) {
             const toml::key& k = *kp;
             const toml::node& v = *vp;
@@ -229,6 +237,9 @@ public:
             } else if (key == "rate") {
                 d.rate_hz = number(v, "decode", key);
                 if (d.rate_hz <= 0) fail(v.source(), "decode", key, "must be above 0 Hz");
+                const SampleRate r = sampleRateOf(d.rate_hz);
+                if (!r.timebase)
+                    fail(v.source(), "decode", key, fmt::format("{} Hz {}", d.rate_hz, r.problem));
             } else {
                 fail(k.source(), "decode", key,
                      fmt::format("unknown key (valid: {})", fmt::join(kDecodeKeys, ", ")));
@@ -294,6 +305,9 @@ Rules parseRules(const std::string& text, const std::string& file_name,
 }
 
 Rules loadRules(const std::string& path, const std::vector<std::string>& known_protos) {
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec))
+        throw InputError(fmt::format("{}: is a directory, not a rules file", printable(path, 200)));
     std::ifstream in(path, std::ios::binary);
     if (!in) throw InputError(fmt::format("{}: cannot read the rules file", path));
     std::ostringstream ss;

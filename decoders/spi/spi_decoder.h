@@ -14,7 +14,7 @@
 // glitch.
 
 #include "core/bit_word.h"
-#include "core/decoder.h"
+#include "core/block_decoding.h"
 #include "spi_info.h"
 #include "spi_mode_probe.h"
 
@@ -23,7 +23,7 @@
 
 namespace busdecode {
 
-class SpiDecoder : public Decoder {
+class SpiDecoder : public FastDecoder {
 public:
     explicit SpiDecoder(const Options& options);
 

@@ -60,8 +60,8 @@ void registerDecoders() {
 }
 
 std::vector<std::string> targetNames() {
-    std::vector<std::string> out = {"vcd",        "vcd_pieces", "csv_sigrok",
-                                    "csv_saleae", "csv_plain",  "sr"};
+    std::vector<std::string> out = {"vcd",       "vcd_pieces", "csv_sigrok", "csv_saleae",
+                                    "csv_plain", "sr",         "cli_args"};
 #ifdef FUZZ_HAVE_RULES
     out.push_back("rules");
 #endif
@@ -78,6 +78,7 @@ void runTarget(const std::string& target, const std::uint8_t* data, std::size_t 
     if (target == "csv_plain") return runReaderTarget(ReaderKind::PlainCsv, data, size);
     if (target == "sr") return runReaderTarget(ReaderKind::Sr, data, size);
     if (target == "rules") return runRulesTarget(data, size);
+    if (target == "cli_args") return runCliArgsTarget(data, size);
     if (target.rfind("decoder_", 0) == 0) return runDecoderTarget(target.substr(8), data, size);
     throw HarnessFailure("unknown fuzz target '" + target + "'");
 }

@@ -18,5 +18,7 @@ std::string srFromFuzzBytes(const std::uint8_t* data, std::size_t size);
 void runDecoderTarget(const std::string& id, const std::uint8_t* data, std::size_t size);
 // The rules-file parser (only when analyzer/verify is built in).
 void runRulesTarget(const std::uint8_t* data, std::size_t size);
+// The command line's numbers and options (cli_args_harness.cpp).
+void runCliArgsTarget(const std::uint8_t* data, std::size_t size);
 
 }  // namespace busdecode::fuzz

@@ -180,7 +180,7 @@ TEST(CsvReaderErrors, Messages) {
           ":12: expected 0 or 1 in column 'B', found 'x'");
     check("unit.csv", "Time [s],A\n0,1\n5 parsecs,0\n",
           ":3: expected a time in seconds, found '5 parsecs'");
-    check("nohdr.csv", "; only a comment\n", ": empty file (no CSV header)");
+    check("nohdr.csv", "; only a comment\n", ": no CSV header (only comment lines)");
 }
 
 // Plain rows ("0.000001250,1,0") take a fast path; the same rows with a blank after each
