@@ -174,7 +174,7 @@ int runDecode(const DecodeArgs& a) {
         std::setvbuf(stdout, buffer, _IOFBF, sizeof buffer);
 
     std::unique_ptr<OutputSink> lcm;
-    if (a.lcm_url) lcm = makeLcmSink(*a.lcm_url);
+    if (a.lcm_url) lcm = makeLcmSink(*a.lcm_url, a.captures.size() > 1);
     const std::vector<std::string> reports = a.report.empty()
                                                  ? std::vector<std::string>(a.captures.size())
                                                  : reportPaths(a.report, a.captures);
@@ -183,7 +183,8 @@ int runDecode(const DecodeArgs& a) {
     for (std::size_t i = 0; i < a.captures.size(); ++i) {
         const std::string& capture = a.captures[i];
         std::vector<std::unique_ptr<OutputSink>> owned;
-        owned.push_back(a.format == "jsonl" ? makeJsonlSink(stdout) : makeTextSink(stdout));
+        owned.push_back(a.format == "jsonl" ? makeJsonlSink(stdout, a.captures.size() > 1)
+                                            : makeTextSink(stdout));
         if (!reports[i].empty()) owned.push_back(makeReportSink(reports[i]));
         std::vector<OutputSink*> sinks;
         for (auto& s : owned)

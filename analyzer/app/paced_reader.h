@@ -17,6 +17,7 @@ public:
     const std::vector<SignalInfo>& signals() const override { return in_->signals(); }
     Timebase timebase() const override { return in_->timebase(); }
     std::string formatName() const override { return in_->formatName(); }
+    std::string wallClockStart() const override { return in_->wallClockStart(); }
     void select(const std::vector<LineRef>& l) override { in_->select(l); }
     std::vector<std::uint8_t> initialLevels() override {
         auto v = in_->initialLevels();

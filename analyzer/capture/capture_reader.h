@@ -33,6 +33,8 @@ public:
     virtual const std::vector<SignalInfo>& signals() const = 0;
     virtual Timebase timebase() const = 0;
     virtual std::string formatName() const = 0;  // "vcd", "sigrok-csv", "saleae-csv", ...
+    // When the capture began by the wall clock, as the file says (wall_clock.h), or "".
+    virtual std::string wallClockStart() const { return {}; }
     // Chooses the lines to deliver; Edge::line indexes this list. Call once before next(),
     // with at most kMaxSelectedLines lines (checkSelection()).
     virtual void select(const std::vector<LineRef>& lines) = 0;

@@ -117,6 +117,7 @@ public:
     const std::vector<SignalInfo>& signals() const override { return signals_; }
     Timebase timebase() const override { return in_->timebase(); }
     std::string formatName() const override { return in_->formatName(); }
+    std::string wallClockStart() const override { return in_->wallClockStart(); }
     Tick startTick() const override { return in_->startTick(); }
     Tick endTick() const override { return in_->endTick(); }
     std::uint64_t bytesRead() const override { return in_->bytesRead(); }

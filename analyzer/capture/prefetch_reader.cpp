@@ -34,6 +34,7 @@ public:
     const std::vector<SignalInfo>& signals() const override { return in_->signals(); }
     Timebase timebase() const override { return in_->timebase(); }
     std::string formatName() const override { return in_->formatName(); }
+    std::string wallClockStart() const override { return in_->wallClockStart(); }
     void select(const std::vector<LineRef>& lines) override { in_->select(lines); }
     std::vector<std::uint8_t> initialLevels() override { return in_->initialLevels(); }
     Tick startTick() const override { return in_->startTick(); }

@@ -69,6 +69,7 @@ public:
     const std::vector<SignalInfo>& signals() const override { return vcd_->signals(); }
     Timebase timebase() const override { return vcd_->timebase(); }
     std::string formatName() const override { return vcd_->formatName(); }
+    std::string wallClockStart() const override { return vcd_->wallClockStart(); }
     void select(const std::vector<LineRef>& lines) override { vcd_->select(lines); }
     std::vector<std::uint8_t> initialLevels() override {
         auto levels = vcd_->initialLevels();

@@ -42,6 +42,7 @@
 #include "segmented_vcd_reader.h"
 #include "vcd_time_line.h"
 #include "vcd_tokeniser.h"
+#include "wall_clock.h"
 
 namespace busdecode {
 
@@ -95,6 +96,7 @@ public:
     const std::vector<SignalInfo>& signals() const override { return signals_; }
     Timebase timebase() const override { return tb_; }
     std::string formatName() const override { return "vcd"; }
+    std::string wallClockStart() const override { return date_; }
 
     void select(const std::vector<LineRef>& lines) override {
         checkSelection(lines);
@@ -388,11 +390,16 @@ private:
                 if (!scope.empty()) scope.pop_back();
             } else if (tok == "$var") {
                 declare(blockTokens(tok, line), scope, line);
+            } else if (tok == "$date") {
+                std::string text;
+                for (const auto& t : blockTokens(tok, line))
+                    text += (text.empty() ? "" : " ") + t;
+                date_ = wallClockFromText(text);
             } else if (tok == "$version") {
                 for (const auto& t : blockTokens(tok, line))
                     vivado_ |= t == "Vivado";
             } else if (tok.size() > 1 && tok[0] == '$') {
-                skipBlock();  // $date, $comment, ...
+                skipBlock();  // $comment, ...
             } else {
                 failAt(line, fmt::format("expected a $keyword in the VCD header, found '{}'",
                                          printable(tok)));
@@ -942,6 +949,7 @@ private:
     OpenOptions opts_;
     Timebase tb_{1, 1'000'000'000};
     std::vector<SignalInfo> signals_;
+    std::string date_;  // $date as ISO 8601 (wall_clock.h)
     std::vector<int> sig_code_;
     std::vector<Code> codes_;
     std::vector<Target> targets_;

@@ -298,7 +298,8 @@ struct Session::Impl : EventSink {
             slot.role_line.push_back(lineOf(*ref));
             std::string sname = reader->signals()[ref->signal].full_name;
             if (ref->bit >= 0) sname += fmt::format("[{}]", ref->bit);
-            facts->bindings.push_back({info.id, slot.instance, rs.name, sname});
+            facts->bindings.push_back(
+                {info.id, slot.instance, rs.name, sname, slot.role_line.back()});
         }
         checkOneOfBound(info, slot.role_line);
     }
@@ -410,6 +411,7 @@ Session::Session(std::vector<DecoderRequest> requests, CaptureReader& reader, st
     impl_->facts = &facts_;
     facts_.file = std::move(file_name);
     facts_.format = reader.formatName();
+    facts_.capture_start = reader.wallClockStart();
     facts_.timebase = reader.timebase();
     if (requests.empty())
         throw InputError("no decoder chosen: use --proto NAME (see decode --list)");
@@ -423,6 +425,7 @@ Session::Session(std::vector<DecoderRequest> requests, CaptureReader& reader, st
             req, proto_count[req.proto] > 1 ? fmt::format("{}#{}", req.proto, n) : req.proto);
         impl_->bindRoles(slot, req.map);
         facts_.protos.push_back(slot.instance);
+        facts_.options[slot.instance] = slot.options.all();
         impl_->slots.push_back(std::move(slot));
     }
     impl_->routeLines();
@@ -524,6 +527,9 @@ std::uint64_t Session::decodeBlock(EdgeBlock& block, std::uint64_t before) {
             kept[n++] = e;
         }
     }
+    // A sink drawing the waveform (the HTML report) sees the edges before their events.
+    for (auto* s : sinks_)
+        if (s->wantsEdges()) s->onEdges(kept, kept + n);
     bool advance = true;
     if (im.parallel) {
         im.emitting = 0;

@@ -25,15 +25,20 @@ struct DecoderRequest {
 struct CaptureFacts {
     std::string file;
     std::string format;
+    std::string capture_start;  // wall-clock start from the file (ISO 8601), or ""
     Timebase timebase;
     Tick start = 0;
     Tick end = 0;  // known at the end only
     struct Binding {
         std::string proto, instance, role, signal;
+        int line = -1;  // Edge::line of the signal's edges (OutputSink::onEdges)
     };
     std::vector<Binding> bindings;
     std::vector<std::string> protos;  // instance names, in --proto order
-    std::uint64_t edges = 0;          // edges read on the mapped lines
+    // Each instance's options as resolved (defaults applied), for sinks that interpret
+    // fields by the layout (the width a position wraps at).
+    std::map<std::string, std::map<std::string, std::string>> options;
+    std::uint64_t edges = 0;  // edges read on the mapped lines
     std::uint64_t bytes = 0;
     // The decoders' advice at the end (Decoder::advice), each as "instance: text".
     std::vector<std::string> advice;
@@ -50,6 +55,13 @@ public:
     // False for a sink that never reads Event::fields of an event with a summary (text
     // output): with only such sinks, decoders may leave fields out.
     virtual bool readsFields() const { return true; }
+    // A sink that draws the captured waveform (the HTML report) sees the mapped lines'
+    // edges, each block before the events decoded from it.
+    virtual bool wantsEdges() const { return false; }
+    virtual void onEdges(const Edge* first, const Edge* last) {
+        (void)first;
+        (void)last;
+    }
 };
 
 class Session {

@@ -91,6 +91,7 @@ struct Stamp {
     const Timebase& tb;
     std::int64_t seq;
     std::int64_t utime;
+    std::string_view capture_fields = {};
 };
 
 // The stamp every message carries: times, sequence, instance, errors.
@@ -272,7 +273,7 @@ int publishAnnotation(lcm::LCM& lc, const std::string& typed_channel, const Stam
     m.type = s.e.type;
     m.channel = typed_channel;
     m.text = eventToText(s.e, s.tb);
-    m.json = eventToJson(s.e, s.tb);
+    m.json = eventToJson(s.e, s.tb, s.capture_fields);
     return lc.publish(kLcmEventsChannel, &m);
 }
 
@@ -288,8 +289,8 @@ std::int64_t lcmUtimeNow() {
 }
 
 LcmPublishResult publishEventToLcm(lcm::LCM& lc, const Event& e, const Timebase& tb,
-                                   std::int64_t seq) {
-    Stamp s{e, tb, seq, lcmUtimeNow()};
+                                   std::int64_t seq, std::string_view capture_fields) {
+    Stamp s{e, tb, seq, lcmUtimeNow(), capture_fields};
     LcmPublishResult out;
     out.channel = lcmChannelFor(e.proto, e.type);
     const auto& table = typedPublishers();

@@ -26,8 +26,9 @@ struct LcmPublishResult {
 };
 
 // Publishes both messages of `e`, stamped with `seq` and the wall-clock time now.
+// `capture_fields`: captureJsonFields() of the event's capture, for the annotation's json.
 LcmPublishResult publishEventToLcm(lcm::LCM& lc, const Event& e, const Timebase& tb,
-                                   std::int64_t seq);
+                                   std::int64_t seq, std::string_view capture_fields = {});
 
 // Wall-clock microseconds since the Unix epoch (LCM's utime).
 std::int64_t lcmUtimeNow();

@@ -16,6 +16,7 @@
 #include "lcm_channels.h"
 #include "lcm_messages.h"
 #include "lcm_sink.h"
+#include "sinks/event_format.h"
 
 namespace busdecode {
 
@@ -93,6 +94,7 @@ struct LcmSink::Impl {
     LcmSinkCounts counts;
     LcmSinkCounts reported;  // counts at the previous end(), to report per capture
     std::int64_t next_seq = 0;
+    std::string capture_fields;  // the current capture's (captureJsonFields)
     Timebase tb;
     std::thread worker;
 
@@ -102,6 +104,7 @@ struct LcmSink::Impl {
         m.state = s.state;
         m.file = s.facts.file;
         m.format = s.facts.format;
+        m.capture_start = s.facts.capture_start;
         m.protos = s.facts.protos;
         m.num_protos = int16_t(m.protos.size());
         m.ns_per_tick = s.facts.timebase.nsPerTick();
@@ -128,7 +131,8 @@ struct LcmSink::Impl {
             if (auto* ev = std::get_if<EventItem>(&item)) {
                 if (opt.before_publish) opt.before_publish();
                 pace();
-                LcmPublishResult r = publishEventToLcm(*lc, ev->event, ev->tb, ev->seq);
+                LcmPublishResult r =
+                    publishEventToLcm(*lc, ev->event, ev->tb, ev->seq, capture_fields);
                 std::lock_guard lock(mu);
                 (r.failures ? counts.failed : counts.published)++;
             } else {
@@ -204,6 +208,8 @@ LcmSink::~LcmSink() {
 
 void LcmSink::begin(const CaptureFacts& facts) {
     impl_->tb = facts.timebase;
+    // Set while the worker is idle (end() drained it); the queue's lock orders it.
+    impl_->capture_fields = captureJsonFields(facts, impl_->opt.name_capture);
     impl_->push(StatusItem{"begin", facts, facts.start}, false);
 }
 
@@ -241,8 +247,9 @@ LcmSinkCounts LcmSink::counts() const {
     return impl_->counts;
 }
 
-std::unique_ptr<OutputSink> makeLcmSink(const std::string& url) {
+std::unique_ptr<OutputSink> makeLcmSink(const std::string& url, bool name_capture) {
     LcmSinkOptions opt = LcmSinkOptions::fromEnvironment(url);
+    opt.name_capture = name_capture;
     return std::make_unique<LcmSink>(openLcm(url), url, std::move(opt));
 }
 

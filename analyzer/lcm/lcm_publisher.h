@@ -28,6 +28,9 @@ struct LcmSinkOptions {
     // udpm:// URLs default to kDefaultUdpmEventsPerS.
     static constexpr double kDefaultUdpmEventsPerS = 20000;
     double max_events_per_s = 0;
+    // Each annotation's json names its capture, as jsonl does with several captures in one
+    // call (docs/contract.md, "JSON lines").
+    bool name_capture = false;
     // Where the end-of-capture drop/failure counts go.
     std::FILE* report = stderr;
     // Test hook: called by the publisher thread before each event it publishes.

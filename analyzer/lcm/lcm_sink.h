@@ -10,6 +10,7 @@ namespace busdecode {
 
 // url "" = LCM's default. Throws InputError when the URL is bad or the network is
 // unavailable. The sink prints a count of dropped messages at the end, if any.
-std::unique_ptr<OutputSink> makeLcmSink(const std::string& url);
+// `name_capture`: the annotations' json names its capture (several in one call).
+std::unique_ptr<OutputSink> makeLcmSink(const std::string& url, bool name_capture = false);
 
 }  // namespace busdecode

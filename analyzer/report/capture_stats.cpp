@@ -85,6 +85,33 @@ void CaptureStats::begin(const CaptureFacts& facts) {
     facts_ = facts;
     for (const auto& p : facts.protos)
         noteInstance(p);
+    for (const auto& [instance, options] : facts.options)
+        wraps_[instance] = PositionWrap(instance.substr(0, instance.find('#')), options);
+    if (keep_waves_) edges_.begin(facts);
+}
+
+void TimeCounts::add(double t_ns) {
+    if (!started_) {
+        origin_ns_ = t_ns;
+        started_ = true;
+    }
+    ++total_;
+    std::size_t bin = std::size_t(std::max(0.0, (t_ns - origin_ns_) / bin_ns_));
+    while (bin >= kMaxBins) {
+        std::vector<std::uint64_t> merged((bins_.size() + 1) / 2, 0);
+        for (std::size_t i = 0; i < bins_.size(); ++i)
+            merged[i / 2] += bins_[i];
+        bins_ = std::move(merged);
+        bin_ns_ *= 2;
+        bin = std::size_t((t_ns - origin_ns_) / bin_ns_);
+    }
+    if (bins_.size() <= bin) bins_.resize(bin + 1);
+    ++bins_[bin];
+}
+
+const TimeCounts* CaptureStats::faultsOverTime(const std::string& instance) const {
+    auto it = fault_times_.find(instance);
+    return it == fault_times_.end() ? nullptr : &it->second;
 }
 
 void CaptureStats::end(const CaptureFacts& facts) {
@@ -137,24 +164,8 @@ void CaptureStats::add(const Event& e) {
     }
 
     const std::string& inst = g.instance;
-    if (const Value* pos = e.get("position"); pos && isNumber(*pos)) {
-        const double v = asDouble(*pos);
-        auto& p = positions_[inst];
-        if (p.count == 0) {
-            p.min = p.max = v;
-        } else {
-            p.min = std::min(p.min, v);
-            p.max = std::max(p.max, v);
-            const double jump = std::fabs(v - p.last);
-            if (jump > p.max_jump) {
-                p.max_jump = jump;
-                p.max_jump_at = e.start;
-            }
-        }
-        p.last = v;
-        ++p.count;
-        p.trace.add(tb.toNsF(double(e.start)), v);
-    }
+    if (const Value* pos = e.get("position"); pos && isNumber(*pos))
+        addPosition(inst, e, asDouble(*pos));
 
     if (e.type == "register") {
         const Value* addr = e.get("address");
@@ -171,7 +182,9 @@ void CaptureStats::add(const Event& e) {
         }
     }
 
+    if (keep_waves_) edges_.offer(e);
     if (!e.errors.empty()) {
+        fault_times_[inst].add(tb.toNsF(double(e.start)));
         ++g.faulty;
         ++total_faults_;
         for (const auto& err : e.errors)
@@ -179,6 +192,30 @@ void CaptureStats::add(const Event& e) {
         if (faults_.size() < kMaxFaults) faults_.push_back({e.start, inst, eventToText(e, tb)});
         if (!first_faulty_) first_faulty_ = e;
     }
+}
+
+void CaptureStats::addPosition(const std::string& inst, const Event& e, double v) {
+    const double t_ns = facts_.timebase.toNsF(double(e.start));
+    auto& p = positions_[inst];
+    auto wrap = wraps_.find(inst);
+    p.modulus = wrap == wraps_.end() ? 0 : wrap->second.modulus(e);
+    if (p.count == 0) {
+        p.min = p.max = p.unwrapped = v;
+    } else {
+        p.min = std::min(p.min, v);
+        p.max = std::max(p.max, v);
+        const double step = shortestDifference(p.last, v, p.modulus);
+        if (std::fabs(step) > p.max_jump) {
+            p.max_jump = std::fabs(step);
+            p.max_jump_at = e.start;
+        }
+        p.unwrapped += step;
+        if (t_ns > p.last_t_ns) p.velocity.add(t_ns, step * 1e9 / (t_ns - p.last_t_ns));
+    }
+    p.last = v;
+    p.last_t_ns = t_ns;
+    ++p.count;
+    p.trace.add(t_ns, p.unwrapped);
 }
 
 std::vector<const GroupStats*> CaptureStats::groupsOf(const std::string& instance) const {

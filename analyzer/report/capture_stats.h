@@ -18,6 +18,8 @@
 
 #include "core/event.h"
 #include "core/session.h"
+#include "edge_window.h"
+#include "position_wrap.h"
 #include "quantile_sketch.h"
 
 namespace busdecode {
@@ -66,9 +68,33 @@ struct PositionStats {
     std::uint64_t count = 0;
     double min = 0, max = 0;
     double last = 0;
-    double max_jump = 0;  // largest |difference| between consecutive positions
+    double modulus = 0;   // where the position wraps (0: it does not), from the last event
+    double max_jump = 0;  // largest |difference| between consecutive positions, the short way
     Tick max_jump_at = 0;
+    // The position unwrapped (first value plus the short-way differences since), so that a
+    // rollover draws as the motion it is; and counts per second between frames.
+    double unwrapped = 0;
+    double last_t_ns = 0;
     PositionTrace trace;
+    PositionTrace velocity;
+};
+
+// Events with errors over time in at most kMaxBins bins: when the capture outgrows them,
+// neighbouring bins merge and the bin width doubles.
+class TimeCounts {
+public:
+    static constexpr std::size_t kMaxBins = 200;
+    void add(double t_ns);
+    double binNs() const { return bin_ns_; }
+    double originNs() const { return origin_ns_; }
+    const std::vector<std::uint64_t>& bins() const { return bins_; }
+    std::uint64_t total() const { return total_; }
+
+private:
+    double origin_ns_ = 0, bin_ns_ = 1000;
+    bool started_ = false;
+    std::vector<std::uint64_t> bins_;
+    std::uint64_t total_ = 0;
 };
 
 struct RegisterStats {
@@ -102,18 +128,30 @@ public:
     std::uint64_t totalFaults() const { return total_faults_; }
     const std::vector<FaultRecord>& firstFaults() const { return faults_; }
     const std::optional<Event>& firstFaultyEvent() const { return first_faulty_; }
+    // Faulty events over time, per instance (null when it had none).
+    const TimeCounts* faultsOverTime(const std::string& instance) const;
+    // The captured waveforms of the first faulty events and a clean one per type (only
+    // when the sink hands the edges over: addEdges()).
+    void addEdges(const Edge* first, const Edge* last) { edges_.addEdges(first, last); }
+    void keepWaveforms(bool on) { keep_waves_ = on; }
+    const std::vector<FrameWave>& waveforms() const { return edges_.waves(); }
 
 private:
     GroupStats& group(const Event& e);
     void noteInstance(const std::string& instance);
+    void addPosition(const std::string& inst, const Event& e, double value);
 
     CaptureFacts facts_;
     std::vector<std::string> instances_;
     std::vector<GroupStats> groups_;  // few (instances x types): linear search is fine
     std::map<std::string, PositionStats> positions_;
+    std::map<std::string, PositionWrap> wraps_;  // per instance, from its options
     std::map<std::string, std::map<std::int64_t, RegisterStats>> registers_;
     std::vector<FaultRecord> faults_;
     std::optional<Event> first_faulty_;
+    std::map<std::string, TimeCounts> fault_times_;
+    EdgeWindows edges_;
+    bool keep_waves_ = false;
     std::uint64_t total_events_ = 0, total_faults_ = 0;
 };
 

@@ -4,13 +4,18 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <optional>
 
 #include <fmt/format.h>
 
+#include "core/options.h"
 #include "frame_layout.h"
 #include "report_format.h"
 #include "sinks/event_format.h"
+#include "svg_plot.h"
 #include "text_report.h"
+#include "waveform_svg.h"
 
 namespace busdecode {
 
@@ -34,83 +39,180 @@ std::string num(double v) {
     return fmt::format("{:.1f}", v);
 }
 
-// Position over time: one vertical stroke per trace point (its min..max), joined.
-std::string positionSvg(const CaptureStats& stats, const std::string& inst,
-                        const PositionStats& p) {
-    const auto& pts = p.trace.points();
-    if (pts.empty()) return "";
-    const Timebase& tb = stats.facts().timebase;
-    const double W = 900, H = 240, L = 90, R = 10, T = 20, B = 30;
-    double t0 = tb.toNsF(double(stats.facts().start)), t1 = tb.toNsF(double(stats.facts().end));
-    if (!(t1 > t0)) {
-        t0 = pts.front().t_ns;
-        t1 = std::max(pts.back().t_ns, t0 + 1);
+// A field's values on an axis: the scale to divide by and the title with the unit.
+struct FieldAxis {
+    double scale = 1;
+    std::string title;
+};
+
+FieldAxis fieldAxis(const std::string& key, double largest) {
+    const auto ends = [&](const char* suffix) {
+        const std::string_view sv(suffix);
+        return key.size() > sv.size() && key.compare(key.size() - sv.size(), sv.size(), sv) == 0;
+    };
+    if (ends("_ns") || ends("_us")) {
+        const double ns = ends("_us") ? 1e3 : 1;
+        const TimeUnit u = timeUnitFor(largest * ns);
+        return {u.ns / ns, fmt::format("{} ({})", key, u.name)};
     }
-    double lo = p.min, hi = p.max;
-    if (hi <= lo) {
-        lo -= 1;
-        hi += 1;
+    if (ends("_hz")) {
+        const double a = std::fabs(largest);
+        if (a >= 1e6) return {1e6, key + " (MHz)"};
+        if (a >= 1e3) return {1e3, key + " (kHz)"};
+        return {1, key + " (Hz)"};
     }
-    auto x = [&](double t) { return L + (t - t0) / (t1 - t0) * (W - L - R); };
-    auto y = [&](double v) { return T + (hi - v) / (hi - lo) * (H - T - B); };
-    std::string path;
-    for (const auto& q : pts) {
-        path += fmt::format("{}{},{} L{},{} ", path.empty() ? "M" : "L", num(x(q.t_ns)),
-                            num(y(q.lo)), num(x(q.t_ns)), num(y(q.hi)));
-    }
-    std::string s = fmt::format(
-        R"(<svg class="position" xmlns="http://www.w3.org/2000/svg" width="{0}" height="{1}" viewBox="0 0 {0} {1}">)",
-        W, H);
-    s += fmt::format(R"(<text x="{}" y="14">{} position over time ({} points)</text>)", L,
-                     esc(inst), pts.size());
-    s += fmt::format(R"(<line x1="{0}" y1="{1}" x2="{0}" y2="{2}" stroke="#888"/>)", L, T, H - B);
-    s += fmt::format(R"(<line x1="{0}" y1="{1}" x2="{2}" y2="{1}" stroke="#888"/>)", L, H - B,
-                     W - R);
-    s += fmt::format(R"(<text x="4" y="{}">{:.0f}</text><text x="4" y="{}">{:.0f}</text>)", T + 8,
-                     hi, H - B, lo);
-    s += fmt::format(R"(<text x="{}" y="{}">{}</text>)", L, H - 10, esc(formatDuration(t0)));
-    s += fmt::format(R"(<text x="{}" y="{}" text-anchor="end">{}</text>)", W - R, H - 10,
-                     esc(formatDuration(t1)));
-    s += fmt::format(R"(<path d="{}" fill="none" stroke="#1565c0" stroke-width="1.2"/>)", path);
-    if (p.count > 1 && p.max_jump > 0) {
-        const double jx = x(tb.toNsF(double(p.max_jump_at)));
-        s += fmt::format(
-            R"(<line x1="{0}" y1="{1}" x2="{0}" y2="{2}" stroke="#c62828" stroke-dasharray="4 3"/>)",
-            num(jx), T, H - B);
-        s += fmt::format(R"(<text x="{}" y="{}" fill="#c62828">largest jump {:.0f}</text>)",
-                         num(jx + 4), T + 12, p.max_jump);
-    }
-    return s + "</svg>\n";
+    return {1, key};
 }
 
+// Counts per turn from the decoder's layout (2^st_bits), 0 when unknown.
+double countsPerTurn(const std::string& proto, const std::map<std::string, std::string>& o) {
+    auto get = [&](const char* k) -> std::optional<std::int64_t> {
+        auto it = o.find(k);
+        return it == o.end() ? std::nullopt : parseInteger(it->second);
+    };
+    std::optional<std::int64_t> st = get("st_bits");
+    if (!st && proto == "bissc")
+        if (auto bits = get("bits")) st = *bits - get("mt_bits").value_or(0);
+    if ((proto != "ssi" && proto != "bissc") || !st || *st <= 0 || *st > 62) return 0;
+    return std::ldexp(1.0, int(*st));
+}
+
+struct TimeAxis {
+    double t0 = 0, t1 = 1;
+    TimeUnit unit{"ns", 1};
+    PlotAxis axis() const {
+        return {0, (t1 - t0) / unit.ns,
+                fmt::format("time from the capture's start ({})", unit.name)};
+    }
+    double at(double t_ns) const { return (t_ns - t0) / unit.ns; }
+};
+
+TimeAxis captureTime(const CaptureStats& stats, double first_ns, double last_ns) {
+    const Timebase& tb = stats.facts().timebase;
+    TimeAxis a;
+    a.t0 = tb.toNsF(double(stats.facts().start));
+    a.t1 = tb.toNsF(double(stats.facts().end));
+    if (!(a.t1 > a.t0)) {
+        a.t0 = first_ns;
+        a.t1 = std::max(last_ns, a.t0 + 1);
+    }
+    a.unit = timeUnitFor(a.t1 - a.t0);
+    return a;
+}
+
+// A trace (position or velocity) over time: one vertical stroke per point (its min..max);
+// `second_scale` > 0 labels the right-hand axis with the values times it.
+std::string traceSvg(const std::string& css, const std::string& title, const std::string& y_title,
+                     const PositionTrace& trace, const TimeAxis& ta, const char* colour,
+                     double second_scale = 0, const std::string& second_title = "") {
+    const auto& pts = trace.points();
+    double lo = pts.front().lo, hi = pts.front().hi;
+    for (const auto& q : pts) {
+        lo = std::min(lo, q.lo);
+        hi = std::max(hi, q.hi);
+    }
+    const double pad = (hi - lo) * 0.05;
+    SvgPlot plot(css, 900, 260, title, ta.axis(), {lo - pad, hi + pad, y_title});
+    if (second_scale > 0) plot.secondYAxis(second_scale, second_title);
+    std::string path;
+    for (const auto& q : pts)
+        path += fmt::format("{}{},{} L{},{} ", path.empty() ? "M" : "L", num(plot.x(ta.at(q.t_ns))),
+                            num(plot.y(q.lo)), num(plot.x(ta.at(q.t_ns))), num(plot.y(q.hi)));
+    plot.body() += fmt::format(
+        R"(<path class="trace" d="{}" fill="none" stroke="{}" stroke-width="1.2"/>)", path, colour);
+    return plot.svg();
+}
+
+std::string positionSvgs(const CaptureStats& stats, const std::string& inst,
+                         const PositionStats& p) {
+    const auto& pts = p.trace.points();
+    if (pts.empty()) return "";
+    const TimeAxis ta = captureTime(stats, pts.front().t_ns, pts.back().t_ns);
+    const std::string wrap =
+        p.modulus > 0 ? fmt::format(", unwrapped (the word wraps at {:.0f})", p.modulus) : "";
+    std::string s = traceSvg("position", fmt::format("{} position{}", inst, wrap),
+                             "position (counts)", p.trace, ta, "#1565c0");
+    if (p.velocity.points().empty()) return s;
+    // Velocity: counts/s, with rev/min on the right when the counts per turn are known.
+    const auto& facts = stats.facts();
+    auto opts = facts.options.find(inst);
+    const double per_turn = opts == facts.options.end()
+                                ? 0
+                                : countsPerTurn(inst.substr(0, inst.find('#')), opts->second);
+    return s + traceSvg("velocity", fmt::format("{} velocity", inst), "velocity (counts/s)",
+                        p.velocity, ta, "#6a1b9a", per_turn > 0 ? 60.0 / per_turn : 0,
+                        "velocity (rev/min)");
+}
+
+std::string faultsOverTimeSvg(const CaptureStats& stats, const std::string& inst,
+                              const TimeCounts& c) {
+    if (c.bins().empty()) return "";
+    const TimeAxis ta =
+        captureTime(stats, c.originNs(), c.originNs() + c.binNs() * double(c.bins().size()));
+    // About a hundred bars over the capture, whatever the bins were when it ended.
+    std::size_t merge = 1;
+    while (c.binNs() * double(merge) * 100 < ta.t1 - ta.t0)
+        merge *= 2;
+    std::vector<std::uint64_t> bins((c.bins().size() + merge - 1) / merge, 0);
+    for (std::size_t i = 0; i < c.bins().size(); ++i)
+        bins[i / merge] += c.bins()[i];
+    const double bin_ns = c.binNs() * double(merge);
+    const std::uint64_t peak = *std::max_element(bins.begin(), bins.end());
+    SvgPlot plot("faults-over-time", 900, 220,
+                 fmt::format("{}: events with errors per {}", inst, formatDuration(bin_ns)),
+                 ta.axis(), {0, double(peak) * 1.1, "events with errors"});
+    for (std::size_t i = 0; i < bins.size(); ++i) {
+        if (!bins[i]) continue;
+        const double xa = plot.x(ta.at(c.originNs() + bin_ns * double(i)));
+        const double xb = plot.x(ta.at(c.originNs() + bin_ns * double(i + 1)));
+        plot.body() += fmt::format(
+            R"(<rect class="bar" x="{}" y="{}" width="{}" height="{}" fill="#c62828"><title>{}</title></rect>)",
+            num(xa), num(plot.y(double(bins[i]))), num(std::max(xb - xa, 1.0)),
+            num(plot.bottom() - plot.y(double(bins[i]))), bins[i]);
+    }
+    return plot.svg();
+}
+
+// A histogram where the values vary; a constant is said in words instead.
 std::string histogramSvg(const std::string& title, const std::string& key,
                          const QuantileSketch& sk) {
     if (sk.count() < 1) return "";
-    const int bins = sk.min() == sk.max() ? 1 : 24;
+    if (sk.min() == sk.max())
+        return fmt::format(R"(<p class="constant">{}: {} in {}.</p>)", esc(title),
+                           esc(formatFieldValue(key, sk.min())),
+                           sk.count() == 1 ? std::string("the one event")
+                                           : fmt::format("all {} events", sk.count()));
+    const FieldAxis fa = fieldAxis(key, std::max(std::fabs(sk.min()), std::fabs(sk.max())));
+    // Whole numbers over a short range get one bar per value, centred on it.
+    const double span = sk.max() - sk.min();
+    const bool per_value = sk.allIntegers() && span <= 40;
+    const int bins = per_value ? int(span) + 1 : 24;
     const auto counts = sk.histogram(bins);
     const std::uint64_t peak = *std::max_element(counts.begin(), counts.end());
-    const double W = 440, H = 200, L = 50, R = 10, T = 22, B = 30;
-    // A constant value gets one narrow bar in the middle rather than a full-width block.
-    const double bw = bins == 1 ? 40.0 : (W - L - R) / bins;
-    const double x0 = bins == 1 ? L + (W - L - R - bw) / 2 : L;
-    std::string s = fmt::format(
-        R"(<svg class="histogram" xmlns="http://www.w3.org/2000/svg" width="{0}" height="{1}" viewBox="0 0 {0} {1}">)",
-        W, H);
-    s += fmt::format(R"(<text x="{}" y="14">{} (n={})</text>)", L, esc(title), sk.count());
-    for (int i = 0; i < bins; ++i) {
-        const double h = peak ? double(counts[i]) / double(peak) * (H - T - B) : 0;
-        s += fmt::format(
-            R"(<rect x="{}" y="{}" width="{}" height="{}" fill="#2e7d32"><title>{}</title></rect>)",
-            num(x0 + i * bw + 1), num(H - B - h), num(std::max(bw - 2, 1.0)), num(h), counts[i]);
+    const double lo = per_value ? sk.min() - 0.5 : sk.min(),
+                 hi = per_value ? sk.max() + 0.5 : sk.max();
+    SvgPlot plot("histogram", 440, 220, fmt::format("{} (n={})", title, sk.count()),
+                 {lo / fa.scale, hi / fa.scale, fa.title}, {0, double(peak) * 1.1, "events"});
+    if (per_value) {
+        std::vector<double> ticks;
+        const auto round = niceTicks(sk.min(), sk.max(), 8);
+        const double step = std::max(1.0, round.size() > 1 ? round[1] - round[0] : 1.0);
+        for (double v = std::ceil(sk.min() / step) * step; v <= sk.max(); v += step)
+            ticks.push_back(v);
+        plot.xTicksAt(ticks);
     }
-    s += fmt::format(R"(<line x1="{0}" y1="{1}" x2="{2}" y2="{1}" stroke="#888"/>)", L, H - B,
-                     W - R);
-    s += fmt::format(R"(<text x="4" y="{}">{}</text>)", T + 8, peak);
-    s += fmt::format(R"(<text x="{}" y="{}">{}</text>)", L, H - 10,
-                     esc(formatFieldValue(key, sk.min())));
-    s += fmt::format(R"(<text x="{}" y="{}" text-anchor="end">{}</text>)", W - R, H - 10,
-                     esc(formatFieldValue(key, sk.max())));
-    return s + "</svg>\n";
+    const double bw = (hi - lo) / bins;
+    for (int i = 0; i < bins; ++i) {
+        if (!counts[std::size_t(i)]) continue;
+        const double xa = plot.x((lo + bw * i) / fa.scale),
+                     xb = plot.x((lo + bw * (i + 1)) / fa.scale);
+        plot.body() += fmt::format(
+            R"(<rect class="bar" x="{}" y="{}" width="{}" height="{}" fill="#2e7d32"><title>{}</title></rect>)",
+            num(xa + 0.5), num(plot.y(double(counts[std::size_t(i)]))),
+            num(std::max(xb - xa - 1, 1.0)),
+            num(plot.bottom() - plot.y(double(counts[std::size_t(i)]))), counts[std::size_t(i)]);
+    }
+    return plot.svg();
 }
 
 std::string fieldText(const Field& f) {
@@ -123,8 +225,8 @@ std::string fieldText(const Field& f) {
 
 // The first faulty event drawn like a logic analyser screen: reconstructed lines with
 // bit values, field segments above them, decoded fields as bus cells, faults in red.
-std::string timingDiagramSvg(const Event& e, const Timebase& tb) {
-    auto layout = frameLayout(e);
+std::string timingDiagramSvg(const Event& e, const Timebase& tb, bool rebuild_bits) {
+    auto layout = rebuild_bits ? frameLayout(e) : std::vector<BitSegment>{};
     std::size_t total_bits = 0;
     for (const auto& seg : layout)
         total_bits += seg.bits.size();
@@ -342,10 +444,22 @@ std::string renderHtmlReport(const CaptureStats& stats) {
             if (p->count > 1)
                 h += fmt::format("; largest jump {:.0f} at {}", p->max_jump,
                                  esc(formatDuration(tb.toNsF(double(p->max_jump_at)))));
-            h += ".</p>\n" + positionSvg(stats, inst, *p);
+            h += ".</p>\n" + positionSvgs(stats, inst, *p);
         }
+        if (const auto* c = stats.faultsOverTime(inst)) h += faultsOverTimeSvg(stats, inst, *c);
     }
 
+    if (!stats.waveforms().empty()) {
+        h += "<h2>Captured waveforms</h2>\n<p>The first faulty events of each bus as captured, "
+             "with a clean one of each event type for comparison: the decoder's sample points "
+             "(orange), the bits read there, the decoded fields above them.</p>\n";
+        for (const FrameWave& w : stats.waveforms()) {
+            auto opts = f.options.find(w.event.instance);
+            h += waveformSvg(
+                w, tb,
+                opts == f.options.end() ? std::map<std::string, std::string>{} : opts->second);
+        }
+    }
     h += "<h2>Faults</h2>\n";
     if (stats.firstFaults().empty()) {
         h += "<p>None.</p>\n";
@@ -360,7 +474,7 @@ std::string renderHtmlReport(const CaptureStats& stats) {
         h += "</pre>\n";
         if (const auto& e = stats.firstFaultyEvent()) {
             h += "<h3>First faulty event</h3>\n";
-            h += timingDiagramSvg(*e, tb);
+            h += timingDiagramSvg(*e, tb, stats.waveforms().empty());
         }
     }
     h += "<h2>Text report</h2>\n<pre>" + esc(renderTextReport(stats)) + "</pre>\n";

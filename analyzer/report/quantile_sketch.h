@@ -29,6 +29,8 @@ public:
     double min() const { return min_; }
     double max() const { return max_; }
     double mean() const { return count_ ? sum_ / double(count_) : 0.0; }
+    // Every value added was a whole number.
+    bool allIntegers() const { return all_integers_; }
     // q in [0, 1]; 0 and 1 give the exact min and max. NaN when empty.
     double quantile(double q) const;
     double median() const { return quantile(0.5); }

@@ -50,18 +50,24 @@ std::vector<std::string> textHistogram(const std::string& key, const QuantileSke
     std::vector<std::string> rows;
     if (s.empty()) return rows;
     if (s.min() == s.max()) bins = 1;
+    // Whole numbers over a short range (cycles, repeats): one row per value, no 0 .. 0.625.
+    const bool per_value = s.allIntegers() && s.max() - s.min() < bins;
+    if (per_value) bins = int(s.max() - s.min()) + 1;
     const auto counts = s.histogram(bins);
     const std::uint64_t peak = *std::max_element(counts.begin(), counts.end());
-    const double step = (s.max() - s.min()) / bins;
+    const double step = per_value ? 1.0 : (s.max() - s.min()) / bins;
     for (int i = 0; i < bins; ++i) {
         const double lo = s.min() + step * i;
         const double hi = i + 1 == bins ? s.max() : lo + step;
         const int bar = peak ? int(std::lround(double(counts[i]) * width / double(peak))) : 0;
         // A non-empty bin always shows at least one mark.
         const int marks = counts[i] && bar == 0 ? 1 : bar;
-        rows.push_back(fmt::format("{:>12} .. {:<12} |{:<{}}| {}", formatFieldValue(key, lo),
-                                   formatFieldValue(key, hi), std::string(marks, '#'), width,
-                                   counts[i]));
+        const std::string range =
+            per_value ? fmt::format("{:>12}    {:<12}", formatFieldValue(key, lo), "")
+                      : fmt::format("{:>12} .. {:<12}", formatFieldValue(key, lo),
+                                    formatFieldValue(key, hi));
+        rows.push_back(
+            fmt::format("{} |{:<{}}| {}", range, std::string(marks, '#'), width, counts[i]));
     }
     return rows;
 }

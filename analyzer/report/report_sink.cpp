@@ -27,8 +27,12 @@ public:
     // The report is written once the capture is decoded: a bad path fails before that.
     explicit ReportSink(std::string path) : path_(std::move(path)), html_(wantsHtml(path_)) {
         checkWritable(path_);
+        stats_.keepWaveforms(html_);
     }
     void begin(const CaptureFacts& facts) override { stats_.begin(facts); }
+    // The HTML report draws the captured edges of a few events.
+    bool wantsEdges() const override { return html_; }
+    void onEdges(const Edge* first, const Edge* last) override { stats_.addEdges(first, last); }
     void onEvent(const Event& e, const CaptureFacts&) override { stats_.add(e); }
     void end(const CaptureFacts& facts) override {
         stats_.end(facts);

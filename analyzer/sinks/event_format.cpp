@@ -120,18 +120,33 @@ std::string valueToJson(const Value& v) {
     return out;
 }
 
-std::string eventToJson(const Event& e, const Timebase& tb) {
+std::string eventToJson(const Event& e, const Timebase& tb, std::string_view capture_fields) {
     std::string out;
     out.reserve(256);
-    appendEventJson(out, e, tb);
+    appendEventJson(out, e, tb, capture_fields);
     return out;
 }
 
-void appendEventJson(std::string& out, const Event& e, const Timebase& tb) {
+std::string captureJsonFields(const CaptureFacts& facts, bool name_capture) {
+    std::string out;
+    if (name_capture) {
+        out += ",\"capture\":";
+        appendJsonString(out, facts.file);
+    }
+    if (!facts.capture_start.empty()) {
+        out += ",\"capture_start\":";
+        appendJsonString(out, facts.capture_start);
+    }
+    return out;
+}
+
+void appendEventJson(std::string& out, const Event& e, const Timebase& tb,
+                     std::string_view capture_fields) {
     out += "{\"proto\":";
     appendJsonString(out, e.proto);
     out += ",\"type\":";
     appendJsonString(out, e.type);
+    out += capture_fields;
     fmt::format_to(std::back_inserter(out), ",\"start_ns\":{},\"end_ns\":{}", tb.toNs(e.start),
                    tb.toNs(e.end));
     for (const auto& f : e.fields) {

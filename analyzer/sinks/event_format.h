@@ -11,17 +11,23 @@
 
 namespace busdecode {
 
-// {"proto":..,"type":..,"start_ns":..,"end_ns":..,<fields in order>,"errors":[..]}
-std::string eventToJson(const Event& e, const Timebase& tb);
+// {"proto":..,"type":..,<capture fields>,"start_ns":..,"end_ns":..,<fields in order>,
+// "errors":[..]}; `capture_fields` is what captureJsonFields() made, or empty.
+std::string eventToJson(const Event& e, const Timebase& tb, std::string_view capture_fields = {});
 // The same appended to `out` (sinks reuse one buffer: no allocation per event).
-void appendEventJson(std::string& out, const Event& e, const Timebase& tb);
+void appendEventJson(std::string& out, const Event& e, const Timebase& tb,
+                     std::string_view capture_fields = {});
+// `,"capture":"a.vcd","capture_start":"2026-11-22T23:28:18"`: the capture an event came
+// from (when `name_capture`: several captures in one call) and its wall-clock start (when
+// the file gives one). Made once per capture (docs/contract.md, "JSON lines").
+std::string captureJsonFields(const CaptureFacts& facts, bool name_capture);
 // JSON text of one value (numbers as integers when integral, strings escaped).
 std::string valueToJson(const Value& v);
 // The jsonl mapping, for every writer of events as objects (jsonl, the Python module):
 // a decoder's field named like a common key is never written (the keys are the session's).
 inline bool isCommonEventKey(std::string_view key) {
     return key == "proto" || key == "type" || key == "start_ns" || key == "end_ns" ||
-           key == "errors";
+           key == "errors" || key == "capture" || key == "capture_start";
 }
 // How jsonl writes a double: non-finite as null, whole numbers below 1e15 as integers.
 enum class JsonNumber { Null, Integer, Real };

@@ -108,10 +108,11 @@ private:
 
 class JsonlSink : public OutputSink {
 public:
-    explicit JsonlSink(std::FILE* out) : out_(out) {}
+    JsonlSink(std::FILE* out, bool name_capture) : out_(out), name_capture_(name_capture) {}
+    void begin(const CaptureFacts& f) override { capture_ = captureJsonFields(f, name_capture_); }
     void onEvent(const Event& e, const CaptureFacts& f) override {
         line_.clear();
-        appendEventJson(line_, e, f.timebase);
+        appendEventJson(line_, e, f.timebase, capture_);
         line_ += '\n';
         put(out_, line_);
     }
@@ -119,7 +120,9 @@ public:
 
 private:
     std::FILE* out_;
-    std::string line_;  // reused for every event
+    bool name_capture_;
+    std::string capture_;  // the capture fields of every line (captureJsonFields)
+    std::string line_;     // reused for every event
 };
 
 }  // namespace
@@ -127,8 +130,8 @@ private:
 std::unique_ptr<OutputSink> makeTextSink(std::FILE* out) {
     return std::make_unique<TextSink>(out);
 }
-std::unique_ptr<OutputSink> makeJsonlSink(std::FILE* out) {
-    return std::make_unique<JsonlSink>(out);
+std::unique_ptr<OutputSink> makeJsonlSink(std::FILE* out, bool name_capture) {
+    return std::make_unique<JsonlSink>(out, name_capture);
 }
 
 }  // namespace busdecode

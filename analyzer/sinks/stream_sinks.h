@@ -11,6 +11,7 @@
 namespace busdecode {
 
 std::unique_ptr<OutputSink> makeTextSink(std::FILE* out);
-std::unique_ptr<OutputSink> makeJsonlSink(std::FILE* out);
+// `name_capture`: every line says which capture it came from (several in one call).
+std::unique_ptr<OutputSink> makeJsonlSink(std::FILE* out, bool name_capture = false);
 
 }  // namespace busdecode

@@ -10,6 +10,7 @@
 
 #include <fmt/format.h>
 
+#include "report/position_wrap.h"
 #include "report/report_format.h"
 #include "sinks/event_format.h"
 
@@ -203,28 +204,39 @@ private:
     std::uint64_t count_ = 0;
 };
 
+// Consecutive positions of one decoder instance may differ by at most `max`, taken the
+// short way round where the position wraps (position_wrap.h).
 class JumpCheck : public RuleCheck {
 public:
-    JumpCheck(std::string proto, double max) : proto_(std::move(proto)), max_(max) {}
+    JumpCheck(std::string proto, double max, std::optional<double> modulus)
+        : proto_(std::move(proto)), max_(max), modulus_(modulus) {}
+    void begin(const CaptureFacts& facts) override {
+        for (const auto& [instance, options] : facts.options)
+            lines_[instance].wrap = PositionWrap(decoderOf(instance), options, modulus_);
+    }
     void observe(const Event& e, const Timebase& tb) override {
         const Value* v = e.get("position");
         if (!isNumber(v)) return;
         const double p = asDouble(*v);
-        if (have_last_) {
-            const double jump = std::fabs(p - last_);
+        auto it = lines_.find(e.instance);
+        if (it == lines_.end())
+            it = lines_.emplace(e.instance, Line{PositionWrap(e.proto, {}, modulus_)}).first;
+        Line& line = it->second;
+        if (line.have_last) {
+            const double jump = std::fabs(line.wrap.difference(line.last, p, e));
             largest_ = std::max(largest_, jump);
             if (jump > max_) {
                 if (bad_ == 0) {
                     first_ = double(tb.toNs(e.start));
                     first_jump_ = jump;
-                    from_ = last_;
+                    from_ = line.last;
                     to_ = p;
                 }
                 ++bad_;
             }
         }
-        last_ = p;
-        have_last_ = true;
+        line.last = p;
+        line.have_last = true;
     }
     RuleOutcome finish(const CaptureFacts&) const override {
         RuleOutcome o = makeOutcome(proto_, "max_position_jump");
@@ -241,10 +253,20 @@ public:
     }
 
 private:
+    // "bissc#2" -> "bissc": instance names are the decoder id, numbered when repeated.
+    static std::string decoderOf(const std::string& instance) {
+        return instance.substr(0, instance.find('#'));
+    }
+    struct Line {
+        PositionWrap wrap;
+        bool have_last = false;
+        double last = 0;
+    };
     std::string proto_;
     double max_;
-    bool have_last_ = false;
-    double last_ = 0, largest_ = 0, first_ = 0, first_jump_ = 0, from_ = 0, to_ = 0;
+    std::optional<double> modulus_;
+    std::map<std::string, Line> lines_;  // per decoder instance
+    double largest_ = 0, first_ = 0, first_jump_ = 0, from_ = 0, to_ = 0;
     std::uint64_t bad_ = 0;
 };
 
@@ -348,7 +370,7 @@ void addChecks(const ProtoRules& r, std::vector<std::unique_ptr<RuleCheck>>& out
             out.push_back(std::make_unique<RangeCheck>(p, key, "position", 1.0, r.position->min,
                                                        r.position->max, "position"));
         else if (key == "max_position_jump")
-            out.push_back(std::make_unique<JumpCheck>(p, *r.max_position_jump));
+            out.push_back(std::make_unique<JumpCheck>(p, *r.max_position_jump, r.position_modulus));
         else if (key == "registers")
             for (const auto& [addr, value] : r.registers)
                 out.push_back(std::make_unique<RegisterCheck>(p, addr, value));
@@ -371,6 +393,9 @@ RuleChecker::~RuleChecker() = default;
 
 void RuleChecker::begin(const CaptureFacts& facts) {
     tb_ = facts.timebase;
+    for (auto& t : tables_)
+        for (auto& c : t.checks)
+            c->begin(facts);
 }
 
 void RuleChecker::onEvent(const Event& e, const CaptureFacts&) {

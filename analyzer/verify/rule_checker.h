@@ -26,6 +26,7 @@ struct RuleOutcome {
 class RuleCheck {
 public:
     virtual ~RuleCheck() = default;
+    virtual void begin(const CaptureFacts& facts) { (void)facts; }
     virtual void observe(const Event& e, const Timebase& tb) = 0;
     virtual RuleOutcome finish(const CaptureFacts& facts) const = 0;
 };

@@ -19,10 +19,9 @@ namespace busdecode {
 namespace {
 
 const std::vector<std::string> kRuleKeys = {
-    "max_crc_errors",    "max_errors", "max_warnings", "max_repeat_mismatches",
-    "max_faults",        "min_frames", "clock_hz",     "max_line_delay_ns",
-    "max_proc_cycles",   "tm_us",      "timeout_us",   "position",
-    "max_position_jump", "registers"};
+    "max_crc_errors", "max_errors", "max_warnings",      "max_repeat_mismatches", "max_faults",
+    "min_frames",     "clock_hz",   "max_line_delay_ns", "max_proc_cycles",       "tm_us",
+    "timeout_us",     "position",   "max_position_jump", "position_modulus",      "registers"};
 
 const std::vector<std::string> kDecodeKeys = {"proto", "map", "opt", "rate"};
 
@@ -167,6 +166,8 @@ public:
                 r.position = range(v, name, key, false);
             else if (key == "max_position_jump")
                 r.max_position_jump = nonNegative(v, name, key);
+            else if (key == "position_modulus")
+                r.position_modulus = nonNegative(v, name, key);
             else if (key == "registers")
                 r.registers = registers(v, name);
         }

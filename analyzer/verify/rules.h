@@ -28,13 +28,16 @@ struct ProtoRules {
     std::optional<std::int64_t> max_faults;             // events with any error string
     std::optional<std::int64_t> min_frames;             // frames (see primaryEventType)
     // Values of every event that has the field.
-    std::optional<RuleRange> clock_hz;               // clock_hz
-    std::optional<double> max_line_delay_ns;         // line_delay_ns
-    std::optional<double> max_proc_cycles;           // proc_cycles
-    std::optional<RuleRange> tm_us;                  // tm_ns / 1000 (SSI)
-    std::optional<RuleRange> timeout_us;             // timeout_ns / 1000 (BiSS-C)
-    std::optional<RuleRange> position;               // position
-    std::optional<double> max_position_jump;         // |position - previous position|
+    std::optional<RuleRange> clock_hz;        // clock_hz
+    std::optional<double> max_line_delay_ns;  // line_delay_ns
+    std::optional<double> max_proc_cycles;    // proc_cycles
+    std::optional<RuleRange> tm_us;           // tm_ns / 1000 (SSI)
+    std::optional<RuleRange> timeout_us;      // timeout_ns / 1000 (BiSS-C)
+    std::optional<RuleRange> position;        // position
+    std::optional<double> max_position_jump;  // |position - previous position|
+    // Where positions wrap (0: they do not); unset: from the decoder's layout (SSI and
+    // BiSS-C: 2^(st_bits + mt_bits)).
+    std::optional<double> position_modulus;
     std::map<std::int64_t, std::int64_t> registers;  // address -> expected data (register events)
     std::vector<std::string> keys;                   // the keys given, in file order
 };

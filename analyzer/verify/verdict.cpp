@@ -1,6 +1,10 @@
 #include "verdict.h"
 
+#include <cctype>
 #include <ctime>
+#include <filesystem>
+#include <map>
+#include <set>
 
 #include <unistd.h>
 
@@ -47,6 +51,44 @@ std::string summaryLine(const std::vector<CaptureVerdict>& all) {
     return fmt::format(
         "{} capture{}: {} passed, {} failed, {} unreadable; {} rule checks, {} failed", all.size(),
         all.size() == 1 ? "" : "s", pass, fail, err, checks, failed_checks);
+}
+
+namespace {
+
+std::string identifier(const std::string& s) {
+    std::string out;
+    for (unsigned char c : s)
+        out += std::isalnum(c) || c == '_' || c == '-' ? char(c) : '_';
+    return out.empty() ? "_" : out;
+}
+
+// "a/b/c.vcd" -> "a_b_c" (the folders only when `folders`).
+std::string captureName(const std::string& capture, bool folders) {
+    const std::filesystem::path p(capture);
+    std::filesystem::path named = folders ? p.parent_path() / p.stem() : p.stem();
+    std::string s = named.relative_path().string();
+    while (s.rfind("../", 0) == 0)
+        s.erase(0, 3);
+    return identifier(s);
+}
+
+}  // namespace
+
+std::vector<std::string> junitClassNames(const std::vector<CaptureVerdict>& all) {
+    std::map<std::string, int> stems;
+    for (const auto& v : all)
+        ++stems[captureName(v.capture, false)];
+    std::vector<std::string> out;
+    std::set<std::string> taken;
+    for (const auto& v : all) {
+        const std::string stem = captureName(v.capture, false);
+        std::string name = "busdecode." + (stems[stem] > 1 ? captureName(v.capture, true) : stem);
+        const std::string base = name;
+        for (int n = 2; !taken.insert(name).second; ++n)
+            name = fmt::format("{}_{}", base, n);
+        out.push_back(name);
+    }
+    return out;
 }
 
 namespace {
@@ -100,8 +142,10 @@ std::string junitXml(const std::vector<CaptureVerdict>& all, const std::string& 
         tests, failures, errors, total, stamp, xmlEscape(host));
     x += fmt::format("    <properties><property name=\"rules\" value=\"{}\"/></properties>\n",
                      xmlEscape(rules_file));
-    for (const auto& v : all) {
-        const std::string cls = xmlEscape(v.capture);
+    const std::vector<std::string> class_names = junitClassNames(all);
+    for (std::size_t i = 0; i < all.size(); ++i) {
+        const CaptureVerdict& v = all[i];
+        const std::string cls = xmlEscape(class_names[i]);
         if (v.input_error) {
             x += fmt::format("    <testcase name=\"decode\" classname=\"{}\" time=\"{:.3f}\">\n",
                              cls, v.seconds);

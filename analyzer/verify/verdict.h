@@ -29,6 +29,10 @@ std::string summaryLine(const std::vector<CaptureVerdict>& all);
 // JUnit XML in the common schema (testsuites > testsuite with properties, testcases,
 // system-out, system-err; a testcase holds at most one failure or error).
 std::string junitXml(const std::vector<CaptureVerdict>& all, const std::string& rules_file);
-// Escapes text for XML attributes and character data; drops characters XML 1.0 forbids.
+// The JUnit classname of each capture, in order: "busdecode.<stem>" with every character
+// but letters, digits, '_' and '-' made '_' (CI tools split a classname at its last dot
+// into package and class: no ".vcd"); captures of the same stem in different folders
+// take their folders into the name, and a name still taken gets "_2", "_3"...
+std::vector<std::string> junitClassNames(const std::vector<CaptureVerdict>& all);
 
 }  // namespace busdecode

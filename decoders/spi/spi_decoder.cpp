@@ -37,6 +37,7 @@ void SpiDecoder::start(const DecoderContext& ctx) {
     lines_.settled = lines_.level;
     std::fill(std::begin(line_of_), std::end(line_of_), -1);
     resetWord();
+    probe_.start(lines_.level, bound_ & bit(kSpiCs), cs_active_high_);
 }
 
 void SpiDecoder::step(Lines& s, Tick t, int role, bool level) {
@@ -48,6 +49,7 @@ void SpiDecoder::step(Lines& s, Tick t, int role, bool level) {
 }
 
 void SpiDecoder::edge(Tick t, int role, bool level) {
+    if (probe_.wants()) probe_.edge(t, role, level);
     step(lines_, t, role, level);
 }
 
@@ -169,6 +171,8 @@ void SpiDecoder::edges(const Edge* first, const Edge* last, const int* role_of_l
     for (int r = 0; r < kSpiRoleCount; ++r)
         if (line_of_[r] >= 0 && role_of_line[line_of_[r]] != r)
             std::fill(std::begin(line_of_), std::end(line_of_), -1);
+    for (const Edge* e = first; e != last && probe_.wants(); ++e)
+        probe_.edge(e->t, role_of_line[e->line], e->level != 0);
     Lines s = lines_;
     Window m;
     for (; last - first > kWindow; first += kWindow) {
@@ -376,7 +380,23 @@ void SpiDecoder::finish(Tick end) {
     resetWord();
 }
 
+std::optional<std::string> SpiDecoder::modeHint() const {
+    const auto f = probe_.finding();
+    if (!f || f->sample_rising == sample_on_rising_) return std::nullopt;
+    // The clock's rest level picks between the two modes that sample on that edge.
+    const int cpol = f->cpol.value_or(cpol_);
+    const int cpha = f->sample_rising == (cpol == 0) ? 0 : 1;
+    return fmt::format(
+        "the data lines change after the {} clock edges ({} of {} changes){}: the traffic "
+        "looks SPI mode {} (--opt cpol={} --opt cpha={}), which samples on the {} edge, "
+        "not cpol={} cpha={}",
+        f->sample_rising ? "falling" : "rising", f->agreeing, f->changes,
+        f->cpol ? fmt::format(" and the clock rests {} at chip select", cpol ? "high" : "low") : "",
+        cpol * 2 + cpha, cpol, cpha, f->sample_rising ? "rising" : "falling", cpol_, cpha_);
+}
+
 std::vector<std::string> SpiDecoder::advice() const {
+    if (auto hint = modeHint()) return {*hint};
     // A master that stops now and then cuts a few words short; half of them or more, each
     // after the same count, are words of that length.
     if (words_ < 2 || short_words_ * 2 < words_ || short_bits_ <= 0) return {};

@@ -16,6 +16,10 @@
 #include "core/bit_word.h"
 #include "core/block_decoding.h"
 #include "spi_info.h"
+#include "spi_mode_probe.h"
+
+#include <optional>
+#include <string>
 
 namespace busdecode {
 
@@ -35,6 +39,8 @@ public:
     // Most words cut short by chip select, all after the same count: the words are
     // likely that long.
     std::vector<std::string> advice() const override;
+    // Data changing after the edge the given mode samples on: the mode the traffic has.
+    std::optional<std::string> modeHint() const;
     // The word in progress, else the open tick group, holds back the output.
     Tick watermark(Tick now) const override;
 
@@ -90,6 +96,7 @@ private:
     bool word_glitch_ = false;
     std::int64_t words_ = 0, short_words_ = 0;
     int short_bits_ = -1;  // the bits every short word had (-1: none, or they differ)
+    SpiModeProbe probe_;
 };
 
 }  // namespace busdecode

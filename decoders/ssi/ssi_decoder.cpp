@@ -126,7 +126,9 @@ void SsiDecoder::close(bool capture_end) {
     std::vector<std::uint8_t> data_glitch(b_.data.size(), 0);
     const int glitches = countGlitches(T, data_glitch);
     const Timing timing = measureTiming(T, data_glitch);
-    const SsiWord w = assembleWord(sampleBits(timing.delay), cfg_);
+    const std::vector<std::uint8_t> samples = sampleBits(timing.delay);
+    const SsiWord w = assembleWord(samples, cfg_);
+    noteRingWidth(samples, w);
     pending_ = newEvent("frame", b_.start, last);
     fillFrame(*pending_, w, T, timing.measured, glitches);
     if (timing.late) pending_->error("late_data");
@@ -415,7 +417,34 @@ void SsiDecoder::finish(Tick end) {
     idle();
 }
 
+void SsiDecoder::noteRingWidth(const std::vector<std::uint8_t>& samples, const SsiWord& w) {
+    // The first frames are enough to tell, and keep the search off long captures.
+    constexpr std::int64_t kFramesLooked = 64;
+    if (cfg_.lead || w.short_frame || ring_looked_ >= kFramesLooked) return;
+    if (ring_looked_++ == 0) ring_first_raw_ = w.raw;
+    // A still encoder repeats a chance pattern in every frame: words that differ count.
+    ring_varied_ = ring_varied_ || w.raw != ring_first_raw_;
+    ++ring_votes_[std::size_t(ringWidth(samples, cfg_.ring_gap))];
+}
+
+int SsiDecoder::ringWidthFound() const {
+    // Some words repeat a shorter pattern by chance: three frames in four must agree.
+    if (!ring_varied_ || ring_looked_ < 4) return 0;
+    for (int n = 1; n < int(ring_votes_.size()); ++n)
+        if (ring_votes_[std::size_t(n)] * 4 >= ring_looked_ * 3) return n;
+    return 0;
+}
+
 std::vector<std::string> SsiDecoder::advice() const {
+    // The frames looked at held the same word again after `ring` bits.
+    if (const int ring = ringWidthFound(); ring > 0 && ring < cfg_.bits)
+        return {fmt::format(
+            "every frame repeats a {}-bit word ({} zero bits between, the encoder's ring shift) "
+            "within bits={}: the words look {} bits long (--opt bits={}{})",
+            ring, cfg_.ring_gap, cfg_.bits, ring, ring,
+            cfg_.st_bits + cfg_.mt_bits + cfg_.pos_shift <= ring
+                ? ""
+                : ", with st_bits and mt_bits to fit")};
     // One short frame is a master that stopped early; all of them, each with the same
     // count, is a word of that length.
     if (frames_ < 2 || shorts_ != frames_ || short_bits_ <= 0) return {};

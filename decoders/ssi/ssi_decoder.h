@@ -8,6 +8,7 @@
 // stays low for the monoflop time tm and returns high; the frame is emitted once tm is
 // known, a new burst starts while data is still low (a re-read of the same word), or the
 // capture ends.
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -15,6 +16,7 @@
 
 #include "core/block_decoding.h"
 #include "ssi_config.h"
+#include "ssi_word.h"
 
 namespace busdecode {
 
@@ -94,6 +96,14 @@ private:
     double clock_min_ = 0, clock_max_ = 0;
     std::int64_t frames_ = 0, mismatches_ = 0, shorts_ = 0, error_frames_ = 0;
     std::int64_t short_bits_ = -1;  // the bits every short frame had (-1: none, or they differ)
+    // The ring-shift widths of the first frames (ringWidth(), 0: none), and the one most
+    // of them had.
+    void noteRingWidth(const std::vector<std::uint8_t>& samples, const SsiWord& w);
+    int ringWidthFound() const;
+    std::int64_t ring_looked_ = 0;
+    std::array<std::int64_t, 65> ring_votes_{};
+    std::uint64_t ring_first_raw_ = 0;
+    bool ring_varied_ = false;  // the frames looked at held different words
 };
 
 }  // namespace busdecode

@@ -54,6 +54,32 @@ SsiWord assembleWord(const std::vector<std::uint8_t>& samples, const SsiConfig& 
     return w;
 }
 
+namespace {
+
+bool repeatsEvery(const std::vector<std::uint8_t>& samples, int n, int gap) {
+    const int size = int(samples.size());
+    for (int pos = n; pos < size;) {
+        for (int g = 0; g < gap && pos < size; ++g, ++pos)
+            if (samples[std::size_t(pos)]) return false;
+        for (int i = 0; i < n && pos < size; ++i, ++pos)
+            if (samples[std::size_t(pos)] != samples[std::size_t(i)]) return false;
+    }
+    return true;
+}
+
+}  // namespace
+
+int ringWidth(const std::vector<std::uint8_t>& samples, int ring_gap) {
+    constexpr int kMinCompared = 8;  // a chance match of fewer bits is too likely
+    const int size = int(samples.size());
+    bool any_one = false;
+    for (int n = 1; n + ring_gap + kMinCompared <= size; ++n) {
+        any_one = any_one || samples[std::size_t(n - 1)];
+        if (any_one && repeatsEvery(samples, n, ring_gap)) return n;
+    }
+    return 0;
+}
+
 SsiFields splitFields(std::uint64_t raw, const SsiConfig& cfg) {
     SsiFields f;
     const int pos_bits = cfg.st_bits + cfg.mt_bits;

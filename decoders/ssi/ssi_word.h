@@ -38,4 +38,11 @@ SsiFields splitFields(std::uint64_t raw, const SsiConfig& cfg);
 // Raw bit numbers set in `diff`, ascending.
 std::vector<std::int64_t> bitList(std::uint64_t diff);
 
+// The width of the word the encoder repeats in `samples` (wire order, no lead bit): the
+// shortest n for which the samples are an n-bit word with some one in it, then `ring_gap`
+// zeros and the word again, as far as the burst goes, at least 8 bits of it; 0
+// when there is none. A master set to more bits than the encoder has clocks its ring
+// shift: 13-bit words read as 25 bits are 13 bits, a zero and 11 bits again.
+int ringWidth(const std::vector<std::uint8_t>& samples, int ring_gap);
+
 }  // namespace busdecode

@@ -49,6 +49,11 @@ void UartDecoder::start(const DecoderContext& ctx) {
 void UartDecoder::edge(Tick t, int role, bool level) {
     if (role < 0 || role > 1) return;
     if (bit_ticks_ > 0) {
+        // The first edges also measure the rate, to check a given baud against (advice()).
+        if (checked_edges_ < kAutoBaudEdges) {
+            ++checked_edges_;
+            estimator_.addEdge(t, role);
+        }
         decodeEdge(t, role, level);
         return;
     }
@@ -288,7 +293,26 @@ std::shared_ptr<const DecoderFactory> makeUartFactory() {
     return std::make_shared<SimpleFactory<UartDecoder>>(std::move(info));
 }
 
+std::optional<std::string> UartDecoder::baudHint() const {
+    // A given rate the pulses contradict: read too slow, a few long garbled characters
+    // (TMCL sees datagrams cut short); too fast, every character a framing error.
+    constexpr std::size_t kMinPulses = 16;
+    if (auto_baud_ || estimator_.pulses() < kMinPulses) return std::nullopt;
+    const auto measured = estimator_.measuredBaud(tb());
+    if (!measured) return std::nullopt;
+    const double standard = BaudEstimator::snapToStandard(*measured);
+    // Pulses longer than a bit at the given rate are whole characters of ones or zeros
+    // as often as a slower rate: only faults make them evidence.
+    const bool off = std::fabs(standard - fmt_.baud) > 0.1 * fmt_.baud;
+    if (!off || (standard < fmt_.baud && faulty_bytes_ == 0)) return std::nullopt;
+    return fmt::format(
+        "the shortest pulses are {:.1f} us, a bit at {:g} baud, not at baud={:g} ({} of {} "
+        "characters with framing or parity errors): try --opt baud={:g} (or baud=auto)",
+        1e6 / *measured, standard, fmt_.baud, faulty_bytes_, bytes_, standard);
+}
+
 std::vector<std::string> UartDecoder::advice() const {
+    if (auto hint = baudHint()) return {*hint};
     // A wrong rate, format or polarity garbles nearly every character; noise or a
     // collision rarely most of them. kMinBytes: enough characters to tell.
     constexpr std::uint64_t kMinBytes = 8;

@@ -8,6 +8,7 @@
 // ("rx"/"tx"), start/end = start edge to the end of the stop bits.
 #include <array>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -67,6 +68,8 @@ private:
     double samplePoint(Tick frame_start, int slot) const;
     Tick frameEnd(Tick frame_start) const;
     void decideBaud();
+    // A given baud rate the measured pulses disagree with: the rate they fit.
+    std::optional<std::string> baudHint() const;
     void updateBusy();
 
     UartFormat fmt_;
@@ -76,6 +79,7 @@ private:
     // baud=auto: edges are held until enough pulses are seen, then replayed.
     std::vector<HeldEdge> held_;
     BaudEstimator estimator_{2};
+    std::size_t checked_edges_ = 0;               // edges measured with a given baud (advice())
     std::uint64_t bytes_ = 0, faulty_bytes_ = 0;  // characters decoded; with framing/parity errors
 };
 

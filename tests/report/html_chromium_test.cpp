@@ -1,5 +1,7 @@
 // The HTML report of a faulty capture opens in headless Chromium: the screenshot is a
-// non-empty PNG with more than one colour, and the DOM holds the report's SVG pictures.
+// non-empty PNG with more than one colour, and the DOM holds the report's SVG pictures:
+// the captured edges of faulty and clean frames with their sample points and fields, and
+// plots with axis titles, units and round tick values.
 #include <gtest/gtest.h>
 
 #include <zlib.h>
@@ -7,8 +9,11 @@
 #include <cstdint>
 #include <cstdlib>
 #include <filesystem>
+#include <regex>
 #include <set>
 
+#include "bissc_generator.h"
+#include "capture/capture_writer.h"
 #include "fault_captures.h"
 #include "support/paths.h"
 
@@ -99,6 +104,143 @@ int distinctPixels(const std::string& png, int* width_out) {
     return int(colours.size());
 }
 
+struct Rendered {
+    std::string page, dom, png;  // the report, its DOM as Chromium built it, the screenshot
+    int width = 0, colours = 0;
+};
+
+// Decodes `capture` with --report into `name`.html and has headless Chromium screenshot
+// it (kept as `name`.png in the test's temporary folder, to be looked at) and dump its DOM.
+Rendered render(const std::string& chromium, const std::string& name,
+                const std::vector<std::string>& decode_args) {
+    const std::string dir = test::tempDir() + "/html";
+    std::filesystem::create_directories(dir);
+    const std::string html = dir + "/" + name + ".html";
+    std::vector<std::string> args = decode_args;
+    args.insert(args.end(), {"--report", html});
+    const auto r = test::runDecode(args);
+    EXPECT_EQ(r.status, 0) << r.err;
+    Rendered out;
+    out.page = test::readFile(html);
+    const std::string flags =
+        "--headless --no-sandbox --disable-gpu --disable-quic --no-first-run "
+        "--disable-background-networking --disable-component-update --disable-sync "
+        "--window-size=1200,3600 ";
+    const std::string url = "file://" + html;
+    out.png = dir + "/" + name + ".png";
+    std::filesystem::remove(out.png);
+    auto run = [&](const std::string& what, const std::string& profile) {
+        std::filesystem::create_directories(profile);
+        return test::runCommand(test::shellQuote(chromium) + " " + flags +
+                                "--user-data-dir=" + test::shellQuote(profile) + " " + what + " " +
+                                test::shellQuote(url) + " 2>/dev/null");
+    };
+    const auto shot = run("--screenshot=" + test::shellQuote(out.png), dir + "/profile-" + name);
+    EXPECT_TRUE(std::filesystem::exists(out.png)) << "chromium made no screenshot: " << shot.err;
+    const std::string image = test::readFile(out.png);
+    out.colours = distinctPixels(image, &out.width);
+    out.dom = run("--dump-dom", dir + "/profile-" + name + "-dom").out;
+    return out;
+}
+
+bool has(const std::string& dom, const std::string& what) {
+    return dom.find(what) != std::string::npos;
+}
+
+// Tick labels of the x axes that are round numbers ("0", "20", "2.5"): at least `n`.
+int roundTicks(const std::string& dom) {
+    static const std::regex tick(R"re(class="tick x"[^>]*>(-?[0-9]+(\.[0-9]+)?)<)re");
+    int n = 0;
+    for (auto it = std::sregex_iterator(dom.begin(), dom.end(), tick); it != std::sregex_iterator();
+         ++it) {
+        const double v = std::stod((*it)[1].str());
+        const double mag = v == 0 ? 1 : std::pow(10.0, std::floor(std::log10(std::fabs(v))));
+        const double m = std::fabs(v) / mag;
+        n += std::fabs(m - std::round(m * 2) / 2) < 1e-6;  // 1, 1.5, 2, 2.5, 5 ... x 10^k
+    }
+    return n;
+}
+
+std::string findCapture(const std::string& rule) {
+    for (const auto& c : test::faultCaptures(test::tempDir() + "/verify"))
+        if (c.failing_rule == rule) return c.path;
+    return "";
+}
+
+// A BiSS-C capture whose frame 12 has a wrong CRC and answers late (5 busy clocks).
+std::string lateAckCrcCapture() {
+    const std::string path = test::tempDir() + "/html/biss_late_ack_crc.vcd";
+    std::filesystem::create_directories(test::tempDir() + "/html");
+    BisscGenConfig cfg;
+    cfg.line_delay_ns = 180;
+    BisscGenerator gen(cfg);
+    for (int i = 0; i < 40; ++i) {
+        BisscFrameSpec f;
+        f.data = (std::uint64_t(1) << 26) - 100 + 9 * std::uint64_t(i);  // crosses zero
+        f.data &= (std::uint64_t(1) << 26) - 1;
+        f.corrupt_crc = i == 12;
+        f.proc_cycles = i == 12 ? 5 : 0;
+        gen.addFrame(f);
+    }
+    writeVcd(gen.build(), path);
+    return path;
+}
+
+TEST(HtmlReport, BisscCrcFaultAndLateAckAsCaptured) {
+    const std::string chromium = findChromium();
+    if (chromium.empty()) GTEST_SKIP() << "chromium is not installed (Debian package `chromium`)";
+    const Rendered r = render(chromium, "bissc", {lateAckCrcCapture(), "--proto", "bissc"});
+    EXPECT_EQ(r.width, 1200);
+    EXPECT_GT(r.colours, 10) << "the screenshot is (nearly) uniform";
+    const std::string& dom = r.dom;
+    // The faulty frame and a clean one, each with MA and SL as captured.
+    EXPECT_TRUE(has(dom, R"(<svg class="waveform faulty")")) << dom.substr(0, 400);
+    EXPECT_TRUE(has(dom, R"(<svg class="waveform clean")"));
+    EXPECT_TRUE(has(dom, R"(<path class="edges" data-role="ma")"));
+    EXPECT_TRUE(has(dom, R"(<path class="edges" data-role="sl")"));
+    EXPECT_TRUE(has(dom, R"(class="sample-point")"));
+    EXPECT_TRUE(has(dom, "line delay 180 ns"));
+    EXPECT_TRUE(has(dom, R"(class="field-name" )"));
+    EXPECT_TRUE(has(dom, ">CRC</text>"));
+    EXPECT_TRUE(has(dom, "errors crc"));
+    // Axes with titles and units.
+    EXPECT_TRUE(has(dom, "time from the event's start (us)"));
+    EXPECT_TRUE(has(dom, "position (counts)"));
+    EXPECT_TRUE(has(dom, "velocity (counts/s)"));
+    EXPECT_TRUE(has(dom, "velocity (rev/min)"));
+    EXPECT_TRUE(has(dom, "events with errors"));
+    EXPECT_GE(roundTicks(dom), 20);
+    // The position wraps at 2^26: drawn unwrapped, largest jump 9 counts.
+    EXPECT_TRUE(has(dom, "unwrapped (the word wraps at 67108864)"));
+    EXPECT_TRUE(has(dom, "largest jump 9 at"));
+    // Constant values are said, not drawn.
+    EXPECT_TRUE(has(dom, R"(<p class="constant">frame clock_hz: 1.000 MHz in all 40 events.</p>)"))
+        << dom.substr(dom.find("constant"), 200);
+}
+
+TEST(HtmlReport, SsiRepeatMismatchAsCaptured) {
+    const std::string chromium = findChromium();
+    if (chromium.empty()) GTEST_SKIP() << "chromium is not installed (Debian package `chromium`)";
+    const std::string capture = findCapture("ssi.max_repeat_mismatches");
+    ASSERT_FALSE(capture.empty());
+    const Rendered r = render(chromium, "ssi", {capture, "--proto", "ssi"});
+    EXPECT_GT(r.colours, 10) << "the screenshot is (nearly) uniform";
+    const std::string& dom = r.dom;
+    EXPECT_TRUE(has(dom, R"(<svg class="waveform faulty")"));
+    EXPECT_TRUE(has(dom, R"(<svg class="waveform clean")"));
+    EXPECT_FALSE(has(dom, "ssi summary at"));  // an event of no length has no waveform
+    EXPECT_TRUE(has(dom, R"(<path class="edges" data-role="clk")"));
+    EXPECT_TRUE(has(dom, R"(<path class="edges" data-role="data")"));
+    EXPECT_TRUE(has(dom, R"(class="sample-point")"));
+    EXPECT_TRUE(has(dom, ">DATA</text>"));
+    EXPECT_TRUE(has(dom, ">repeat 2</text>"));
+    EXPECT_TRUE(has(dom, "errors repeat_mismatch"));
+    EXPECT_TRUE(has(dom, "time from the event's start (us)"));
+    EXPECT_TRUE(has(dom, "position (counts)"));
+    EXPECT_TRUE(has(dom, "velocity (rev/min)"));
+    EXPECT_GE(roundTicks(dom), 15);
+}
+
 TEST(HtmlReport, RendersInHeadlessChromium) {
     const std::string chromium = findChromium();
     if (chromium.empty()) GTEST_SKIP() << "chromium is not installed (Debian package `chromium`)";
@@ -138,9 +280,11 @@ TEST(HtmlReport, RendersInHeadlessChromium) {
 
     const auto dom = run("--dump-dom", dir + "/profile2");
     EXPECT_NE(dom.out.find("<svg class=\"position\""), std::string::npos) << dom.out.substr(0, 500);
-    EXPECT_NE(dom.out.find("<svg class=\"histogram\""), std::string::npos);
+    // Every timing value of this capture is constant: said in words, not drawn.
+    EXPECT_NE(dom.out.find("<p class=\"constant\">frame line_delay_ns: 120 ns in all"),
+              std::string::npos);
     EXPECT_NE(dom.out.find("<svg class=\"timing\""), std::string::npos);
-    EXPECT_NE(dom.out.find("<path class=\"wave\""), std::string::npos);
+    EXPECT_NE(dom.out.find("<path class=\"edges\""), std::string::npos);
 }
 
 }  // namespace

@@ -92,9 +92,9 @@ TEST(Junit, WellFormedWithTheRightCounts) {
     EXPECT_EQ(p.attr_tests, 6);
     EXPECT_EQ(p.attr_failures, 2);
     EXPECT_EQ(p.attr_errors, 1);
-    EXPECT_EQ(p.names[0], "caps/clean.vcd bissc.max_crc_errors");
-    EXPECT_EQ(p.names[2], "caps/crc & <odd> \"name\".vcd bissc.max_crc_errors");
-    EXPECT_EQ(p.names[5], "caps/missing.vcd decode");
+    EXPECT_EQ(p.names[0], "busdecode.clean bissc.max_crc_errors");
+    EXPECT_EQ(p.names[2], "busdecode.crc____odd___name_ bissc.max_crc_errors");
+    EXPECT_EQ(p.names[5], "busdecode.missing decode");
     EXPECT_EQ(p.failure_messages[0], "2 events with CRC errors (limit 0), first at 1.000 ms");
     EXPECT_EQ(p.failure_messages[1],
               "1 of 100 values outside [1 MHz, 2 MHz]");  // control char dropped
@@ -119,6 +119,28 @@ TEST(Junit, ValidatesAgainstTheAntJunitSchema) {
     const auto at = bad.find("<failure");
     bad.insert(at, "<failure type=\"x\"/>");
     EXPECT_NE(validate("bad.xml", bad).status, 0);
+}
+
+// Jenkins splits a classname at its last dot: "busdecode" is the package, the capture's
+// stem the class, whatever dots or folders the file name has; same stems stay apart.
+TEST(Junit, ClassNamesAreThePackageAndTheCaptureStem) {
+    auto named = [](std::vector<std::string> files) {
+        std::vector<CaptureVerdict> all;
+        for (auto& f : files) {
+            CaptureVerdict v;
+            v.capture = std::move(f);
+            all.push_back(v);
+        }
+        return junitClassNames(all);
+    };
+    EXPECT_EQ(named({"/data/run.2024-03.vcd", "enc.sr"}),
+              (std::vector<std::string>{"busdecode.run_2024-03", "busdecode.enc"}));
+    EXPECT_EQ(named({"a/enc.vcd", "b/enc.vcd", "../c/x.vcd"}),
+              (std::vector<std::string>{"busdecode.a_enc", "busdecode.b_enc", "busdecode.x"}));
+    EXPECT_EQ(named({"enc.vcd", "enc.sr", "enc.csv"}),
+              (std::vector<std::string>{"busdecode.enc", "busdecode.enc_2", "busdecode.enc_3"}));
+    for (const auto& name : named({"/tmp/a b/x.y.z.vcd"}))
+        EXPECT_EQ(name.rfind('.'), std::string("busdecode").size()) << name;
 }
 
 TEST(Junit, EmptyBatchIsStillWellFormed) {

@@ -40,6 +40,20 @@ std::size_t countOf(const std::string& text, const std::string& what) {
     return n;
 }
 
+// proc_cycles 0 (39 frames) and 5 (one): a row per value, not "0 .. 0.625".
+TEST(ReportFormat, WholeNumbersGetARowPerValue) {
+    QuantileSketch s;
+    for (int i = 0; i < 39; ++i)
+        s.add(0);
+    s.add(5);
+    const auto rows = textHistogram("proc_cycles", s, 8, 10);
+    ASSERT_EQ(rows.size(), 6u);
+    EXPECT_EQ(rows[0], "           0                 |##########| 39");
+    EXPECT_EQ(rows[5], "           5                 |#         | 1");
+    for (const auto& r : rows)
+        EXPECT_EQ(r.find(".."), std::string::npos) << r;
+}
+
 TEST(ReportFormat, FrequencyInHzKhzMhzGhz) {
     EXPECT_EQ(formatFrequency(12), "12 Hz");
     EXPECT_EQ(formatFrequency(250e3), "250.000 kHz");

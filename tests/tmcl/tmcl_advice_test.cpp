@@ -23,9 +23,20 @@ TEST(TmclAdvice, TheUartsHintComesThrough) {
     const auto advice = adviceWith({{"baud", "115200"}});
     ASSERT_EQ(advice.size(), 1u);
     EXPECT_EQ(advice[0].rfind("tmcl: its UART: ", 0), 0u) << advice[0];
-    EXPECT_NE(advice[0].find("characters have framing or parity errors at baud=115200"),
+    EXPECT_NE(advice[0].find("a bit at 9600 baud, not at baud=115200"), std::string::npos)
+        << advice[0];
+}
+
+// Read too slow, the bus gives a few long garbled characters: datagrams cut short, not
+// enough characters for a hint about errors; the pulses still measure the rate.
+TEST(TmclAdvice, DatagramsCutShortAtTooSlowARateGetTheRate) {
+    const auto advice = adviceWith({{"baud", "2400"}});
+    ASSERT_EQ(advice.size(), 1u);
+    EXPECT_NE(advice[0].find("tmcl: its UART: the shortest pulses are 104.2 us, a bit at 9600 "
+                             "baud, not at baud=2400"),
               std::string::npos)
         << advice[0];
+    EXPECT_NE(advice[0].find("try --opt baud=9600"), std::string::npos) << advice[0];
 }
 
 }  // namespace busdecode
