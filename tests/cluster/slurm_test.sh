@@ -14,6 +14,7 @@ for tool in munged mungekey slurmctld slurmd sbatch sinfo scontrol; do
 done
 export PATH=$PATH:/usr/sbin
 tmp=$(mktemp -d /tmp/busdecode-slurm.XXXXXX)
+chmod 755 "$tmp"  # munged wants its socket's directory reachable by all
 pids=()
 cleanup() {
     for pid in "${pids[@]}"; do kill "$pid" 2>/dev/null; done
@@ -32,7 +33,7 @@ port=$((20000 + $$ % 20000))
 mungekey -c -k "$tmp/munge.key" -b 1024 || fail "mungekey could not make a key"
 chmod 400 "$tmp/munge.key"
 munged -F --force --key-file="$tmp/munge.key" --socket="$tmp/munge.sock" \
-    --pid-file="$tmp/munged.pid" --seed-file="$tmp/munge.seed" --log-file="$tmp/munged.log" &
+    --pid-file="$tmp/munged.pid" --seed-file="$tmp/munge.seed" --log-file="$tmp/munged.log" >"$tmp/munged.out.log" 2>&1 &
 pids+=($!)
 mkdir -p "$tmp/state" "$tmp/spool"
 cat >"$tmp/slurm.conf" <<CONF
@@ -99,3 +100,26 @@ python3 "$src/tests/cluster/junit_cases.py" "$tmp/single.xml" "$tmp/out/all.xml"
     fail "merged JUnit testcases differ from --jobs 1"
 [ "$(ls "$tmp/out"/shard-*.xml | wc -l)" = 7 ] || fail "not 7 shard files"
 echo "PASS: merged JUnit of 7 Slurm tasks equals decode verify --jobs 1"
+
+# A task killed by a signal (shard 3/7 here): its captures, and only those, are errors.
+cat >"$tmp/decode-killed-on-3" <<WRAP
+#!/bin/bash
+case " \$* " in *" --shard 3/7 "*) kill -KILL \$\$ ;; esac
+exec "$bin/decode" "\$@"
+WRAP
+chmod +x "$tmp/decode-killed-on-3"
+DECODE=$tmp/decode-killed-on-3 "$src/contrib/slurm/verify.sbatch" "$caps/list.txt" "$rules" \
+    "$tmp/killed" 7 --opt bissc.bits=26 || fail "verify.sbatch could not submit"
+for i in $(seq 600); do [ -e "$tmp/killed/merge.status" ] && break; sleep 0.2; done
+[ -e "$tmp/killed/merge.status" ] || fail "the merge job did not end within 120 s"
+[ "$(cat "$tmp/killed/merge.status")" = 2 ] || fail "merge after a killed task did not exit 2"
+python3 - "$caps/list.txt" "$tmp/killed/all.xml" <<'PY' || fail "the killed shard's errors are wrong"
+import sys, xml.etree.ElementTree as ET
+captures = [l.strip() for l in open(sys.argv[1]) if l.strip()]
+cases = list(ET.parse(sys.argv[2]).getroot().iter("testcase"))
+errors = [c.get("classname") for c in cases if c.find("error") is not None and c.find("error").get("type") == "shard"]
+n = len(captures)
+assert errors == captures[n * 2 // 7:n * 3 // 7], errors
+assert len({c.get("classname") for c in cases}) == n
+PY
+echo "PASS: a killed task's captures are errors in the merged JUnit, and the merge exits 2"
