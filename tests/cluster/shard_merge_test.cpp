@@ -4,8 +4,8 @@
 // error for exactly its captures and the merge exits 2.
 #include <gtest/gtest.h>
 
-#include <filesystem>
 #include <fmt/format.h>
+#include <filesystem>
 
 #include "core/options.h"
 #include "support/paths.h"
@@ -46,14 +46,14 @@ TEST(Shard, ListSkipsBlankAndCommentLines) {
     EXPECT_THROW(readCaptureList(test::tempDir()), InputError);
 }
 
-struct Run {
+struct ShardedBatch {
     std::string dir = test::tempDir() + "/sharded";
     std::string list = dir + "/list.txt";
     std::string rules = test::sourceDir() + "/captures/rules_bissc.toml";
     std::vector<std::string> captures;
 
     // 23 captures: passing, failing every fifth, one absent.
-    Run() {
+    ShardedBatch() {
         std::filesystem::create_directories(dir);
         std::string text;
         for (int i = 0; i < 23; ++i) {
@@ -68,8 +68,8 @@ struct Run {
         test::writeFile(list, text);
     }
     test::RunResult verify(const std::vector<std::string>& extra) const {
-        std::vector<std::string> args{"verify", "--from-list", list, "--rules", rules,
-                                      "--opt",  "bissc.bits=26"};
+        std::vector<std::string> args{"verify", "--from-list", list,           "--rules",
+                                      rules,    "--opt",       "bissc.bits=26"};
         args.insert(args.end(), extra.begin(), extra.end());
         return test::runDecode(args);
     }
@@ -101,7 +101,7 @@ std::string lastLine(const std::string& s) {
 }
 
 TEST(MergeJunit, ShardsMergeToTheSingleRun) {
-    Run run;
+    ShardedBatch run;
     const auto single = run.verify({"--jobs", "1", "--junit", run.dir + "/single.xml"});
     ASSERT_EQ(single.status, 2) << single.err;  // the absent capture
     for (int k = 1; k <= 4; ++k)
@@ -118,10 +118,11 @@ TEST(MergeJunit, ShardsMergeToTheSingleRun) {
 }
 
 TEST(MergeJunit, AMissingShardIsAnErrorForExactlyItsCaptures) {
-    Run run;
+    ShardedBatch run;
     for (int k = 1; k <= 3; ++k)
         run.verify({"--shard", fmt::format("{}/3", k), "--junit", run.shardFile(k)});
-    test::writeFile(run.shardFile(3), test::readFile(run.shardFile(3)).substr(0, 300));  // cut short
+    test::writeFile(run.shardFile(3),
+                    test::readFile(run.shardFile(3)).substr(0, 300));  // cut short
     for (bool with_list : {true, false}) {
         const auto merged = run.merge({1, 2, 3}, with_list);
         EXPECT_EQ(merged.status, 2);
@@ -137,14 +138,15 @@ TEST(MergeJunit, AMissingShardIsAnErrorForExactlyItsCaptures) {
 }
 
 TEST(MergeJunit, EveryShardMissingLeavesEveryCaptureAnError) {
-    Run run;
+    ShardedBatch run;
     const auto merged = run.merge({}, true);
     EXPECT_EQ(merged.status, 2);
-    EXPECT_EQ(merged.out, "23 captures: 0 passed, 0 failed, 23 unreadable; 0 rule checks, 0 failed\n");
+    EXPECT_EQ(merged.out,
+              "23 captures: 0 passed, 0 failed, 23 unreadable; 0 rule checks, 0 failed\n");
 }
 
 TEST(MergeJunit, BadInputIsOneLineAndExit2WithNoFile) {
-    Run run;
+    ShardedBatch run;
     run.verify({"--shard", "1/2", "--junit", run.shardFile(1)});
     run.verify({"--shard", "1/3", "--junit", run.shardFile(2)});
     std::filesystem::remove(run.dir + "/all.xml");
@@ -166,12 +168,12 @@ TEST(MergeJunit, BadInputIsOneLineAndExit2WithNoFile) {
 }
 
 TEST(VerifyShard, AnEmptySliceWritesAnEmptyPassingFile) {
-    Run run;
+    ShardedBatch run;
     const std::string list = run.dir + "/two.txt";
     test::writeFile(list, run.captures[0] + "\n" + run.captures[1] + "\n");
-    const auto r = test::runDecode({"verify", "--from-list", list, "--rules", run.rules, "--opt",
-                                    "bissc.bits=26", "--shard", "2/3", "--junit",
-                                    run.shardFile(9)});
+    const auto r =
+        test::runDecode({"verify", "--from-list", list, "--rules", run.rules, "--opt",
+                         "bissc.bits=26", "--shard", "2/3", "--junit", run.shardFile(9)});
     EXPECT_EQ(r.status, 0) << r.err;
     EXPECT_EQ(r.out, "0 captures: 0 passed, 0 failed, 0 unreadable; 0 rule checks, 0 failed\n");
     EXPECT_TRUE(readJunitShard(run.shardFile(9)).cases.empty());
