@@ -21,9 +21,12 @@ struct DecodeArgs {
     std::string report;                  // --report FILE ("" = none)
     std::optional<std::string> lcm_url;  // --lcm [URL] (empty string = LCM's default)
     double rate_hz = 0;                  // --rate
-    bool follow = false;                 // --follow
-    bool realtime = false;               // --realtime
-    int threads = 2;                     // --threads N per capture: 1 or 2 (read ahead)
+    // --threshold [SIGNAL=]V and --hysteresis V (OpenOptions)
+    std::vector<std::pair<std::string, double>> thresholds;
+    double hysteresis = -1;
+    bool follow = false;    // --follow
+    bool realtime = false;  // --realtime
+    int threads = 2;        // --threads N per capture: 1 or 2 (read ahead)
     // verify only
     std::string rules;      // --rules FILE
     std::string junit;      // --junit FILE

@@ -2,6 +2,7 @@
 
 #include <memory>
 
+#include "capture/differential_pairs.h"
 #include "capture/prefetch_reader.h"
 #include "paced_reader.h"
 
@@ -20,7 +21,14 @@ CaptureFacts decodeCapture(const std::string& path, const std::vector<DecoderReq
     // file read to its end, never waiting for input, is handed over a few blocks at a
     // time: one whose size the reader knows (a regular file; a pipe's is unknown), not
     // followed.
-    std::unique_ptr<CaptureReader> reader = openCapture(path, open);
+    // Differential pairs named in --map ("MA+,MA-") become signals of the capture.
+    OpenOptions with_pairs = open;
+    std::string wire_p, wire_n;
+    for (const auto& r : requests)
+        for (const auto& [role, signal] : r.map)
+            if (splitPair(signal, wire_p, wire_n)) with_pairs.pairs.push_back(signal);
+    std::unique_ptr<CaptureReader> reader = openCapture(path, with_pairs);
+    if (!with_pairs.pairs.empty()) reader = pairedReader(std::move(reader), with_pairs.pairs);
     if (open.read_ahead && !reader->readsAhead()) {
         const bool whole_file = !open.follow && reader->bytesTotal() > 0;
         reader =

@@ -35,6 +35,7 @@ public:
         return true;
     }
     Tick endTick() const override { return in_->endTick(); }
+    std::vector<std::string> notes() const override { return in_->notes(); }
     std::uint64_t bytesRead() const override { return in_->bytesRead(); }
     std::uint64_t bytesTotal() const override { return in_->bytesTotal(); }
 

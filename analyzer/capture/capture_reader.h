@@ -7,6 +7,7 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/edge.h"
@@ -52,6 +53,9 @@ public:
     // True if next() already reads ahead on a thread of its own (a reader that is not
     // to be wrapped in prefetchReader()).
     virtual bool readsAhead() const { return false; }
+    // What the reader chose or found that the user should see in the summary (thresholds
+    // of analog lines, lines that never crossed them); valid after next() = false.
+    virtual std::vector<std::string> notes() const { return {}; }
 };
 
 // For select(): more lines than an Edge can name is the caller's mistake (Session refuses
@@ -81,6 +85,12 @@ struct OpenOptions {
     std::uint64_t vcd_boundary_search = 0;
     // Set (e.g. by Ctrl-C) to make a following reader return at its next poll.
     const std::atomic<bool>* stop = nullptr;
+    // Analog lines (scope captures): --threshold VOLTS for every line ("" signal) or
+    // SIGNAL=VOLTS, --hysteresis VOLTS (< 0: a tenth of the swing); unset: from the data.
+    std::vector<std::pair<std::string, double>> thresholds;
+    double hysteresis = -1;
+    // Differential pairs named in --map ("MA+,MA-"): each becomes a signal of that name.
+    std::vector<std::string> pairs;
 };
 
 // Picks the reader by content (and extension as a hint). Throws InputError naming the

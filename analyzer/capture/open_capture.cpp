@@ -97,6 +97,7 @@ std::unique_ptr<CaptureReader> openCapture(const std::string& path, const OpenOp
         }
         const std::string name = src->name();
         src.reset();
+        if (auto analog = openSrAnalogIfAnalog(path, name, opts)) return analog;
         return openSr(path, -1, name, opts);
     }
     std::string_view text = head;
@@ -110,6 +111,7 @@ std::unique_ptr<CaptureReader> openCapture(const std::string& path, const OpenOp
             src->name() +
             ": unknown format: binary data that is neither VCD, CSV nor a sigrok .sr session");
     if (!text.empty() && text.front() == '$') return openVcd(std::move(src), opts);
+    if (auto scope = openScopeCsvIfScope(src, opts)) return scope;
     return openCsv(std::move(src), opts);
 }
 

@@ -542,6 +542,8 @@ void Session::finishDecoders() {
     for (const auto& slot : im.slots)
         for (const auto& a : slot.decoder->advice())
             facts_.advice.push_back(slot.instance + ": " + a);
+    for (const auto& note : im.reader->notes())
+        facts_.advice.push_back(note);
 }
 
 namespace {

@@ -30,6 +30,8 @@ VerifyPlan planVerify(const DecodeArgs& args) {
     const DecodeChoice choice = combineDecodeChoice(plan.rules, args.protos, args.maps, args.opts);
     plan.requests = buildRequests(choice.protos, choice.maps, choice.opts);
     plan.open.rate_hz = args.rate_hz > 0 ? args.rate_hz : plan.rules.decode.rate_hz;
+    plan.open.thresholds = args.thresholds;
+    plan.open.hysteresis = args.hysteresis;
     plan.open.read_ahead = args.threads > 1;
     return plan;
 }
