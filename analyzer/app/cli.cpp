@@ -27,6 +27,7 @@
 #include "lcm/monitor.h"
 #include "report/report_sink.h"
 #include "sinks/stream_sinks.h"
+#include "verify/junit_merge.h"
 #include "verify/verify.h"
 
 namespace busdecode {
@@ -89,13 +90,17 @@ Parsed parse(const QStringList& argv, bool verify) {
     QCommandLineOption junit("junit", "verify: write JUnit XML", "FILE");
     QCommandLineOption jobs("jobs", "verify: captures checked in parallel (0 = one per core)", "N",
                             "0");
+    QCommandLineOption shard("shard", "verify: check only the K-th of N slices (K from 1)", "K/N");
+    QCommandLineOption from_list("from-list", "verify: read captures from FILE, one a line",
+                                 "FILE");
     QCommandLineOption threads(
         "threads", "per capture: 1 reads and decodes on one thread, 2 reads ahead on another", "N",
         "2");
     QCommandLineOption help({"h", "help"}, "show this help");
     QCommandLineOption version("version", "show the version");
-    for (auto* o : {&proto, &map, &opt, &format, &report, &lcm, &rate, &threshold, &hysteresis,
-                    &follow, &realtime, &list, &rules, &junit, &jobs, &threads, &help, &version})
+    for (auto* o : {&proto,     &map,        &opt,       &format,   &report, &lcm,    &rate,
+                    &threshold, &hysteresis, &follow,    &realtime, &list,   &rules,  &junit,
+                    &jobs,      &shard,      &from_list, &threads,  &help,   &version})
         p.addOption(*o);
     if (!p.parse(argv)) throw InputError(p.errorText().toStdString());
     if (p.isSet(help)) {
@@ -103,6 +108,8 @@ Parsed parse(const QStringList& argv, bool verify) {
         fmt::print(
             "\nCommands:\n  decode CAPTURE... --proto NAME [...]\n"
             "  decode verify CAPTURE... --rules FILE [--junit FILE] [--jobs N] [--threads N]\n"
+            "                [--from-list FILE] [--shard K/N]\n"
+            "  decode merge-junit SHARD.xml... -o ALL.xml [--from-list FILE]\n"
             "  decode monitor [--lcm URL]\n  decode --list\n");
         return {{}, false, true};
     }
@@ -139,6 +146,8 @@ Parsed parse(const QStringList& argv, bool verify) {
     a.realtime = p.isSet(realtime);
     a.rules = p.value(rules).toStdString();
     a.junit = p.value(junit).toStdString();
+    a.shard = p.value(shard).toStdString();
+    a.from_list = p.value(from_list).toStdString();
     auto j = parseInteger(p.value(jobs).toStdString());
     if (!j || *j < 0 || *j > 256)
         throw InputError("--jobs: expected a whole number from 0 (all cores) to 256");
@@ -150,10 +159,12 @@ Parsed parse(const QStringList& argv, bool verify) {
             "second)",
             t));
     a.threads = t == "1" ? 1 : 2;
-    if (!verify && (!a.rules.empty() || !a.junit.empty()))
-        throw InputError("--rules and --junit belong to 'decode verify'");
+    if (!verify &&
+        (!a.rules.empty() || !a.junit.empty() || !a.shard.empty() || !a.from_list.empty()))
+        throw InputError("--rules, --junit, --shard and --from-list belong to 'decode verify'");
     if (verify && a.rules.empty()) throw InputError("decode verify: --rules FILE is required");
-    if (!out.list && a.captures.empty()) throw InputError("no capture given (see decode --help)");
+    if (!out.list && a.captures.empty() && a.from_list.empty())
+        throw InputError("no capture given (see decode --help)");
     return out;
 }
 
@@ -209,6 +220,7 @@ std::string interruptionLine(const std::string& what, const DecodeArgs& a) {
 
 int run(int argc, char** argv, DecodeArgs& args) {
     if (argc > 1 && std::string(argv[1]) == "monitor") return runMonitor(argc - 1, argv + 1);
+    if (argc > 1 && std::string(argv[1]) == "merge-junit") return runMergeJunit(argc - 1, argv + 1);
     const bool verify = argc > 1 && std::string(argv[1]) == "verify";
     QStringList argl = normaliseArgs(argc, argv);
     if (verify) argl.removeAt(1);

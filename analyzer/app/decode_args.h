@@ -28,9 +28,11 @@ struct DecodeArgs {
     bool realtime = false;  // --realtime
     int threads = 2;        // --threads N per capture: 1 or 2 (read ahead)
     // verify only
-    std::string rules;  // --rules FILE
-    std::string junit;  // --junit FILE
-    int jobs = 0;       // --jobs N (0 = one per core)
+    std::string rules;      // --rules FILE
+    std::string junit;      // --junit FILE
+    int jobs = 0;           // --jobs N (0 = one per core)
+    std::string shard;      // --shard K/N ("" = the whole list)
+    std::string from_list;  // --from-list FILE: more captures, one a line
 };
 
 // Turns --proto/--map/--opt into one request per decoder. An unscoped key applies to

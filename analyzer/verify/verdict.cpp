@@ -35,22 +35,27 @@ std::string verdictLine(const CaptureVerdict& v) {
 }
 
 std::string summaryLine(const std::vector<CaptureVerdict>& all) {
-    std::size_t pass = 0, fail = 0, err = 0, checks = 0, failed_checks = 0;
+    BatchCounts c;
+    c.captures = all.size();
     for (const auto& v : all) {
         if (v.input_error)
-            ++err;
+            ++c.unreadable;
         else if (v.passed())
-            ++pass;
+            ++c.passed;
         else
-            ++fail;
+            ++c.failed;
         for (const auto& o : v.outcomes) {
-            ++checks;
-            if (!o.passed) ++failed_checks;
+            ++c.checks;
+            if (!o.passed) ++c.failed_checks;
         }
     }
+    return summaryLine(c);
+}
+
+std::string summaryLine(const BatchCounts& c) {
     return fmt::format(
-        "{} capture{}: {} passed, {} failed, {} unreadable; {} rule checks, {} failed", all.size(),
-        all.size() == 1 ? "" : "s", pass, fail, err, checks, failed_checks);
+        "{} capture{}: {} passed, {} failed, {} unreadable; {} rule checks, {} failed", c.captures,
+        c.captures == 1 ? "" : "s", c.passed, c.failed, c.unreadable, c.checks, c.failed_checks);
 }
 
 namespace {
@@ -75,14 +80,21 @@ std::string captureName(const std::string& capture, bool folders) {
 }  // namespace
 
 std::vector<std::string> junitClassNames(const std::vector<CaptureVerdict>& all) {
-    std::map<std::string, int> stems;
+    std::vector<std::string> captures;
     for (const auto& v : all)
-        ++stems[captureName(v.capture, false)];
+        captures.push_back(v.capture);
+    return junitClassNames(captures);
+}
+
+std::vector<std::string> junitClassNames(const std::vector<std::string>& captures) {
+    std::map<std::string, int> stems;
+    for (const auto& c : captures)
+        ++stems[captureName(c, false)];
     std::vector<std::string> out;
     std::set<std::string> taken;
-    for (const auto& v : all) {
-        const std::string stem = captureName(v.capture, false);
-        std::string name = "busdecode." + (stems[stem] > 1 ? captureName(v.capture, true) : stem);
+    for (const auto& c : captures) {
+        const std::string stem = captureName(c, false);
+        std::string name = "busdecode." + (stems[stem] > 1 ? captureName(c, true) : stem);
         const std::string base = name;
         for (int n = 2; !taken.insert(name).second; ++n)
             name = fmt::format("{}_{}", base, n);
@@ -91,8 +103,6 @@ std::vector<std::string> junitClassNames(const std::vector<CaptureVerdict>& all)
     return out;
 }
 
-namespace {
-// Character data keeps its line breaks; attributes (xmlEscape) encode them.
 std::string xmlText(const std::string& s) {
     std::string out;
     out.reserve(s.size());
@@ -108,22 +118,8 @@ std::string xmlText(const std::string& s) {
     }
     return out;
 }
-}  // namespace
 
-std::string junitXml(const std::vector<CaptureVerdict>& all, const std::string& rules_file) {
-    std::size_t tests = 0, failures = 0, errors = 0;
-    double total = 0;
-    for (const auto& v : all) {
-        total += v.seconds;
-        if (v.input_error) {
-            ++tests;
-            ++errors;
-            continue;
-        }
-        tests += v.outcomes.size();
-        for (const auto& o : v.outcomes)
-            failures += o.passed ? 0 : 1;
-    }
+std::string junitOpening(const JunitSuiteHead& head) {
     char stamp[32] = "1970-01-01T00:00:00";
     const std::time_t now = std::time(nullptr);
     std::tm tm{};
@@ -139,36 +135,59 @@ std::string junitXml(const std::vector<CaptureVerdict>& all, const std::string& 
         "  <testsuite name=\"decode verify\" package=\"decode.verify\" id=\"0\" tests=\"{}\" "
         "failures=\"{}\" errors=\"{}\" skipped=\"0\" time=\"{:.3f}\" timestamp=\"{}\" "
         "hostname=\"{}\">\n",
-        tests, failures, errors, total, stamp, xmlEscape(host));
-    x += fmt::format("    <properties><property name=\"rules\" value=\"{}\"/></properties>\n",
-                     xmlEscape(rules_file));
+        head.tests, head.failures, head.errors, head.seconds, stamp, xmlEscape(host));
+    x += fmt::format("    <properties><property name=\"rules\" value=\"{}\"/>",
+                     xmlEscape(head.rules_file));
+    if (!head.shard.empty())
+        x += fmt::format("<property name=\"shard\" value=\"{}\"/>", xmlEscape(head.shard));
+    x += "</properties>\n";
+    return x;
+}
+
+std::string junitCaseXml(const JunitCase& c) {
+    std::string x = fmt::format("    <testcase name=\"{}\" classname=\"{}\" time=\"{}\"",
+                                xmlEscape(c.name), xmlEscape(c.classname), xmlEscape(c.time));
+    if (c.outcome.empty()) return x + "/>\n";
+    return x +
+           fmt::format(">\n      <{0} message=\"{1}\" type=\"{2}\">{3}</{0}>\n    </testcase>\n",
+                       c.outcome, xmlEscape(c.message), xmlEscape(c.type), xmlEscape(c.text));
+}
+
+std::string junitClosing(const std::string& out, const std::string& err) {
+    return fmt::format("    <system-out>{}</system-out>\n    <system-err>{}</system-err>\n",
+                       xmlText(out), xmlText(err)) +
+           "  </testsuite>\n</testsuites>\n";
+}
+
+std::string junitXml(const std::vector<CaptureVerdict>& all, const std::string& rules_file,
+                     const std::string& shard) {
+    JunitSuiteHead head{0, 0, 0, 0, rules_file, shard};
+    for (const auto& v : all) {
+        head.seconds += v.seconds;
+        if (v.input_error) {
+            ++head.tests;
+            ++head.errors;
+            continue;
+        }
+        head.tests += v.outcomes.size();
+        for (const auto& o : v.outcomes)
+            head.failures += o.passed ? 0 : 1;
+    }
+    std::string x = junitOpening(head);
     const std::vector<std::string> class_names = junitClassNames(all);
     for (std::size_t i = 0; i < all.size(); ++i) {
         const CaptureVerdict& v = all[i];
-        const std::string cls = xmlEscape(class_names[i]);
         if (v.input_error) {
-            x += fmt::format("    <testcase name=\"decode\" classname=\"{}\" time=\"{:.3f}\">\n",
-                             cls, v.seconds);
-            x += fmt::format("      <error message=\"{}\" type=\"input\">{}</error>\n",
-                             xmlEscape(v.error), xmlEscape(v.error));
-            x += "    </testcase>\n";
+            x += junitCaseXml({"decode", class_names[i], fmt::format("{:.3f}", v.seconds), "error",
+                               v.error, "input", v.error});
             continue;
         }
         // The capture's decode time is shared by its rules (they all ran in one pass).
         const double each = v.outcomes.empty() ? 0 : v.seconds / double(v.outcomes.size());
-        for (const auto& o : v.outcomes) {
-            x += fmt::format("    <testcase name=\"{}\" classname=\"{}\" time=\"{:.3f}\"",
-                             xmlEscape(o.name()), cls, each);
-            if (o.passed) {
-                x += "/>\n";
-            } else {
-                x += ">\n";
-                x += fmt::format("      <failure message=\"{}\" type=\"{}\">{}</failure>\n",
-                                 xmlEscape(o.message), xmlEscape(o.rule),
-                                 xmlEscape(o.name() + ": " + o.message));
-                x += "    </testcase>\n";
-            }
-        }
+        for (const auto& o : v.outcomes)
+            x += junitCaseXml({o.name(), class_names[i], fmt::format("{:.3f}", each),
+                               o.passed ? "" : "failure", o.message, o.rule,
+                               o.name() + ": " + o.message});
     }
     // What every rule saw, passed ones included, as the verify lines say it.
     std::string out;
@@ -181,9 +200,7 @@ std::string junitXml(const std::vector<CaptureVerdict>& all, const std::string& 
     for (const auto& v : all)
         for (const auto& h : v.hints)
             hints += hintLine(v.capture, h);
-    x += fmt::format("    <system-out>{}</system-out>\n    <system-err>{}</system-err>\n",
-                     xmlText(out), xmlText(hints));
-    x += "  </testsuite>\n</testsuites>\n";
+    x += junitClosing(out, hints);
     return x;
 }
 

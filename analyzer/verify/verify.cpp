@@ -16,6 +16,7 @@
 #include "core/options.h"
 #include "core/registry.h"
 #include "rules.h"
+#include "shard.h"
 
 namespace busdecode {
 
@@ -35,13 +36,25 @@ VerifyPlan planVerify(const DecodeArgs& args) {
     return plan;
 }
 
+std::vector<std::string> capturesToVerify(const DecodeArgs& args) {
+    std::vector<std::string> all = args.captures;
+    if (!args.from_list.empty()) {
+        auto listed = readCaptureList(args.from_list);
+        all.insert(all.end(), listed.begin(), listed.end());
+    }
+    return args.shard.empty() ? all : shardOf(all, parseShard(args.shard));
+}
+
 int runVerify(const DecodeArgs& args) {
     try {
+        const std::string shard = args.shard.empty() ? "" : parseShard(args.shard).text();
         const VerifyPlan plan = planVerify(args);
         const Rules& rules = plan.rules;
-        if (args.captures.empty()) throw InputError("decode verify: no capture given");
+        const std::vector<std::string> captures = capturesToVerify(args);
+        if (captures.empty() && args.shard.empty())
+            throw InputError("decode verify: no capture given");
         if (!args.junit.empty()) {
-            refuseOutputOnCapture("--junit", args.junit, args.captures);
+            refuseOutputOnCapture("--junit", args.junit, captures);
             checkWritable(args.junit);  // before a long batch, not after
         }
 
@@ -49,10 +62,10 @@ int runVerify(const DecodeArgs& args) {
         open.stop = interruptionFlag();
         BatchOptions batch;
         batch.jobs = args.jobs;
-        batch.progress = ::isatty(STDERR_FILENO) && args.captures.size() > 1;
+        batch.progress = ::isatty(STDERR_FILENO) && captures.size() > 1;
         std::size_t printed = 0;
         const auto verdicts = verifyCaptures(
-            args.captures, rules, plan.requests, open, batch, [&](const CaptureVerdict& v) {
+            captures, rules, plan.requests, open, batch, [&](const CaptureVerdict& v) {
                 if (interrupted()) return;  // what follows was cut short
                 std::fputs((verdictLine(v) + "\n").c_str(), stdout);
                 std::fflush(stdout);
@@ -70,7 +83,8 @@ int runVerify(const DecodeArgs& args) {
         }
         std::fputs((summaryLine(verdicts) + "\n").c_str(), stdout);
         checkStandardOutput();
-        if (!args.junit.empty()) writeFileAtomically(args.junit, junitXml(verdicts, args.rules));
+        if (!args.junit.empty())
+            writeFileAtomically(args.junit, junitXml(verdicts, args.rules, shard));
 
         bool any_error = false, any_fail = false;
         for (const auto& v : verdicts) {

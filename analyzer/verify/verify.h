@@ -1,12 +1,15 @@
 #pragma once
-// `decode verify CAPTURE... --rules FILE [--junit FILE] [--jobs N]`: checks every
-// capture against rules; exit 0 all pass, 1 any fails, 2 bad input.
+// `decode verify CAPTURE... --rules FILE [--junit FILE] [--jobs N] [--from-list F] [--shard K/N]`:
+// checks every capture against rules; exit 0 all pass, 1 any fails, 2 bad input.
 #include "app/decode_args.h"
 #include "rules.h"
 
 namespace busdecode {
 
 int runVerify(const DecodeArgs& args);
+
+// The command line's captures, then --from-list's, then only --shard's slice of them.
+std::vector<std::string> capturesToVerify(const DecodeArgs& args);
 
 // What a verify run decodes with: the rules, the decoders they and the arguments choose,
 // and how captures are opened. Throws InputError (bad rules, decoder, option).
