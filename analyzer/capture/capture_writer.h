@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "capture/compression.h"
 #include "core/waveform.h"
 
 namespace busdecode {
@@ -53,6 +54,9 @@ private:
     std::size_t k_ = 0;                            // next edge
     Tick at_ = 0;                                  // tick after the last stretch
 };
+
+// `in_path` compressed into `out_path` as gzip, xz or zstd (not None) write it.
+void compressFile(const std::string& in_path, const std::string& out_path, Compression kind);
 
 // A sample rate as sigrok writes it ("100 MHz", "250 kHz", "5 Hz").
 std::string sampleRateText(std::int64_t hz);

@@ -1,5 +1,6 @@
-// openCapture: recognises the format by content, not by the file name: a ZIP is a
-// sigrok session, text starting with a `$keyword` is VCD, other text is CSV.
+// openCapture: recognises the format by content, not by the file name: gzip, xz and zstd
+// are decompressed and looked at again, a ZIP is a sigrok session, text starting with a
+// `$keyword` is VCD, other text is CSV.
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
@@ -9,6 +10,7 @@
 #include <unistd.h>
 
 #include "core/options.h"
+#include "decompressing_input.h"
 #include "readers.h"
 
 namespace busdecode {
@@ -86,10 +88,29 @@ int copyToTempFile(TextSource& src) {
 
 }  // namespace
 
-std::unique_ptr<CaptureReader> openCapture(const std::string& path, const OpenOptions& opts) {
-    auto src = std::make_unique<TextSource>(path, opts);
+namespace {
+
+std::unique_ptr<CaptureReader> openSource(std::unique_ptr<TextSource> src, const std::string& path,
+                                          const OpenOptions& opts);
+
+std::unique_ptr<CaptureReader> openCompressed(std::unique_ptr<TextSource> src, Compression kind,
+                                              const OpenOptions& opts) {
+    auto input = std::make_shared<DecompressingInput>(std::move(src), kind, opts);
+    try {
+        return decompressedReader(openSource(input->output(), "-", opts), input);
+    } catch (const InputError&) {
+        input->throwIfBroken();
+        throw;
+    }
+}
+
+// `path` is the file to reopen for formats read by offset (ZIP); "-" when there is none.
+std::unique_ptr<CaptureReader> openSource(std::unique_ptr<TextSource> src, const std::string& path,
+                                          const OpenOptions& opts) {
     std::string_view head = src->peek(4096);
     if (head.empty()) throw InputError(src->name() + ": empty file");
+    if (const Compression kind = compressionOf(head); kind != Compression::None)
+        return openCompressed(std::move(src), kind, opts);
     if (head.size() >= 4 && head.substr(0, 4) == std::string_view("PK\x03\x04", 4)) {
         if (path == "-") {
             int fd = copyToTempFile(*src);
@@ -111,6 +132,12 @@ std::unique_ptr<CaptureReader> openCapture(const std::string& path, const OpenOp
             ": unknown format: binary data that is neither VCD, CSV nor a sigrok .sr session");
     if (!text.empty() && text.front() == '$') return openVcd(std::move(src), opts);
     return openCsv(std::move(src), opts);
+}
+
+}  // namespace
+
+std::unique_ptr<CaptureReader> openCapture(const std::string& path, const OpenOptions& opts) {
+    return openSource(std::make_unique<TextSource>(path, opts), path, opts);
 }
 
 }  // namespace busdecode
