@@ -55,6 +55,10 @@ private:
     Tick at_ = 0;                                  // tick after the last stretch
 };
 
+// A DSView session (.dsl): one bit-plane per line and block of 2^24 samples. Needs a
+// timebase of one sample per tick; holds the planes in memory (generated traffic).
+void writeDsl(const Waveform& w, const std::string& path);
+
 // `in_path` compressed into `out_path` as gzip, xz or zstd (not None) write it.
 void compressFile(const std::string& in_path, const std::string& out_path, Compression kind);
 

@@ -12,6 +12,7 @@
 #include "core/options.h"
 #include "decompressing_input.h"
 #include "readers.h"
+#include "zip_archive.h"
 
 namespace busdecode {
 
@@ -104,6 +105,24 @@ std::unique_ptr<CaptureReader> openCompressed(std::unique_ptr<TextSource> src, C
     }
 }
 
+// A sigrok session holds `metadata`, a DSView session `header`; a Saleae .sal (also a
+// ZIP, `meta.json`) is undocumented and refused.
+std::unique_ptr<CaptureReader> openZip(std::unique_ptr<TextSource> src, const std::string& path,
+                                       const OpenOptions& opts) {
+    const std::string name = src->name();
+    const int fd = path == "-" ? copyToTempFile(*src) : -1;
+    src.reset();
+    auto zip = std::make_unique<ZipArchive>(path, fd, name,
+                                            "ZIP capture (sigrok .sr or DSView .dsl)");
+    if (zip->has("header") && !zip->has("metadata")) return openDsl(std::move(zip), opts);
+    if (zip->has("meta.json") && !zip->has("metadata"))
+        throw InputError(name +
+                         ": a Saleae Logic 2 session (.sal): its format is undocumented and "
+                         "changes between releases; export the channels as binary files in "
+                         "Logic 2 (File > Export Data > Binary) and decode those");
+    return openSr(std::move(zip), opts);
+}
+
 // `path` is the file to reopen for formats read by offset (ZIP); "-" when there is none.
 std::unique_ptr<CaptureReader> openSource(std::unique_ptr<TextSource> src, const std::string& path,
                                           const OpenOptions& opts) {
@@ -111,15 +130,8 @@ std::unique_ptr<CaptureReader> openSource(std::unique_ptr<TextSource> src, const
     if (head.empty()) throw InputError(src->name() + ": empty file");
     if (const Compression kind = compressionOf(head); kind != Compression::None)
         return openCompressed(std::move(src), kind, opts);
-    if (head.size() >= 4 && head.substr(0, 4) == std::string_view("PK\x03\x04", 4)) {
-        if (path == "-") {
-            int fd = copyToTempFile(*src);
-            return openSr("", fd, src->name(), opts);
-        }
-        const std::string name = src->name();
-        src.reset();
-        return openSr(path, -1, name, opts);
-    }
+    if (head.size() >= 4 && head.substr(0, 4) == std::string_view("PK\x03\x04", 4))
+        return openZip(std::move(src), path, opts);
     std::string_view text = head;
     while (!text.empty() && (text.front() == ' ' || text.front() == '\t' || text.front() == '\r' ||
                              text.front() == '\n'))

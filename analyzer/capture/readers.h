@@ -12,10 +12,11 @@ namespace busdecode {
 
 std::unique_ptr<CaptureReader> openVcd(std::unique_ptr<TextSource> src, const OpenOptions& opts);
 std::unique_ptr<CaptureReader> openCsv(std::unique_ptr<TextSource> src, const OpenOptions& opts);
-// Opens `path`, or when fd >= 0 that descriptor (a seekable copy of standard input,
-// owned by the reader); `name` is what messages call the file.
-std::unique_ptr<CaptureReader> openSr(const std::string& path, int fd, const std::string& name,
-                                      const OpenOptions& opts);
+class ZipArchive;
+// ZIP captures, the archive already open (zip_archive.h).
+std::unique_ptr<CaptureReader> openSr(std::unique_ptr<ZipArchive> archive, const OpenOptions& opts);
+std::unique_ptr<CaptureReader> openDsl(std::unique_ptr<ZipArchive> archive,
+                                       const OpenOptions& opts);
 
 // "24 MHz", "1MHz", "5 Hz", "100 kHz", "24000000" -> Hz (0 if it is not a rate).
 std::int64_t parseRateHz(std::string_view text);
