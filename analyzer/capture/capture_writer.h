@@ -59,6 +59,12 @@ private:
 // timebase of one sample per tick; holds the planes in memory (generated traffic).
 void writeDsl(const Waveform& w, const std::string& path);
 
+// One row per sample: Vivado's ILA CSV export (each line a BINARY probe `top/u_ila/NAME`
+// and all of them in the HEX probe `top/u_ila/lines[n-1:0]`) or a headerless list as
+// ChipScope's .prn (TAB after each level, CRLF). Needs one sample per tick, 64 lines at most.
+enum class SampleRowsDialect { VivadoIlaCsv, ChipScopePrn };
+void writeSampleRows(const Waveform& w, const std::string& path, SampleRowsDialect dialect);
+
 // `in_path` compressed into `out_path` as gzip, xz or zstd (not None) write it.
 void compressFile(const std::string& in_path, const std::string& out_path, Compression kind);
 

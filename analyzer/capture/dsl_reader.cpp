@@ -35,8 +35,8 @@ std::string_view trimmed(std::string_view s) {
 std::uint64_t number(const std::string& file, const std::string& key, const std::string& text) {
     if (text.empty() || text.find_first_not_of("0123456789") != std::string::npos ||
         text.size() > 18)
-        throw InputError(fmt::format("{}: header: {} = '{}' is not a count", file, key,
-                                     printable(text)));
+        throw InputError(
+            fmt::format("{}: header: {} = '{}' is not a count", file, key, printable(text)));
     return std::stoull(text);
 }
 
@@ -117,9 +117,9 @@ public:
         rate_ = h.rate;
         const std::uint64_t need = (samples_ + kBlockSamples - 1) / kBlockSamples;
         if (h.blocks != need)
-            throw InputError(fmt::format(
-                "{}: header: total blocks = {}, but {} samples take {} blocks of 2^24", file,
-                h.blocks, samples_, need));
+            throw InputError(
+                fmt::format("{}: header: total blocks = {}, but {} samples take {} blocks of 2^24",
+                            file, h.blocks, samples_, need));
         blocks_ = h.blocks;
         for (const auto& [index, name] : h.probes) {
             probes_.push_back(index);
@@ -202,8 +202,8 @@ private:
                 "only logic sessions (device mode 0) are read",
                 file, h.mode == 1 ? "oscilloscope (DSO)" : "analog", h.mode));
         if (h.mode != 0)
-            throw InputError(fmt::format("{}: header: device mode {} is not a DSView mode", file,
-                                         h.mode));
+            throw InputError(
+                fmt::format("{}: header: device mode {} is not a DSView mode", file, h.mode));
         if (h.version < 2)
             throw InputError(fmt::format(
                 "{}: DSView session version {} (one `data` member) is not read: version 2 "
@@ -227,17 +227,15 @@ private:
         for (std::uint64_t b = 0; b < blocks_; ++b) {
             const std::string m = memberName(probe, b);
             const auto size = zip_->size(m);
-            if (!size)
-                throw InputError(fmt::format("{}: block {} is missing", zip_->name(), m));
+            if (!size) throw InputError(fmt::format("{}: block {} is missing", zip_->name(), m));
             const std::uint64_t want = blockBytes(b);
             const bool last = b + 1 == blocks_;
             // DSView may round the last block up further (to its 64-sample save units).
             if (last ? (*size < (samples_ - b * kBlockSamples + 7) / 8 || *size > kBlockBytes)
                      : *size != want)
                 throw InputError(fmt::format(
-                    "{}: block {} holds {} bytes, {} {} (wrong block size)", zip_->name(), m,
-                    *size, last ? "the last block of these samples holds" : "a full block holds",
-                    want));
+                    "{}: block {} holds {} bytes, {} {} (wrong block size)", zip_->name(), m, *size,
+                    last ? "the last block of these samples holds" : "a full block holds", want));
         }
     }
 

@@ -12,6 +12,7 @@
 #include "core/options.h"
 #include "decompressing_input.h"
 #include "readers.h"
+#include "sample_rows_reader.h"
 #include "zip_archive.h"
 
 namespace busdecode {
@@ -112,8 +113,8 @@ std::unique_ptr<CaptureReader> openZip(std::unique_ptr<TextSource> src, const st
     const std::string name = src->name();
     const int fd = path == "-" ? copyToTempFile(*src) : -1;
     src.reset();
-    auto zip = std::make_unique<ZipArchive>(path, fd, name,
-                                            "ZIP capture (sigrok .sr or DSView .dsl)");
+    auto zip =
+        std::make_unique<ZipArchive>(path, fd, name, "ZIP capture (sigrok .sr or DSView .dsl)");
     if (zip->has("header") && !zip->has("metadata")) return openDsl(std::move(zip), opts);
     if (zip->has("meta.json") && !zip->has("metadata"))
         throw InputError(name +
@@ -143,6 +144,8 @@ std::unique_ptr<CaptureReader> openSource(std::unique_ptr<TextSource> src, const
             src->name() +
             ": unknown format: binary data that is neither VCD, CSV nor a sigrok .sr session");
     if (!text.empty() && text.front() == '$') return openVcd(std::move(src), opts);
+    if (auto r = openIlaCsv(src, head, opts)) return r;
+    if (auto r = openSampleList(src, head, opts)) return r;
     return openCsv(std::move(src), opts);
 }
 

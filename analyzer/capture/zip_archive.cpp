@@ -63,8 +63,7 @@ void ZipMember::readExactly(void* out, std::size_t n) {
         if (got < 0)
             throw InputError(fmt::format("{}: {} is corrupt: {}", archive_.name(), member_,
                                          zip_error_strerror(zip_file_get_error(file_))));
-        if (got == 0)
-            throw InputError(fmt::format("{}: {} ends early", archive_.name(), member_));
+        if (got == 0) throw InputError(fmt::format("{}: {} ends early", archive_.name(), member_));
         p += got;
         n -= std::size_t(got);
     }

@@ -81,8 +81,8 @@ TEST(DslReader, ProtocolDemoUartText) {
 
 TEST(DslReader, SpiDemoAcrossTenBlocks) {
     const auto r = runDecode({realDsview("demo_spi.dsl"), "--proto", "spi", "--map", "sclk=clk",
-                              "--map", "mosi=mosi", "--map", "miso=miso", "--map", "cs=cs",
-                              "--opt", "bits=8", "--format", "jsonl"});
+                              "--map", "mosi=mosi", "--map", "miso=miso", "--map", "cs=cs", "--opt",
+                              "bits=8", "--format", "jsonl"});
     ASSERT_EQ(r.status, 0) << r.err;
     // 566 chip-select frames of three bytes, none cut short.
     std::size_t words = 0;
@@ -153,8 +153,7 @@ TEST(DslReader, BrokenSessions) {
     EXPECT_EQ(errorOf(p), p + ": header: total blocks = 3, but 100 samples take 1 blocks of 2^24");
     p = session("rate.dsl", {{"header", header("100", "1", "")}, {"L-0/0", full.substr(0, 16)}});
     EXPECT_EQ(errorOf(p), p + ": header has no samplerate (not a DSView session?)");
-    p = session("count.dsl",
-                {{"header", header("1x", "1")}, {"L-0/0", full.substr(0, 16)}});
+    p = session("count.dsl", {{"header", header("1x", "1")}, {"L-0/0", full.substr(0, 16)}});
     EXPECT_EQ(errorOf(p), p + ": header: total samples = '1x' is not a count");
     // A real session cut short: its central directory is gone.
     const std::string bytes = readFile(realDsview("protocol.demo"));
