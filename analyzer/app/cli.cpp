@@ -16,6 +16,7 @@
 #include "app/decode_args.h"
 #include "app/list_decoders.h"
 #include "app/plugin_loader.h"
+#include "capture/format_list.h"
 #include "core/options.h"
 #include "core/registry.h"
 #include "lcm/lcm_sink.h"
@@ -62,6 +63,7 @@ QStringList normaliseArgs(int argc, char** argv) {
 struct Parsed {
     DecodeArgs args;
     bool list = false;
+    bool formats = false;  // --formats: the capture formats, or what each capture is
 };
 
 Parsed parse(const QStringList& argv, bool verify) {
@@ -80,6 +82,7 @@ Parsed parse(const QStringList& argv, bool verify) {
     QCommandLineOption follow("follow", "keep reading a growing capture (or a pipe)");
     QCommandLineOption realtime("realtime", "pace a recorded capture at its own time scale");
     QCommandLineOption list("list", "list decoders, roles, options and defaults");
+    QCommandLineOption formats("formats", "list capture formats; with CAPTURE..., describe each");
     QCommandLineOption rules("rules", "verify: rules file (TOML)", "FILE");
     QCommandLineOption junit("junit", "verify: write JUnit XML", "FILE");
     QCommandLineOption jobs("jobs", "verify: captures checked in parallel (0 = one per core)", "N",
@@ -90,7 +93,7 @@ Parsed parse(const QStringList& argv, bool verify) {
     QCommandLineOption help({"h", "help"}, "show this help");
     QCommandLineOption version("version", "show the version");
     for (auto* o : {&proto, &map, &opt, &format, &report, &lcm, &rate, &follow, &realtime, &list,
-                    &rules, &junit, &jobs, &threads, &help, &version})
+                    &formats, &rules, &junit, &jobs, &threads, &help, &version})
         p.addOption(*o);
     if (!p.parse(argv)) throw InputError(p.errorText().toStdString());
     if (p.isSet(help)) {
@@ -107,6 +110,7 @@ Parsed parse(const QStringList& argv, bool verify) {
     }
     Parsed out;
     out.list = p.isSet(list);
+    out.formats = p.isSet(formats);
     DecodeArgs& a = out.args;
     a.captures = toStd(p.positionalArguments());
     a.protos = toStd(p.values(proto));
@@ -143,8 +147,17 @@ Parsed parse(const QStringList& argv, bool verify) {
     if (!verify && (!a.rules.empty() || !a.junit.empty()))
         throw InputError("--rules and --junit belong to 'decode verify'");
     if (verify && a.rules.empty()) throw InputError("decode verify: --rules FILE is required");
-    if (!out.list && a.captures.empty()) throw InputError("no capture given (see decode --help)");
+    if (!out.list && !out.formats && a.captures.empty()) throw InputError("no capture given (see decode --help)");
     return out;
+}
+
+int runFormats(const DecodeArgs& a) {
+    if (a.captures.empty()) printFormatList(stdout);
+    OpenOptions open;
+    open.rate_hz = a.rate_hz;
+    for (const auto& capture : a.captures)
+        printCaptureDescription(stdout, capture, open);
+    return 0;
 }
 
 int runDecode(const DecodeArgs& a) {
@@ -205,6 +218,7 @@ int runCli(int argc, char** argv) {
         QStringList args = normaliseArgs(argc, argv);
         if (verify) args.removeAt(1);
         Parsed parsed = parse(args, verify);
+        if (parsed.formats) return runFormats(parsed.args);
         // The decoders asked for (all of them to list them, or when none is named).
         loadPlugins(parsed.list ? std::vector<std::string>{} : parsed.args.protos);
         if (parsed.list) {

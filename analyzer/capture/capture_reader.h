@@ -74,6 +74,9 @@ public:
     // Bytes consumed so far and total (0 if unknown), for progress and throughput.
     virtual std::uint64_t bytesRead() const { return 0; }
     virtual std::uint64_t bytesTotal() const { return 0; }
+    // What the file says about its traffic beyond its signals (DSView: the protocol
+    // decoders set up in it), one line each, for `decode --formats FILE`.
+    virtual std::vector<std::string> notes() const { return {}; }
     // True if every edge changes its line's level (the reader drops repeated values
     // itself): the session then skips its own check.
     virtual bool changesOnly() const { return false; }

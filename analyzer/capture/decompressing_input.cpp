@@ -302,6 +302,7 @@ public:
     std::uint64_t bytesRead() const override { return input_->compressedRead(); }
     std::uint64_t bytesTotal() const override { return input_->compressedTotal(); }
     bool changesOnly() const override { return inner_->changesOnly(); }
+    std::vector<std::string> notes() const override { return inner_->notes(); }
     bool readsAhead() const override { return inner_->readsAhead(); }
 
 private:

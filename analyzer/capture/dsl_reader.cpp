@@ -121,6 +121,7 @@ public:
                 fmt::format("{}: header: total blocks = {}, but {} samples take {} blocks of 2^24",
                             file, h.blocks, samples_, need));
         blocks_ = h.blocks;
+        if (auto decoders = zip_->readText("decoders")) noteDecoders(*decoders);
         for (const auto& [index, name] : h.probes) {
             probes_.push_back(index);
             signals_.push_back({name, name, 1});
@@ -134,6 +135,7 @@ public:
     std::uint64_t bytesRead() const override { return bytes_read_; }
     std::uint64_t bytesTotal() const override { return bytes_total_; }
     bool changesOnly() const override { return true; }
+    std::vector<std::string> notes() const override { return notes_; }
 
     void select(const std::vector<LineRef>& lines) override {
         checkSelection(lines);
@@ -209,6 +211,29 @@ private:
                 "{}: DSView session version {} (one `data` member) is not read: version 2 "
                 "and 3 sessions (`L-<probe>/<block>` members) are",
                 file, h.version));
+    }
+
+    // The `decoders` member (JSON) on one line, whitespace folded, so it can be copied.
+    void noteDecoders(const std::string& json) {
+        std::string folded;
+        bool in_string = false;
+        for (char ch : json) {
+            if (ch == '"') in_string = !in_string;
+            const bool space = ch == ' ' || ch == '\n' || ch == '\r' || ch == '\t';
+            if (space && !in_string) {
+                if (!folded.empty() && folded.back() != ' ' && folded.back() != '[' &&
+                    folded.back() != '{')
+                    folded += ' ';
+                continue;
+            }
+            if ((ch == ']' || ch == '}') && !folded.empty() && folded.back() == ' ')
+                folded.pop_back();
+            folded += ch;
+        }
+        while (!folded.empty() && folded.back() == ' ')
+            folded.pop_back();
+        if (folded != "[]" && !folded.empty())
+            notes_.push_back("DSView decoders: " + printable(folded, 4000));
     }
 
     // Bytes a block holds: every block but the last is full; the last holds the rest,
@@ -298,6 +323,7 @@ private:
     std::int64_t rate_ = 0;
     std::vector<int> probes_;
     std::vector<SignalInfo> signals_;
+    std::vector<std::string> notes_;
     std::vector<Line> lines_;
     std::uint64_t window_start_ = 0;    // sample of the window's first word
     std::uint64_t window_samples_ = 0;  // its length (the next one starts there)
