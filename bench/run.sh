@@ -36,8 +36,7 @@ huge=$((size * 10))
 decode="$build/bin/decode"
 make="$build/bin/make_capture"
 reader="$build/bin/read_capture"
-probe="$build/bin/two_cores_probe"
-for x in "$decode" "$make" "$reader" "$probe"; do
+for x in "$decode" "$make" "$reader"; do
     [ -x "$x" ] || { echo "missing $x (build with: cmake --build $build)" >&2; exit 2; }
 done
 # The peers and tools it times with: missing, the run would stop halfway through.
@@ -92,11 +91,7 @@ median() {
 around() {
     local n="$1" f="$2" sargs="$3" args="$4"
     local i
-    probes=()
     for i in 1 2; do
-        # What handing data between the two cores costs in these seconds: one die or two
-        # (bench/README.md, "Two dies").
-        probes+=("$("$probe")")
         # shellcheck disable=SC2086
         python3 "$src/bench/time_runs.py" -n "$n" -w 1 --json "$tmp/side$i.json" \
             "$decode" "$f" $args --- wc -l "$f" >/dev/null
@@ -116,13 +111,6 @@ ratio() { echo "scale=2; $1 / $2" | bc -l; }
 # jq: the median of an array of numbers (prefix a filter with it).
 jq_median='def median: sort | if length % 2 == 1 then .[length / 2 | floor] else (.[length / 2 - 1] + .[length / 2]) / 2 end; '
 
-# A row with what two_cores_probe said before each of around()'s two stretches.
-probe_row() {
-    row "$1: between the two cores, before each stretch (two_cores_probe)" "" \
-        "${probes[0]}; ${probes[1]}" \
-        "one die: handover 7-22 GB/s (round trip 50-320 ns); two dies: 2.4-3 GB/s (320-550 ns)" \
-        "(how to read the row above)" "-"
-}
 fmt_s() { printf '%.3f' "$1"; }
 verdict() { if [ "$(echo "$1" | bc -l)" = 1 ]; then echo "yes"; else echo "**no**"; fi; }
 
@@ -176,7 +164,6 @@ for bus in spi bissc; do
     row "$bus.vcd: decode vs wc -l" "$size_mb MB" "as above" \
         "wc -l $(fmt_s "$t_wc") s wall, $(fmt_s "$c_wc") s CPU: decode at **$r_wc** (wall) of its speed; by CPU $rc_wc (decode's work on two cores against wc's on one)" \
         ">= 0.25" "$(verdict "$r_wc >= 0.25") (wall)"
-    probe_row "$bus.vcd"
     # The tokeniser alone (every signal read, nothing decoded or printed): what decode
     # could reach with a decoder that cost nothing.
     read -r t_rd c_rd < <(median "$runs" "$reader" "$f")
@@ -198,7 +185,6 @@ for bus in spi bissc; do
             "$(fmt_s "$t_dec") s wall, $(fmt_s "$c_dec") s CPU" \
             "wc -l $(fmt_s "$t_wc") s wall, $(fmt_s "$c_wc") s CPU: decode at **$r_wc** (wall) of its speed" \
             ">= 0.25" "$(verdict "$r_wc >= 0.25") (wall)"
-        probe_row "$bus.vcd read back"
         # Reading as decode reads (in pieces on both threads), every edge handed to a
         # thread that only counts them: decode's floor with a decoder that cost nothing
         # (bench/README.md, "A decoder that costs nothing", "A VCD file in pieces").

@@ -8,7 +8,7 @@
 # (default 4096) caps the decoder targets' inputs: shorter edge streams run faster.
 #
 # Corpora live in BUILD_DIR/corpus/<target> (seeded from the generators via
-# fuzz_make_seeds, from captures/ and ../shared/captures, and from fuzz/seeds/), crashes
+# fuzz_make_seeds, from captures/ and tests/data/real/, and from fuzz/seeds/), crashes
 # in BUILD_DIR/artifacts/<target>/, logs in BUILD_DIR/logs/. Prints the executions of
 # each run. Keep every crashing input as tests/robustness/regressions/<target>/NAME.
 set -euo pipefail
@@ -25,7 +25,7 @@ while getopts "b:t:r:" o; do
     esac
 done
 shift $((OPTIND - 1))
-shared="${BUSDECODE_SHARED_DIR:-$src/../shared}/captures"
+real="$src/tests/data/real"  # the real captures the tests use
 
 targets=("$@")
 if [ ${#targets[@]} -eq 0 ]; then
@@ -54,13 +54,13 @@ seed_corpus() {  # TARGET
     [ -d "$src/fuzz/seeds/$t" ] && cp -n "$src/fuzz/seeds/$t"/* "$c/" 2>/dev/null || true
     [ -d "$src/tests/robustness/regressions/$t" ] && cp -n "$src/tests/robustness/regressions/$t"/* "$c/" 2>/dev/null || true
     case "$t" in
-        vcd) copy_small "$c" "$src/captures" "$shared" -name '*.vcd' ;;
+        vcd) copy_small "$c" "$src/captures" "$real" -name '*.vcd' ;;
         vcd_pieces) for f in "$seeds/vcd"/*; do  # pieces of 7 bytes, search 64 KiB
             [ -f "$f" ] && { printf '\x07\x80'; cat "$f"; } > "$c/$(basename "$f")"
         done ;;
-        csv_sigrok) copy_small "$c" "$src/captures" "$shared/biss-renishaw/sigrok-csv" -name '*.csv' ;;
-        csv_saleae) copy_small "$c" "$shared/sigrok-dumps" -name '*.csv' ;;
-        sr) copy_small "$c" "$shared" -name '*.sr' -size -64k ;;
+        csv_sigrok) copy_small "$c" "$src/captures" "$real/biss-renishaw/sigrok-csv" -name '*.csv' ;;
+        csv_saleae) copy_small "$c" "$real/sigrok-dumps" -name '*.csv' ;;
+        sr) copy_small "$c" "$real" -name '*.sr' -size -64k ;;
     esac
 }
 options_for() {  # TARGET -> libFuzzer options

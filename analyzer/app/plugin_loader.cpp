@@ -6,6 +6,7 @@
 #include <set>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <QCoreApplication>
 #include <QDir>
 #include <QFileInfo>
@@ -15,6 +16,7 @@
 #include <QString>
 
 #include "busdecode/plugin.h"
+#include "core/options.h"
 #include "core/registry.h"
 
 namespace busdecode {
@@ -30,7 +32,7 @@ struct PluginFile {
     bool loaded = false;
 };
 
-std::vector<PluginFile> findPluginFiles() {
+QStringList pluginDirs() {
     QStringList dirs;
     const QString app =
         QCoreApplication::instance() ? QCoreApplication::applicationDirPath() : QString();
@@ -42,6 +44,21 @@ std::vector<PluginFile> findPluginFiles() {
         dirs << app + "/../lib/busdecode/plugins";
         dirs << app + "/../lib/x86_64-linux-gnu/busdecode/plugins";
     }
+    return dirs;
+}
+
+// Every decoder is a plugin, so without one `decode` can do nothing: say where it looked.
+std::string noPluginsFound(const QStringList& dirs) {
+    std::vector<std::string> shown;
+    for (const auto& d : dirs)
+        shown.push_back(QDir::cleanPath(d).toStdString());
+    return fmt::format(
+        "no decoder plugins (busdecode_*.so) found; searched: {}; set BUSDECODE_PLUGIN_PATH "
+        "to the directory holding them (several: separated by ':')",
+        fmt::join(shown, ", "));
+}
+
+std::vector<PluginFile> findPluginFiles(const QStringList& dirs) {
     std::vector<PluginFile> files;
     std::set<QString> seen;
     for (const auto& d : dirs) {
@@ -94,10 +111,13 @@ void loadPlugins(const std::vector<std::string>& wanted) {
     static std::vector<PluginFile> files;
     static bool found = false;
     std::lock_guard<std::mutex> lock(m);
+    static QStringList dirs;  // kept for the error when there is no plugin
     if (!found) {
-        files = findPluginFiles();
+        dirs = pluginDirs();
+        files = findPluginFiles(dirs);
         found = true;
     }
+    if (files.empty() && Registry::instance().all().empty()) throw InputError(noPluginsFound(dirs));
     const auto isWanted = [&](const PluginFile& f) {
         if (wanted.empty() || !f.listed) return true;
         return std::any_of(f.ids.begin(), f.ids.end(), [&](const std::string& id) {

@@ -142,7 +142,7 @@ inline int digitsOfLengthIn(__m128i raw, std::uint64_t& value) {
         // below. Times of 8 digits or fewer are most of a 500 MB capture's
         // (bench/README.md, "-O3 for the code that decodes"). Of 9 or 10 digits, the last
         // 8 go the same way, moved down, and the first one or two are taken from the low
-        // bytes alone (bench/README.md, stop 40): times of 9 digits are the rest of it.
+        // bytes alone: times of 9 digits are the rest of it.
         __m128i low8;
         if constexpr (N <= 8)
             low8 = _mm_slli_si128(d, 8 - N);
@@ -178,7 +178,7 @@ inline int digitsOfLengthIn(__m128i raw, std::uint64_t& value) {
 // combined in pairs by three multiply-adds (digits -> 2-digit -> 4-digit -> 8-digit
 // lanes) and, past 10 digits, one 64-bit multiply. The SWAR version chains two or three 64-bit
 // multiplies per time; this one took reading the 500 MB BiSS-C capture alone from 151 to 114 ms
-// (bench/README.md, stop 25).
+// (bench/README.md, "Times in one SSE2 register").
 template <int N>
 inline bool digitsOfLengthSse2(const char* p, std::uint64_t& value) {
     const int is_digit =

@@ -91,7 +91,7 @@ public:
     Tick startTick() const override { return 0; }
 
     // Aligned to a cache line: its hot loop ran 12 % slower where unrelated code in the
-    // library moved it within its lines (bench/README.md, stop 31); aligned, its place
+    // library moved it within its lines; aligned, its place
     // depends on its own code alone.
     [[gnu::aligned(64)]] bool next(EdgeBlock& block) override {
         block.clear();

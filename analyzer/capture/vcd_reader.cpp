@@ -767,7 +767,7 @@ private:
     // reading thread's instructions per line of a 10 MB SPI capture, by callgrind: 167 -> 103;
     // bench/README.md has the command). Its loop is made once per length of the times,
     // 1 to 15 digits (runTimesOf): where a time ends is then known before its digits are
-    // read, and a time of another length switches loops (bench/README.md, stop 23).
+    // read, and a time of another length switches loops.
     void fastRun(EdgeBlock& block) {
         if (e_ - p_ < 32 || max_targets_ >= kEdgeBlockSize) return;
         // Edges are written through a pointer into the block sized to its capacity, and

@@ -71,7 +71,7 @@ private:
 // options (BiSS-C: the data, nE and nW). The CRC is affine in the message's bits, so a
 // message's CRC is the all-zero message's XOR one table entry per byte of the message:
 // independent look-ups, where BitCrc::pushBits() chains every step on the one before
-// (about 130 instructions fewer per BiSS-C frame by callgrind; bench/README.md, stop 33).
+// (about 130 instructions fewer per BiSS-C frame by callgrind).
 class FixedLengthCrc {
 public:
     // The same CRC as `crc` (polynomial, init, xorout; its register is not used).

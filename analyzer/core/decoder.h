@@ -44,7 +44,7 @@ struct DecoderContext {
     // that carries edges to itself): a decoder may take the role from Edge::line and skip
     // the look-up, which sits on the way to the branch on the role (mispredicted at
     // random where the data is random: BiSS-C's `decode/bissc` micro-benchmark 3-4 %
-    // faster without it, bench/README.md, stop 33). The session's usual case: one
+    // faster without it). The session's usual case: one
     // decoder, its roles bound in order.
     bool lines_are_roles = false;
 };

@@ -61,7 +61,7 @@ struct Event {
 // An event in storage of its own: handed from decoder to session to sink by pointer, so
 // that its strings and vectors are not moved member by member on the way (three moves
 // and three destructions per event: 8 % of BiSS-C's decoding thread's instructions by
-// callgrind; bench/README.md, stop 24).
+// callgrind).
 using EventPtr = std::unique_ptr<Event>;
 
 // Where a decoder sends what it decodes.

@@ -78,8 +78,7 @@ public:
     }
     // Numbers are written into a scratch buffer, then copied whole (a fixed-size copy is
     // a few stores; one of the digits' own length is a call to memcpy) and only the
-    // digits kept: about 125 instructions fewer per BiSS-C frame by callgrind
-    // (bench/README.md, stop 33).
+    // digits kept: about 125 instructions fewer per BiSS-C frame by callgrind.
     ShortLine& dec(std::uint64_t v) {
         // One digit (nE, nW, CDS, CDM: four of a BiSS-C frame's six decimal numbers) is
         // one store.

@@ -5,7 +5,7 @@
 // from the heap share their cache line with whatever the allocator puts next to them,
 // and each write by one core then takes that line away from the other (false sharing):
 // a change that only moved the heap's layout (events handed on by pointer) once made
-// BiSS-C's decode 12 % slower that way (bench/README.md, stop 24).
+// BiSS-C's decode 12 % slower that way.
 #include <algorithm>
 #include <cstddef>
 #include <memory>

@@ -5,7 +5,7 @@
 // and emits `register` / `command` events spanning the frames that carried them.
 //
 // Frame index f counts from the frame whose CDM is the control start bit S (f = 0); the
-// slave answers CDM(f) with CDS(f+1). Register access (CTS = 1), PROTOCOLS.md §1.4:
+// slave answers CDM(f) with CDS(f+1). Register access (CTS = 1), docs/protocols.md §1.4:
 //   CDM: S CTS ID2..0 ADR6..0 CRC3..0 R W S [S repeated while the slave is busy]
 //        then DATA7..0 CRC3..0 P (write) or twelve 0s and P (read); S again = sequential.
 //   CDS: IDL at f1.., R W echo at f17/f18, then S, DATA7..0, CRC3..0, P one frame later.
@@ -46,7 +46,7 @@ public:
         if (phase_ == Phase::Idle) zeros_ = kPreambleZeros;
     }
 
-    // Needed before a control start bit counts (PROTOCOLS.md §1.4).
+    // Needed before a control start bit counts (docs/protocols.md §1.4).
     static constexpr int kPreambleZeros = 14;
 
 private:

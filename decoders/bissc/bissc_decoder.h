@@ -1,6 +1,6 @@
 #pragma once
 // BiSS-C (continuous mode, point to point) from the master clock MA and the slave line
-// SL, as seen at the master. Per frame (PROTOCOLS.md §1.1):
+// SL, as seen at the master. Per frame (docs/protocols.md §1.1):
 //   MA falls (or, with Hold-CDM, rises from low); the 1st rising edge latches (LAT); the
 //   slave pulls SL low after the 2nd rising edge (ACK), keeps it low while busy, then
 //   sends Start = 1, CDS, data MSB first, nE, nW, CRC (inverted), and a 0 stop bit; SL
@@ -263,8 +263,8 @@ private:
     // Takes the edges from `first` on through takeDataEdge(), the state in locals;
     // returns the first edge it did not take. kLinesAreRoles: the role is the edge's line
     // (DecoderContext::lines_are_roles), not looked up.
-    // Out of line, as it was before it became a template: the function perf and
-    // bench/README.md name, and the code the micro-benchmark compared.
+    // Out of line, as it was before it became a template: the function perf names, and
+    // the code the micro-benchmarks measure.
     static constexpr std::ptrdiff_t kMaxRun = 1024;  // edges a run takes at most (edges())
     template <bool kLinesAreRoles>
     [[gnu::noinline]] const Edge* dataRun(const Edge* first, const Edge* last,

@@ -334,7 +334,7 @@ void SpiDecoder::emitWord(Tick end, bool short_frame) {
     ShortLine text;  // at most 64 bits: "MOSI 0x" + 16 digits, twice, and the short note
     bool first = true;
     // Fields only when a sink or another decoder reads them: text output prints the
-    // summary alone (bench/README.md, stop 23).
+    // summary alone.
     const bool fields = fieldsWanted();
     auto put = [&](const char* key, const char* label, std::uint64_t w, bool bound) {
         if (!bound) {

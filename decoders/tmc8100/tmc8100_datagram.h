@@ -1,6 +1,6 @@
 #pragma once
-// What the TMC8100's 32-bit SPI datagrams mean (PROTOCOLS.md §3.1, the SSI application
-// note in seeds/000, and the TMC8100 example firmwares): command names by first byte,
+// What the TMC8100's 32-bit SPI datagrams mean (docs/protocols.md §3.1, the SSI application
+// note [D1] in its §0, and the TMC8100 example firmwares): command names by first byte,
 // the replies each command queues, and what a reply word says. Pure functions, no state:
 // the decoder pairs replies with commands, this file only knows the datagram formats.
 #include <cstdint>

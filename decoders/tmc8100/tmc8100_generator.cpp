@@ -58,7 +58,7 @@ void Tmc8100Scenario::ssiFrame(std::uint32_t word, int bits) {
 int Tmc8100Scenario::bissFrame(std::uint32_t data, int bits, int ne, int nw,
                                std::uint32_t crc_xor) {
     // Slot k is the SL level after MA rising edge k (1-based): LAT 1, ACK 0, start 1,
-    // CDS 0, data MSB first, nE, nW, CRC6 as sent, stop 0.
+    // CDS 0, data MSB first, nE, nW, CRC6 as sent, STP 0.
     const std::uint64_t payload =
         (std::uint64_t(data) << 2) | (std::uint64_t(ne & 1) << 1) | (nw & 1);
     const std::uint32_t crc = bissCrc6(payload, bits + 2) ^ crc_xor;

@@ -2,7 +2,7 @@
 // Generator for the whole TMC8100 scenario: the host (Landungsbruecke) on SPI mode 3
 // sending 32-bit datagrams, SPI_DATA_AVAILABLE on GPIO6, and the encoder cable the
 // firmware clocks (SSI: 26 clocks at 1 MHz for a 25-bit word, sampled on falling edges).
-// It plays the SSI demo firmware's dialogue (seeds/000, PROTOCOLS.md §3.1) and lets a
+// It plays the SSI demo firmware's dialogue ([D1], docs/protocols.md §3.1) and lets a
 // test inject faults: a firmware that reports the wrong binary, a TMC8100 answer that
 // differs from what crossed the encoder cable, a host that reads before GPIO6, GPIO6
 // rising for nothing.
@@ -49,7 +49,7 @@ public:
     // One SSI read of `bits` bits (bits + 1 clocks), data low for the monoflop time after.
     void ssiFrame(std::uint32_t word, int bits = 25);
 
-    // One BiSS-C frame of the BiSS demo (PROTOCOLS.md §4.2): MA clocks LAT, ACK, start,
+    // One BiSS-C frame of the BiSS demo (docs/protocols.md §4.2): MA clocks LAT, ACK, start,
     // CDS, `bits` data bits, nE, nW, CRC6 (inverted) and stop; SL answers after each rising
     // edge, stays low for the timeout, then idles high. crc_xor corrupts the CRC sent.
     // Returns the MA edges clocked.

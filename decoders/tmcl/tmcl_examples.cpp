@@ -40,7 +40,7 @@ TmclExample rs485() {
 
 TmclExample lines() {
     // TMC8100-Eval traffic through the Landungsbruecke at 115200 on two lines: UF_CH2
-    // SPI accesses (PROTOCOLS.md 4.6), a binary GetVersion, a command the module does not
+    // SPI accesses (docs/protocols.md 4.6), a binary GetVersion, a command the module does not
     // answer (137) and a command cut short by a pause.
     WaveBuilder wb(Timebase{1, 100'000'000}, {"host", "module"}, {1, 1});  // 10 ns ticks
     TmclTrafficGenerator g(wb, 0, 1, 115200);

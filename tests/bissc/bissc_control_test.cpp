@@ -1,4 +1,4 @@
-// BiSS-C control communication: the complete register accesses of PROTOCOLS.md §4.4
+// BiSS-C control communication: the complete register accesses of docs/protocols.md §4.4
 // (V20-V24) fed bit by bit into the reassembler, the CRC4 vectors of §4.3, and
 // generated captures carrying reads, writes, busy repeats, refusals, bad CRCs and
 // commands over CDM/CDS, decoded end to end.
@@ -41,7 +41,7 @@ bool boolField(const Event& e, const char* key) {
 }  // namespace
 
 TEST(BisscCrc4, ControlVectors) {
-    // PROTOCOLS.md §4.3 (the AN22 captured ones are also in core_tests).
+    // docs/protocols.md §4.3 (the AN22 captured ones are also in core_tests).
     EXPECT_EQ(bissCrc4((1u << 10) | 0x00, 11), 0b0110u);
     EXPECT_EQ(bissCrc4((1u << 10) | 0x7E, 11), 0b1111u);
     EXPECT_EQ(bissCrc4((1u << 10) | 0x42, 11), 0b0111u);

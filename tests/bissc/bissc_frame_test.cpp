@@ -1,4 +1,4 @@
-// BiSS-C frames: the published frame vectors (PROTOCOLS.md §4.2) built slot by slot,
+// BiSS-C frames: the published frame vectors (docs/protocols.md §4.2) built slot by slot,
 // then generated captures across clock rates, widths, line delays and processing times.
 #include <gtest/gtest.h>
 
@@ -749,7 +749,7 @@ TEST(BisscFrames, LongCaptureIsFastAndFlat) {
 }
 
 TEST(BisscFrameVectors, V1toV9_CrcsAsDecodedFrames) {
-    // PROTOCOLS.md §4.1: each CRC vector sent as a frame (the vector's input = data, nE,
+    // docs/protocols.md §4.1: each CRC vector sent as a frame (the vector's input = data, nE,
     // nW) with the published CRC must decode with that crc_rx and a good CRC.
     struct Vec {
         int bits;

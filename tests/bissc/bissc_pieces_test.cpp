@@ -171,7 +171,7 @@ TEST(BisscPieces, RealCapturesDecodeAsInOrder) {
     // The Renishaw RESOLUTE behind an iC-Haus MB5U (bissc_real_capture_test.cpp), its
     // sigrok VCD export with only the clock in it (every frame without an ACK), and the
     // committed examples.
-    const std::string renishaw = sharedCaptures() + "/biss-renishaw/";
+    const std::string renishaw = realCaptures() + "/biss-renishaw/";
     struct File {
         std::string path, ma, sl;
         std::map<std::string, std::string> options;

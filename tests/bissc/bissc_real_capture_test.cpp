@@ -28,7 +28,7 @@ struct RefFrame {
 };
 
 std::string base() {
-    return sharedCaptures() + "/biss-renishaw/";
+    return realCaptures() + "/biss-renishaw/";
 }
 
 std::vector<RefFrame> reference() {

@@ -358,7 +358,7 @@ TEST(CsvReaderErrors, PreviousTimeAsWritten) {
 
 // sigrok-cli's CSV export of the same session as the .sr: identical edges, tick for tick.
 TEST(CsvReader, DifferentialSigrokCsvAgainstSr) {
-    const std::string base = sharedCaptures() + "/biss-renishaw/";
+    const std::string base = realCaptures() + "/biss-renishaw/";
     for (std::string rate : {"1MHz", "10MHz"}) {
         auto sr = collectFile(base + "sr/renishaw_biss_" + rate + ".sr", {"MA", "SLO"});
         auto csv = collectFile(base + "sigrok-csv/renishaw_biss_" + rate + ".csv", {"MA", "SLO"});
@@ -381,7 +381,7 @@ struct Vendor {
 };
 
 std::vector<std::vector<std::int64_t>> firstTransaction(const Vendor& v) {
-    auto c = collectFile(sharedCaptures() + "/sigrok-dumps/spi/spiflash_read16/" + v.file,
+    auto c = collectFile(realCaptures() + "/sigrok-dumps/spi/spiflash_read16/" + v.file,
                          v.cs_clk_mosi);
     std::vector<std::vector<std::int64_t>> per_line(3);
     std::int64_t t0 = 0;

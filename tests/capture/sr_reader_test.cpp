@@ -90,7 +90,7 @@ TEST(SrReader, OldSingleChunkSession) {
 }
 
 TEST(SrReader, IndexIsTheProbeBit) {
-    auto c = collectFile(sharedCaptures() + "/biss-renishaw/sr/renishaw_biss_1MHz.sr");
+    auto c = collectFile(realCaptures() + "/biss-renishaw/sr/renishaw_biss_1MHz.sr");
     ASSERT_EQ(c.signals.size(), 8u);
     EXPECT_EQ(c.signals[1].name, "MA");   // probe2
     EXPECT_EQ(c.signals[3].name, "SLO");  // probe4
@@ -202,7 +202,7 @@ void compareSrWithSigrokVcd(const std::string& sr_path, const std::string& vcd_p
 // so its "MA" is bit 0 (D0) and its "SLO" is bit 1 (the real MA). We compare like
 // with like; the bit-3 SLO data is not in sigrok's exports at all.
 TEST(SrReader, DifferentialAgainstSigrokVcdExport) {
-    const std::string base = sharedCaptures() + "/biss-renishaw/";
+    const std::string base = realCaptures() + "/biss-renishaw/";
     for (std::string rate : {"250kHz", "1MHz", "2MHz", "5MHz", "10MHz"}) {
         SCOPED_TRACE(rate);
         compareSrWithSigrokVcd(base + "sr/renishaw_biss_" + rate + ".sr",

@@ -1,4 +1,4 @@
-// Shared mechanics against the published vectors of ../shared/PROTOCOLS.md §4.
+// Shared mechanics against the published vectors of docs/protocols.md §4.
 #include <gtest/gtest.h>
 
 #include <random>

@@ -71,7 +71,7 @@ struct Case {
 // repository's generated examples for what no public capture has: BiSS-C register
 // accesses, TMC8100 encoder reads cross-checked with SSI, real TMCL, Gray SSI.
 std::vector<Case> cases() {
-    const std::string s = test::sharedCaptures(), c = test::sourceDir() + "/captures";
+    const std::string s = test::realCaptures(), c = test::sourceDir() + "/captures";
     std::vector<Case> out{
         {"bissc",
          {s + "/biss-renishaw/sr/renishaw_biss_1MHz.sr", "--proto", "bissc", "--opt", "bits=32"},

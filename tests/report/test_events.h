@@ -1,5 +1,5 @@
 #pragma once
-// Hand-made events shaped like the decoders' (CONTRACT.md fields), 1 ns ticks.
+// Hand-made events shaped like the decoders' (docs/contract.md fields), 1 ns ticks.
 #include <string>
 #include <vector>
 

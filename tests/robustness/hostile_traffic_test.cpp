@@ -106,7 +106,7 @@ Waveform uartOnEveryLine(const DecoderInfo& info, std::uint32_t seed) {
         std::uint8_t level = 1;
         Tick t = 5000 + Tick(l) * 1234;
         for (int c = 0; c < 200; ++c, t += 12 * bit) {
-            const unsigned v = (rng() & 0xff) << 1 | 0x200;  // start 0, data, stop 1
+            const unsigned v = (rng() & 0xff) << 1 | 0x200;  // start bit 0, data, stop bit 1
             for (int b = 0; b < 10; ++b) {
                 const std::uint8_t lv = (v >> b) & 1;
                 if (lv != level) per_line[l].push_back({t + b * bit, std::uint32_t(l), lv});

@@ -114,7 +114,7 @@ std::vector<Word> ourWords(const std::string& file, const BusSetup& s) {
 
 TEST(SpiVsSigrokCli, AllModesCaptures) {
     if (!haveSigrokCli()) GTEST_SKIP() << "sigrok-cli not installed";
-    const std::string dir = sharedCaptures() + "/sigrok-dumps/spi/allmodes";
+    const std::string dir = realCaptures() + "/sigrok-dumps/spi/allmodes";
     std::regex name(R"(spi_0x([0-9a-f]+)_cpol(\d)_cpha(\d)_.*\.sr)");
     int files = 0, words = 0;
     for (const auto& entry : std::filesystem::directory_iterator(dir)) {
@@ -178,7 +178,7 @@ TEST(SpiVsSigrokCli, SrAndItsVcdAndCsvExportsDecodeIdentically) {
     // identical times.
     if (!haveSigrokCli()) GTEST_SKIP() << "sigrok-cli not installed";
     Registry::instance().add(makeSpiFactory());
-    const std::string sr = sharedCaptures() + "/sigrok-dumps/spi/adf4351/set-4000mhz.sr";
+    const std::string sr = realCaptures() + "/sigrok-dumps/spi/adf4351/set-4000mhz.sr";
     const std::string vcd = tempDir() + "/adf4351.vcd", csv = tempDir() + "/adf4351.csv";
     ASSERT_EQ(
         runCommand("sigrok-cli -i " + shellQuote(sr) + " -O vcd -o " + shellQuote(vcd)).status, 0);

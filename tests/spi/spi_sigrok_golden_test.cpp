@@ -26,7 +26,7 @@ struct Collect : OutputSink {
 std::vector<Event> decodeSr(const std::string& rel, std::map<std::string, std::string> map,
                             std::map<std::string, std::string> opts) {
     Registry::instance().add(makeSpiFactory());
-    const std::string path = sharedCaptures() + "/sigrok-dumps/spi/" + rel;
+    const std::string path = realCaptures() + "/sigrok-dumps/spi/" + rel;
     auto reader = openCapture(path, OpenOptions{});
     Session s({DecoderRequest{"spi", std::move(map), std::move(opts)}}, *reader, path);
     Collect c;
@@ -42,7 +42,7 @@ struct Word {
 };
 
 std::string expectedDir() {
-    return sharedCaptures() + "/sigrok-test/decoder/test/";
+    return realCaptures() + "/sigrok-test/decoder/test/";
 }
 
 // `<ss>-<es> spi: mosi-data: "E2"` lines (miso-data likewise), merged by sample range.

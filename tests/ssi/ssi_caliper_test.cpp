@@ -27,7 +27,7 @@ const std::map<std::string, std::string> kCaliperOptions = {
 };
 
 std::string caliperDir() {
-    return test::sharedCaptures() + "/sigrok-dumps/caliper";
+    return test::realCaptures() + "/sigrok-dumps/caliper";
 }
 
 std::vector<Event> decodeFile(const std::string& path) {
@@ -88,7 +88,7 @@ std::vector<Expected> readExpected(const std::string& path) {
 }  // namespace
 
 TEST(SsiCaliper, FramesWhereSigrokFindsMeasurements) {
-    const std::string exp_dir = test::sharedCaptures() + "/sigrok-test/decoder/test/caliper";
+    const std::string exp_dir = test::realCaptures() + "/sigrok-test/decoder/test/caliper";
     const std::vector<std::pair<std::string, std::string>> cases = {
         {"caliper0.55mm.sr", "caliper_pos_mm.output"},
         {"caliper-123.45mm.sr", "caliper_neg_mm.output"},

@@ -452,7 +452,7 @@ TEST(SsiGenerated, RandomEdgesNeverBreakTheDecoder) {
 }
 
 TEST(SsiGenerated, SummaryTextOfV32) {
-    // PROTOCOLS.md V32: 25-bit Gray, MT 0xABC, ST 0x1234 (13 bits) -> raw 0x1FC5B2E.
+    // docs/protocols.md V32: 25-bit Gray, MT 0xABC, ST 0x1234 (13 bits) -> raw 0x1FC5B2E.
     SsiGenConfig cfg;
     const auto g = generateSsi(cfg, {SsiGenFrame{binaryToGray(0x1579234), 0, 1, 30000, {}}});
     const auto ev = decodeFrames(g.wave, opts(25, 13, 12, true));

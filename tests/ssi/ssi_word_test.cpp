@@ -1,4 +1,4 @@
-// The word rules against the vectors of ../shared/PROTOCOLS.md §4.5 and the seed notes:
+// The word rules against the vectors of docs/protocols.md §4.5 and the vendor notes:
 // bit assembly, ring shift, fields, Gray, parity, status bits, option checks.
 #include <gtest/gtest.h>
 

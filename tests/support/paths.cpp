@@ -18,9 +18,8 @@ std::string sourceDir() {
     return BUSDECODE_SOURCE_DIR;
 }
 
-std::string sharedCaptures() {
-    if (const char* e = std::getenv("BUSDECODE_SHARED_DIR")) return std::string(e) + "/captures";
-    return sourceDir() + "/../shared/captures";
+std::string realCaptures() {
+    return sourceDir() + "/tests/data/real";
 }
 
 std::string binDir() {

@@ -1,15 +1,15 @@
 #pragma once
-// Where tests find things: the source tree, the shared real captures (../shared beside
-// the checkout, or BUSDECODE_SHARED_DIR), and the built CLI.
+// Where tests find things: the source tree, the real captures committed in it
+// (tests/data/real, sources and licences in its README), and the built CLI.
 #include <string>
 #include <vector>
 
 namespace busdecode::test {
 
 std::string sourceDir();
-std::string sharedCaptures();  // .../shared/captures
-std::string binDir();          // build/bin (decode, plugins/)
-std::string tempDir();         // a fresh directory for this test process
+std::string realCaptures();  // tests/data/real
+std::string binDir();        // build/bin (decode, plugins/)
+std::string tempDir();       // a fresh directory for this test process
 std::string readFile(const std::string& path);
 void writeFile(const std::string& path, const std::string& text);
 

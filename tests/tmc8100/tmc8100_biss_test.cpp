@@ -95,7 +95,7 @@ TEST(Tmc8100Biss, EncoderReadsAgreeOrNotWithTheBisscFrame) {
 }
 
 TEST(Tmc8100Biss, GeneratorBissDemoEveryEncoderReadExact) {
-    // The scenario generator's own BiSS-C side (PROTOCOLS.md §4.2 slot layout), decoded by
+    // The scenario generator's own BiSS-C side (docs/protocols.md §4.2 slot layout), decoded by
     // bissc in the same pass.
     registerDecoders();
     Registry::instance().add(makeBisscFactory());

@@ -1,4 +1,4 @@
-// Bootloader datagrams as the demo scripts send them (PROTOCOLS.md §3.1, the SSI demo's
+// Bootloader datagrams as the demo scripts send them (docs/protocols.md §3.1, the SSI demo's
 // download sequence): every query is sent twice (ask, then read the answer in the next
 // transfer), program words are written to consecutive addresses, verified, and the
 // program is started, after which the application's command loop answers.

@@ -30,7 +30,7 @@ std::vector<Event> decodeFile(const std::string& path, std::vector<DecoderReques
 }  // namespace
 
 TEST(Tmc8100Capture, Adf4351WordsAreUnknownCommands) {
-    const std::string path = sharedCaptures() + "/sigrok-dumps/spi/adf4351/set-4000mhz.sr";
+    const std::string path = realCaptures() + "/sigrok-dumps/spi/adf4351/set-4000mhz.sr";
     // Channels: CS# 0, MOSI 1, CLK 2; no MISO line.
     std::map<std::string, std::string> map = {{"cs", "0"}, {"mosi", "1"}, {"sclk", "2"}};
     std::map<std::string, std::string> opts = {{"cpol", "0"}, {"cpha", "0"}};

@@ -1,4 +1,4 @@
-// The seed's exact dialogue (seeds/000, PROTOCOLS.md §3.1 / §4.6) on generated signals:
+// The application note's exact dialogue ([D1], docs/protocols.md §3.1 / §4.6) on generated signals:
 // 0xFE -> "SSI ", 0xFF -> FF 00 01 00, repeated 0x80 reads with Gray positions and
 // status flags. Every event is compared exactly (type, ticks, fields, errors).
 #include <gtest/gtest.h>
@@ -62,7 +62,7 @@ struct Dialogue {
 TEST(Tmc8100Dialogue, SeedDialogueEveryEventExact) {
     registerDecoders();
     Dialogue d;
-    // The literal words of the seed: FE 00 00 00 -> 53 53 49 20; FF -> FF 00 01 00.
+    // The literal words of the application note: FE 00 00 00 -> 53 53 49 20; FF -> FF 00 01 00.
     ASSERT_EQ(d.sc.transfers()[1].miso, 0x53534920u);
     ASSERT_EQ(d.sc.transfers()[3].miso, 0xFF000100u);
     ASSERT_EQ(d.sc.transfers()[5].miso, 0x10001B2Eu);  // §4.6: ST Gray 0x1B2E = binary 0x1234

@@ -1,6 +1,6 @@
 // TMCL datagrams against the worked examples of the TMCM-1690 TMCL manual (extracted by
 // decoders/tmcl/tables/extract_examples.py into manual_examples.tsv), the test vectors of
-// PROTOCOLS.md 4.6, and the tables generated from the manual.
+// docs/protocols.md 4.6, and the tables generated from the manual.
 #include <gtest/gtest.h>
 
 #include <fstream>
@@ -103,7 +103,7 @@ TEST(TmclManual, RepliesOfTheManualCarryTheirValues) {
 }
 
 TEST(TmclManual, ProtocolTestVectors) {
-    // PROTOCOLS.md 4.6.
+    // docs/protocols.md 4.6.
     EXPECT_EQ(makeCommand(1, 136, 0, 0, 0), parseHex("01 88 00 00 00 00 00 00 89"));
     EXPECT_EQ(makeCommand(1, 145, 2, 0, 0), parseHex("01 91 02 00 00 00 00 00 94"));
     EXPECT_EQ(makeCommand(1, 145, 0, 0, std::int32_t(0x80000000u)),

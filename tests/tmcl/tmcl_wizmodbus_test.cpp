@@ -22,7 +22,7 @@ std::vector<Event> decodeWiz(std::map<std::string, std::string> map) {
     Registry::instance().add(makeUartFactory());
     Registry::instance().add(makeTmclFactory());
     const std::string path =
-        test::sharedCaptures() + "/sigrok-dumps/uart/modbus_rtu/wizmodbus/wizmodbus.sr";
+        test::realCaptures() + "/sigrok-dumps/uart/modbus_rtu/wizmodbus/wizmodbus.sr";
     auto reader = openCapture(path, OpenOptions{});
     Session session({{"tmcl", std::move(map), {{"baud", "9600"}}}}, *reader, path);
     Collect sink;

@@ -39,7 +39,7 @@ std::vector<std::string> decodeFile(const std::string& path) {
 }
 
 TEST(UartDifferential, SessionVcdAndCsvOfOneCaptureDecodeAlike) {
-    const auto sr = decodeFile(test::sharedCaptures() +
+    const auto sr = decodeFile(test::realCaptures() +
                                "/sigrok-dumps/uart/rxtx_overlapped/rxtx_overlapped.sr");
     ASSERT_EQ(sr.size(), 17u);  // 10 on rx, 7 on tx (sigrok-test's expected outputs)
     EXPECT_EQ(decodeFile(test::sourceDir() + "/captures/uart_rxtx_overlapped_sigrok-cli.vcd"), sr);

@@ -36,10 +36,10 @@ public:
 };
 
 std::string dumps() {
-    return test::sharedCaptures() + "/sigrok-dumps/";
+    return test::realCaptures() + "/sigrok-dumps/";
 }
 std::string expected() {
-    return test::sharedCaptures() + "/sigrok-test/decoder/test/";
+    return test::realCaptures() + "/sigrok-test/decoder/test/";
 }
 
 // Decodes a capture and turns each byte event into sigrok's data annotation range:

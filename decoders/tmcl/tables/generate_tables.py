@@ -42,7 +42,7 @@ CONTROL_NAMES = {
     134: "ReadProgramMemory", 135: "GetApplicationStatus", 136: "GetVersion",
     137: "RestoreFactorySettings", 255: "SoftwareReset",
 }
-# TMC-EvalSystem tmc/TMCL.h (PROTOCOLS.md 3.2): status codes beyond the manual's.
+# TMC-EvalSystem tmc/TMCL.h (docs/protocols.md 3.2): status codes beyond the manual's.
 EVAL_STATUS = [
     (7, "Load error"), (8, "Write protected"), (9, "Maximum exceeded"),
     (10, "Download not possible"), (11, "Chip read failed"), (128, "Delayed"),

@@ -1,0 +1,49 @@
+#!/usr/bin/env bash
+# deb_install_test.sh BUILD_DIR SOURCE_DIR CPACK
+# Builds the .deb with CPack, extracts it into a temporary root and runs the installed
+# `decode` from there: its libraries and plugins must come from that root alone.
+set -euo pipefail
+build="$1" src="$2" cpack="$3"
+tmp="$(mktemp -d "${TMPDIR:-/tmp}/busdecode-deb.XXXXXX")"
+trap 'rm -rf "$tmp"' EXIT
+fail() { echo "deb_install_test: $*" >&2; exit 1; }
+
+"$cpack" --config "$build/CPackConfig.cmake" -G DEB -B "$tmp/out" >"$tmp/cpack.log" 2>&1 ||
+    { cat "$tmp/cpack.log" >&2; fail "cpack -G DEB failed"; }
+debs=("$tmp"/out/busdecode_*.deb)
+[ -f "${debs[0]}" ] || fail "no busdecode_*.deb in $tmp/out"
+deb="${debs[0]}"
+info="$(dpkg-deb --info "$deb")"
+grep -q "Package: busdecode" <<<"$info" || fail "control file has no Package: busdecode"
+
+root="$tmp/root"
+dpkg-deb -x "$deb" "$root"
+decode="$root/usr/bin/decode"
+[ -x "$decode" ] || fail "no usr/bin/decode in the package"
+for f in usr/share/doc/busdecode/LICENSE usr/share/doc/busdecode/contract.md \
+    usr/share/doc/busdecode/examples/bissc_1mhz_26bit.vcd usr/bin/decode-monitor; do
+    [ -e "$root/$f" ] || fail "no $f in the package"
+done
+ls "$root"/usr/lib*/busdecode/plugins/busdecode_bissc.so >/dev/null 2>&1 ||
+    ls "$root"/usr/lib/*/busdecode/plugins/busdecode_bissc.so >/dev/null 2>&1 ||
+    fail "no busdecode_bissc.so plugin in the package"
+
+# The core library from the extracted root, not from the build tree.
+core="$(ldd "$decode" | awk '/libbusdecode_core/ { print $3 }')"
+case "$core" in "$root"/*) ;; *) fail "decode links $core, not the package's library" ;; esac
+
+export -n BUSDECODE_PLUGIN_PATH
+unset BUSDECODE_PLUGIN_PATH
+list="$("$decode" --list)" || fail "decode --list failed"
+for id in bissc spi ssi tmc8100 tmcl uart; do
+    grep -q "^$id  " <<<"$list" || fail "decode --list does not list $id"
+done
+
+example="$root/usr/share/doc/busdecode/examples/bissc_1mhz_26bit.vcd"
+golden="$src/captures/bissc_1mhz_26bit.golden.jsonl"
+QT_DEBUG_PLUGINS=1 "$decode" "$example" --proto bissc --format jsonl >"$tmp/out.jsonl" \
+    2>"$tmp/err" || { cat "$tmp/err" >&2; fail "decoding the example failed"; }
+cmp -s "$tmp/out.jsonl" "$golden" || fail "the example's output differs from $golden"
+grep -q "$root/usr/lib.*busdecode_bissc.so\" loaded library" "$tmp/err" ||
+    fail "the bissc plugin was not loaded from the package's root"
+echo "deb_install_test: $(basename "$deb") installs, lists and decodes from $root"
