@@ -147,7 +147,8 @@ Parsed parse(const QStringList& argv, bool verify) {
     if (!verify && (!a.rules.empty() || !a.junit.empty()))
         throw InputError("--rules and --junit belong to 'decode verify'");
     if (verify && a.rules.empty()) throw InputError("decode verify: --rules FILE is required");
-    if (!out.list && !out.formats && a.captures.empty()) throw InputError("no capture given (see decode --help)");
+    if (!out.list && !out.formats && a.captures.empty())
+        throw InputError("no capture given (see decode --help)");
     return out;
 }
 
