@@ -6,7 +6,8 @@ if(NOT TARGET busdecode_fuzz_harness)
   set(_h ${CMAKE_CURRENT_LIST_DIR})
   add_library(busdecode_fuzz_harness STATIC
     ${_h}/fuzz_harness.cpp ${_h}/reader_harness.cpp ${_h}/decoder_harness.cpp
-    ${_h}/rules_harness.cpp ${_h}/vcd_pieces_harness.cpp ${_h}/zip_builder.cpp)
+    ${_h}/rules_harness.cpp ${_h}/vcd_pieces_harness.cpp ${_h}/zip_builder.cpp
+    ${_h}/formats_harness.cpp)
   target_include_directories(busdecode_fuzz_harness PUBLIC ${_h} ${CMAKE_SOURCE_DIR}/analyzer)
   target_link_libraries(busdecode_fuzz_harness PUBLIC busdecode_core)
   foreach(_id spi bissc ssi tmc8100 uart tmcl)
