@@ -70,7 +70,7 @@ options_for() {  # TARGET -> libFuzzer options
         csv_*) echo "-dict=$src/fuzz/dict/csv.dict -max_len=4096" ;;
         sr) echo "-dict=$src/fuzz/dict/sr.dict -max_len=8192" ;;
         dsl) echo "-max_len=16384" ;;
-        compressed | sample_rows) echo "-max_len=4096" ;;
+        compressed | sample_rows | saleae_bin) echo "-max_len=4096" ;;
         rules) echo "-dict=$src/fuzz/dict/rules.dict -max_len=2048" ;;
         *) echo "-max_len=${DECODER_MAX_LEN:-4096}" ;;
     esac

@@ -65,6 +65,9 @@ void writeDsl(const Waveform& w, const std::string& path);
 enum class SampleRowsDialect { VivadoIlaCsv, ChipScopePrn };
 void writeSampleRows(const Waveform& w, const std::string& path, SampleRowsDialect dialect);
 
+// Saleae Logic 2's binary export of the lines: `dir`/digital_N.bin, version 0 or 1.
+void writeSaleaeBin(const Waveform& w, const std::string& dir, int version);
+
 // `in_path` compressed into `out_path` as gzip, xz or zstd (not None) write it.
 void compressFile(const std::string& in_path, const std::string& out_path, Compression kind);
 

@@ -131,6 +131,14 @@ std::unique_ptr<CaptureReader> openSource(std::unique_ptr<TextSource> src, const
     if (head.empty()) throw InputError(src->name() + ": empty file");
     if (const Compression kind = compressionOf(head); kind != Compression::None)
         return openCompressed(std::move(src), kind, opts);
+    if (head.substr(0, 8) == "<SALEAE>") {
+        if (path == "-")
+            throw InputError(src->name() +
+                             ": a Saleae binary export is read from its file (or folder), not "
+                             "from a pipe");
+        src.reset();
+        return openSaleaeBin(path);
+    }
     if (head.size() >= 4 && head.substr(0, 4) == std::string_view("PK\x03\x04", 4))
         return openZip(std::move(src), path, opts);
     std::string_view text = head;
@@ -152,6 +160,8 @@ std::unique_ptr<CaptureReader> openSource(std::unique_ptr<TextSource> src, const
 }  // namespace
 
 std::unique_ptr<CaptureReader> openCapture(const std::string& path, const OpenOptions& opts) {
+    // A folder of one-file-per-channel exports (Saleae Logic 2) is one capture.
+    if (path != "-" && std::filesystem::is_directory(path)) return openSaleaeBin(path);
     return openSource(std::make_unique<TextSource>(path, opts), path, opts);
 }
 

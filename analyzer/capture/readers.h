@@ -18,6 +18,9 @@ std::unique_ptr<CaptureReader> openSr(std::unique_ptr<ZipArchive> archive, const
 std::unique_ptr<CaptureReader> openDsl(std::unique_ptr<ZipArchive> archive,
                                        const OpenOptions& opts);
 
+// Saleae Logic 2 binary export: one digital_N.bin, or a folder of them.
+std::unique_ptr<CaptureReader> openSaleaeBin(const std::string& path);
+
 // "24 MHz", "1MHz", "5 Hz", "100 kHz", "24000000" -> Hz (0 if it is not a rate).
 std::int64_t parseRateHz(std::string_view text);
 
