@@ -36,7 +36,7 @@ blocks = (n + block - 1) // block
 def plane(period, phase):  # a square wave of `period` samples, as LSB-first bytes
     bits = [(((k + phase) // (period // 2)) & 1) for k in range(8 * period)]
     pat = bytes(sum(bits[8 * i + b] << b for b in range(8)) for i in range(period))
-    return pat * (block // 8 // period + 1)
+    return pat * (block // 8 // period + 5120 // period + 2)
 pats = {"clk": plane(20, 0), "mosi": plane(40, 5), "miso": plane(80, 15), "cs": plane(5120, 100)}
 with zipfile.ZipFile(path, "w", zipfile.ZIP_DEFLATED, compresslevel=1) as z:
     z.writestr("header", "[version]\nversion = 2\n[header]\ndevice mode = 0\n"

@@ -89,8 +89,12 @@ public:
                 chunk_started_ = true;
                 std::fseek(f_, c.offset, SEEK_SET);
                 taken_ = 0;
+                if (chunk_ > 0 && !(c.begin >= last_))
+                    throw fail(
+                        fmt::format("chunk {} begins at {} s, before the chunk before it ends",
+                                    chunk_, c.begin));
                 if (chunk_ > 0 && std::uint8_t(c.initial & 1) != level_) {
-                    t = c.begin;
+                    t = last_ = c.begin;
                     level = level_ = std::uint8_t(c.initial & 1);
                     return true;
                 }
@@ -225,6 +229,7 @@ public:
                 if (sel_[i].pending && (best == sel_.size() || sel_[i].t < sel_[best].t)) best = i;
             if (best == sel_.size()) break;
             block.edges.push_back(Edge(sel_[best].t, std::uint32_t(best), sel_[best].level));
+            end_ = std::max(end_, sel_[best].t);  // a transition past the stated end
             advance(sel_[best]);
         }
         block.known_until = block.edges.empty() ? end_ : block.edges.back().t;
