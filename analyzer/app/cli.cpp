@@ -4,9 +4,8 @@
 #include "cli.h"
 
 #include <unistd.h>
-#include <atomic>
-#include <csignal>
 #include <cstdio>
+#include <system_error>
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -14,9 +13,13 @@
 #include <QCoreApplication>
 
 #include "app/decode_args.h"
+#include "app/interruption.h"
 #include "app/list_decoders.h"
 #include "app/plugin_loader.h"
+#include "app/report_paths.h"
+#include "app/standard_streams.h"
 #include "capture/format_list.h"
+#include "core/interrupted.h"
 #include "core/options.h"
 #include "core/registry.h"
 #include "lcm/lcm_sink.h"
@@ -27,12 +30,6 @@
 namespace busdecode {
 
 namespace {
-
-std::atomic<bool> g_stop{false};
-
-extern "C" void onInterrupt(int) {
-    g_stop = true;
-}
 
 std::vector<std::string> toStd(const QStringList& l) {
     std::vector<std::string> out;
@@ -64,6 +61,7 @@ struct Parsed {
     DecodeArgs args;
     bool list = false;
     bool formats = false;  // --formats: the capture formats, or what each capture is
+    bool done = false;     // --help or --version printed
 };
 
 Parsed parse(const QStringList& argv, bool verify) {
@@ -102,11 +100,11 @@ Parsed parse(const QStringList& argv, bool verify) {
             "\nCommands:\n  decode CAPTURE... --proto NAME [...]\n"
             "  decode verify CAPTURE... --rules FILE [--junit FILE] [--jobs N] [--threads N]\n"
             "  decode monitor [--lcm URL]\n  decode --list\n");
-        std::exit(0);
+        return {{}, false, true};
     }
     if (p.isSet(version)) {
         fmt::print("decode (busdecode) 0.1.0\n");
-        std::exit(0);
+        return {{}, false, true};
     }
     Parsed out;
     out.list = p.isSet(list);
@@ -167,9 +165,7 @@ int runDecode(const DecodeArgs& a) {
     open.rate_hz = a.rate_hz;
     open.follow = a.follow;
     open.read_ahead = a.threads > 1;
-    open.stop = &g_stop;
-    std::signal(SIGINT, onInterrupt);
-    std::signal(SIGTERM, onInterrupt);
+    open.stop = interruptionFlag();
     // Live output wants every line at once; a batch run wants big writes.
     static char buffer[1 << 20];
     if (a.follow || a.realtime || a.lcm_url)
@@ -179,64 +175,105 @@ int runDecode(const DecodeArgs& a) {
 
     std::unique_ptr<OutputSink> lcm;
     if (a.lcm_url) lcm = makeLcmSink(*a.lcm_url);
-    for (const auto& capture : a.captures) {
+    const std::vector<std::string> reports = a.report.empty()
+                                                 ? std::vector<std::string>(a.captures.size())
+                                                 : reportPaths(a.report, a.captures);
+    for (const auto& report : reports)
+        if (!report.empty()) refuseOutputOnCapture("--report", report, a.captures);
+    for (std::size_t i = 0; i < a.captures.size(); ++i) {
+        const std::string& capture = a.captures[i];
         std::vector<std::unique_ptr<OutputSink>> owned;
         owned.push_back(a.format == "jsonl" ? makeJsonlSink(stdout) : makeTextSink(stdout));
-        if (!a.report.empty()) {
-            std::string path = a.report;
-            if (a.captures.size() > 1) {
-                // One report per capture: insert the capture's stem before the extension.
-                auto slash = capture.find_last_of('/');
-                std::string stem = capture.substr(slash == std::string::npos ? 0 : slash + 1);
-                auto dot = path.find_last_of('.');
-                path = dot == std::string::npos
-                           ? path + "-" + stem
-                           : path.substr(0, dot) + "-" + stem + path.substr(dot);
-            }
-            owned.push_back(makeReportSink(path));
-        }
+        if (!reports[i].empty()) owned.push_back(makeReportSink(reports[i]));
         std::vector<OutputSink*> sinks;
         for (auto& s : owned)
             sinks.push_back(s.get());
         if (lcm) sinks.push_back(lcm.get());
         const CaptureFacts facts =
-            decodeCapture(capture, requests, open, sinks, a.realtime, &g_stop);
+            decodeCapture(capture, requests, open, sinks, a.realtime, interruptionFlag());
         if (a.format == "jsonl")  // text output has them in its summary
             for (const auto& hint : facts.advice)
-                std::fputs(hintLine(capture, hint).c_str(), stderr);
-        if (g_stop) break;
+                printError(hintLine(capture, hint));
+        if (interrupted()) break;  // a followed capture, ended by Ctrl-C
     }
     return 0;
+}
+
+// "decode: FILE: interrupted at byte N of M (SIGINT); no report written"
+std::string interruptionLine(const std::string& what, const DecodeArgs& a) {
+    const bool outputs = !a.report.empty() || !a.junit.empty();
+    return fmt::format("decode: {} ({}){}\n", what, interruptingSignalName(),
+                       outputs ? "; nothing written to the report" : "");
+}
+
+int run(int argc, char** argv, DecodeArgs& args) {
+    if (argc > 1 && std::string(argv[1]) == "monitor") return runMonitor(argc - 1, argv + 1);
+    const bool verify = argc > 1 && std::string(argv[1]) == "verify";
+    QStringList argl = normaliseArgs(argc, argv);
+    if (verify) argl.removeAt(1);
+    Parsed parsed = parse(argl, verify);
+    if (parsed.done) {
+        checkStandardOutput();
+        return 0;
+    }
+    args = parsed.args;
+    if (parsed.formats) {
+        const int status = runFormats(args);
+        checkStandardOutput();
+        return status;
+    }
+    for (const auto& c : args.captures)
+        if (c == "-" && standardStreams().stdin_closed)
+            throw InputError("-: standard input is closed");
+    // The decoders asked for (all of them to list them, or when none is named).
+    loadPlugins(parsed.list ? std::vector<std::string>{} : args.protos);
+    if (parsed.list) {
+        printDecoderList(stdout);
+        checkStandardOutput();
+        return 0;
+    }
+    if (verify) return runVerify(args);  // checks stdout before writing its JUnit file
+    const int status = runDecode(args);
+    checkStandardOutput();
+    return status;
 }
 
 }  // namespace
 
 int runCli(int argc, char** argv) {
+    // Before Qt opens its first descriptor.
+    guardStandardStreams();
+    catchInterruptions();
     QCoreApplication app(argc, argv);
+    DecodeArgs args;
+    int status = 2;
     try {
-        if (argc > 1 && std::string(argv[1]) == "monitor") return runMonitor(argc - 1, argv + 1);
-        const bool verify = argc > 1 && std::string(argv[1]) == "verify";
-        QStringList args = normaliseArgs(argc, argv);
-        if (verify) args.removeAt(1);
-        Parsed parsed = parse(args, verify);
-        if (parsed.formats) return runFormats(parsed.args);
-        // The decoders asked for (all of them to list them, or when none is named).
-        loadPlugins(parsed.list ? std::vector<std::string>{} : parsed.args.protos);
-        if (parsed.list) {
-            printDecoderList(stdout);
-            return 0;
-        }
-        if (verify) return runVerify(parsed.args);
-        return runDecode(parsed.args);
+        status = run(argc, argv, args);
+    } catch (const Interrupted& e) {
+        std::fflush(stdout);
+        printError(interruptionLine(e.what(), args));
+        return interruptedStatus();
     } catch (const InputError& e) {
         std::fflush(stdout);
-        fmt::print(stderr, "decode: {}\n", e.what());
+        // Interrupted while opening or reading: the error is the interruption's doing.
+        if (interrupted()) {
+            printError(interruptionLine(fmt::format("interrupted: {}", e.what()), args));
+            return interruptedStatus();
+        }
+        printError(fmt::format("decode: {}\n", e.what()));
+        return 2;
+    } catch (const std::system_error& e) {
+        // fmt::print's, writing help or the decoder list to a stdout that fails.
+        const bool out = std::ferror(stdout);
+        printError(fmt::format("decode: {}{}\n", out ? "standard output: cannot write: " : "",
+                               out ? e.code().message() : e.what()));
         return 2;
     } catch (const std::exception& e) {
         std::fflush(stdout);
-        fmt::print(stderr, "decode: internal error: {}\n", e.what());
+        printError(fmt::format("decode: internal error: {}\n", e.what()));
         return 2;
     }
+    return standardErrorFailed() && status == 0 ? 2 : status;
 }
 
 }  // namespace busdecode

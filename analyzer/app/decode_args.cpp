@@ -110,7 +110,8 @@ namespace {
 // --realtime: hands out blocks no faster than the capture's own time runs.
 class PacedReader : public CaptureReader {
 public:
-    explicit PacedReader(std::unique_ptr<CaptureReader> inner) : in_(std::move(inner)) {}
+    PacedReader(std::unique_ptr<CaptureReader> inner, const std::atomic<bool>* stop)
+        : in_(std::move(inner)), stop_(stop) {}
     const std::vector<SignalInfo>& signals() const override { return in_->signals(); }
     Timebase timebase() const override { return in_->timebase(); }
     std::string formatName() const override { return in_->formatName(); }
@@ -126,7 +127,8 @@ public:
         Tick last = b.edges.empty() ? b.known_until : b.edges.back().t;
         if (last != kNoTick) {
             const double s = double(last - in_->startTick()) * in_->timebase().secondsPerTick();
-            std::this_thread::sleep_until(t0_ + std::chrono::duration<double>(s));
+            sleepUntil(t0_ + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                 std::chrono::duration<double>(s)));
         }
         return true;
     }
@@ -135,7 +137,19 @@ public:
     std::uint64_t bytesTotal() const override { return in_->bytesTotal(); }
 
 private:
+    // In short slices: a stop request (Ctrl-C) ends a long pause at once.
+    void sleepUntil(std::chrono::steady_clock::time_point when) const {
+        constexpr auto kSlice = std::chrono::milliseconds(20);
+        while (!(stop_ && *stop_)) {
+            const auto now = std::chrono::steady_clock::now();
+            if (now >= when) return;
+            std::this_thread::sleep_for(
+                std::min<std::chrono::steady_clock::duration>(when - now, kSlice));
+        }
+    }
+
     std::unique_ptr<CaptureReader> in_;
+    const std::atomic<bool>* stop_;
     std::chrono::steady_clock::time_point t0_;
 };
 
@@ -164,10 +178,12 @@ CaptureFacts decodeCapture(const std::string& path, const std::vector<DecoderReq
         reader =
             prefetchReader(std::move(reader), kReadAheadBlocks, whole_file ? kWholeFileBatch : 1);
     }
-    if (realtime) reader = std::make_unique<PacedReader>(std::move(reader));
+    if (realtime) reader = std::make_unique<PacedReader>(std::move(reader), stop);
     Session session(requests, *reader, path);
     session.setPieceSpeculation(open.decode_ahead);
     if (stop) session.setStopFlag(stop);
+    // Stopped before its end, a capture that is not followed is not reported at all.
+    if (stop && !open.follow) session.abandonWhenStopped();
     for (auto* s : sinks)
         session.addSink(s);
     session.run();

@@ -44,7 +44,8 @@ std::string hintLine(const std::string& capture, const std::string& hint);
 CaptureFacts decodeCapture(const std::string& path, const std::vector<DecoderRequest>& requests,
                            const OpenOptions& open, const std::vector<OutputSink*>& sinks);
 // The same, optionally paced at the capture's own time scale (--realtime) and stopped
-// between blocks when *stop becomes true (Ctrl-C while following).
+// between blocks when *stop becomes true (Ctrl-C): a followed capture then ends as if
+// it ended there; any other throws Interrupted (core/interrupted.h), its sinks not ended.
 CaptureFacts decodeCapture(const std::string& path, const std::vector<DecoderRequest>& requests,
                            const OpenOptions& open, const std::vector<OutputSink*>& sinks,
                            bool realtime, const std::atomic<bool>* stop);

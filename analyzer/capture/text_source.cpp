@@ -13,6 +13,7 @@
 
 #include <fmt/format.h>
 
+#include "core/interrupted.h"
 #include "core/options.h"
 #include "file_read_ahead.h"
 
@@ -31,9 +32,12 @@ TextSource::TextSource(const std::string& path, const OpenOptions& opts) : opts_
         fd_ = 0;
     } else {
         name_ = path;
-        fd_ = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+        // Not blocking: a FIFO without a writer would hold open() until one came, deaf to
+        // Ctrl-C; its reads wait in poll() instead (fill(), waitForData()).
+        fd_ = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
         if (fd_ < 0)
             throw InputError(fmt::format("{}: cannot open: {}", path, std::strerror(errno)));
+        ::fcntl(fd_, F_SETFL, ::fcntl(fd_, F_GETFL) & ~O_NONBLOCK);
     }
     setUp();
 }
@@ -88,10 +92,24 @@ bool TextSource::stopRequested() const {
     return opts_.stop && opts_.stop->load(std::memory_order_relaxed);
 }
 
+void TextSource::throwIfInterrupted() const {
+    // A followed capture ends where it is stopped; any other was meant to be read whole.
+    if (!opts_.follow && stopRequested())
+        throw Interrupted(interruptedAt(name_, "", bytesRead(), total_));
+}
+
+void TextSource::endOfFile() {
+    eof_ = true;
+    // Read to an end short of the size it had when opened: cut while it was read.
+    if (!pipe_ && !opts_.follow && file_off_ < total_)
+        throw InputError(fmt::format("{}: truncated while read (ended at byte {} of {})", name_,
+                                     file_off_, total_));
+}
+
 std::size_t TextSource::fillFromChunk() {
     const FileReadAhead::Chunk c = ahead_->next();
     if (c.size == 0) {
-        eof_ = true;  // the unread tail stays where it is: its chunk stays valid
+        endOfFile();  // the unread tail stays where it is: its chunk stays valid
         return 0;
     }
     const std::size_t keep = std::size_t(end_ - pos_);
@@ -166,7 +184,7 @@ std::size_t TextSource::fill() {
             throw InputError(fmt::format("{}: truncated while following", name_));
         return 0;
     }
-    eof_ = true;
+    endOfFile();
     return 0;
 }
 
@@ -207,6 +225,7 @@ TextSource::Status TextSource::slowNextLine(std::string_view& line) {
 }
 
 std::optional<TextSource::Status> TextSource::noNewline(std::string_view& rest) {
+    throwIfInterrupted();
     if (!eof_ && !stopRequested()) {
         if (fill() > 0) return std::nullopt;
         if (!eof_) return Status::NoData;
@@ -268,6 +287,7 @@ void TextSource::drainTo(int out_fd) {
     for (;;) {
         writeAll(pos_, std::size_t(end_ - pos_));
         pos_ = end_;
+        throwIfInterrupted();
         if (eof_ || stopRequested()) return;
         if (fill() == 0 && !eof_) waitForData(50);
     }
@@ -285,6 +305,10 @@ std::string_view TextSource::peek(std::size_t n) {
             break;
         waitForData(50);
     }
+    // Stopped before the first byte came, a followed capture too has nothing to decode.
+    if (opts_.follow && stopRequested() && pos_ == end_)
+        throw Interrupted(interruptedAt(name_, "", 0, 0));
+    throwIfInterrupted();
     return std::string_view(pos_, std::min(n, std::size_t(end_ - pos_)));
 }
 

@@ -137,6 +137,10 @@ private:
     // fill() from the read-ahead's next chunk: the unread tail moves in front of it.
     std::size_t fillFromChunk();
     bool stopRequested() const;
+    // Throws Interrupted when stopped reading a capture that is not followed.
+    void throwIfInterrupted() const;
+    // The input ended: an InputError if a regular file ended short of its size at open.
+    void endOfFile();
     void skipByteOrderMark();
 
     std::string name_;

@@ -2,6 +2,8 @@
 // Output files (captures written by the generators, reports, JUnit, logs) are written
 // atomically: into a temporary file beside the target, renamed over it on commit(), so
 // an interrupted run leaves the old file or the complete new one, never half of one.
+// Only a regular file or a new path is replaced so: a device (/dev/null), a FIFO, a
+// symlink (/dev/stdout) or a socket is opened and written through, and stays what it is.
 #include <cstdio>
 #include <string>
 #include <string_view>
@@ -24,6 +26,7 @@ public:
 private:
     std::string path_, tmp_;
     std::FILE* f_ = nullptr;
+    bool through_ = false;  // not a regular file: written in place, never renamed over
 };
 
 // The whole text at once (reports, JUnit).

@@ -13,6 +13,7 @@
 #include "event_pool.h"
 #include "event_window.h"
 #include "glitch_filter.h"
+#include "interrupted.h"
 #include "piece_speculation.h"
 #include "registry.h"
 #include "waveform.h"
@@ -117,6 +118,7 @@ struct Session::Impl : EventSink {
     Session::PieceStats piece_stats;
     std::atomic<bool> stop{false};
     const std::atomic<bool>* external_stop = nullptr;
+    bool abandon_when_stopped = false;
     bool stopped() const { return stop || (external_stop && *external_stop); }
     std::vector<OutputSink*>* sinks = nullptr;
     CaptureFacts* facts = nullptr;
@@ -396,6 +398,9 @@ void Session::requestStop() {
 void Session::setStopFlag(const std::atomic<bool>* flag) {
     impl_->external_stop = flag;
 }
+void Session::abandonWhenStopped() {
+    impl_->abandon_when_stopped = true;
+}
 
 void Session::run() {
     Impl& im = *impl_;
@@ -496,6 +501,12 @@ void Session::run() {
                 tg.decoder = im.slots[std::size_t(tg.slot)].decoder.get();
         // Stopped within a piece decoded ahead: the decoder has seen it to its end.
         if (im.stopped()) im.now = std::max(im.now, splicer->decodedUntil());
+    }
+    if (im.stopped() && im.abandon_when_stopped) {
+        const double seconds = double(im.now - facts_.start) * reader.timebase().secondsPerTick();
+        throw Interrupted(interruptedAt(facts_.file,
+                                        fmt::format("{:.6g} s into the capture", seconds),
+                                        reader.bytesRead(), reader.bytesTotal()));
     }
     if (!im.stopped()) {
         // Drain the reader's end (a stopped follow has no end tick yet).

@@ -66,6 +66,9 @@ public:
     void requestStop();
     // An external flag (set from a SIGINT handler) checked between blocks as well.
     void setStopFlag(const std::atomic<bool>* flag);
+    // A stop then makes run() throw Interrupted (core/interrupted.h) without ending the
+    // sinks: for a capture read to its end, whose part is not the whole.
+    void abandonWhenStopped();
     const CaptureFacts& facts() const { return facts_; }
     // Decoding pieces of the capture ahead on the reader's threads (piece_speculation.h),
     // where the reader cuts the file in pieces and the one decoder can be spliced. On by

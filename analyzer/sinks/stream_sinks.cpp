@@ -1,5 +1,7 @@
 #include "stream_sinks.h"
 
+#include <cerrno>
+#include <cstring>
 #include <map>
 #include <string>
 #include <vector>
@@ -7,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "core/number_text.h"
+#include "core/options.h"
 #include "event_format.h"
 
 namespace busdecode {
@@ -19,6 +22,22 @@ struct Tally {
     std::map<std::string, std::uint64_t> by_error;
     std::uint64_t faulty = 0;
 };
+
+// A full disk, a closed pipe (SIGPIPE ignored), a closed stdout: the run ends with an
+// error rather than going on to lose every event and exit 0.
+[[noreturn]] void cannotWrite(std::FILE* out) {
+    throw InputError(fmt::format("{}: cannot write: {}",
+                                 out == stdout ? "standard output" : "output",
+                                 std::strerror(errno)));
+}
+
+void put(std::FILE* out, std::string_view s) {
+    if (std::fwrite(s.data(), 1, s.size(), out) != s.size()) cannotWrite(out);
+}
+
+void flush(std::FILE* out) {
+    if (std::fflush(out) != 0) cannotWrite(out);
+}
 
 // "100 MS/s", "1 GS/s" (a VCD in ns), "1 TS/s" (ps): the tick as a rate.
 std::string rateText(double hz) {
@@ -37,14 +56,14 @@ public:
         std::string binds;
         for (const auto& b : f.bindings)
             binds += fmt::format(" {}.{}={}", b.instance, b.role, b.signal);
-        fmt::print(out_, "# {} ({}, {} timebase){}\n", f.file, f.format,
-                   rateText(f.timebase.sampleRateHz()), binds);
+        put(out_, fmt::format("# {} ({}, {} timebase){}\n", f.file, f.format,
+                              rateText(f.timebase.sampleRateHz()), binds));
     }
     void onEvent(const Event& e, const CaptureFacts& f) override {
         line_.clear();
         appendEventText(line_, e, f.timebase);
         line_ += '\n';
-        std::fwrite(line_.data(), 1, line_.size(), out_);
+        put(out_, line_);
         // Runs of one instance and type are the rule: skip the map look-ups for them.
         const std::string& inst = e.instance.empty() ? e.proto : e.instance;
         if (!last_tally_ || inst != last_inst_ || e.type != last_type_) {
@@ -61,7 +80,7 @@ public:
     }
     void end(const CaptureFacts& f) override {
         const double dur = double(f.timebase.toNs(f.end - f.start));
-        fmt::print(out_, "# summary: {} edges in {}\n", f.edges, formatDuration(dur));
+        put(out_, fmt::format("# summary: {} edges in {}\n", f.edges, formatDuration(dur)));
         for (const auto& inst : f.protos) {
             const auto& t = tallies_[inst];
             std::string types, errs;
@@ -69,13 +88,13 @@ public:
                 types += fmt::format("{}{} {}", types.empty() ? "" : ", ", n, k);
             for (const auto& [k, n] : t.by_error)
                 errs += fmt::format("{}{} {}", errs.empty() ? "" : ", ", n, k);
-            fmt::print(out_, "# {}: {}; {} with errors{}\n", inst,
-                       types.empty() ? "no events" : types, t.faulty,
-                       errs.empty() ? "" : " (" + errs + ")");
+            put(out_, fmt::format("# {}: {}; {} with errors{}\n", inst,
+                                  types.empty() ? "no events" : types, t.faulty,
+                                  errs.empty() ? "" : " (" + errs + ")"));
         }
         for (const auto& a : f.advice)
-            fmt::print(out_, "# hint: {}\n", a);
-        std::fflush(out_);
+            put(out_, fmt::format("# hint: {}\n", a));
+        flush(out_);
     }
 
 private:
@@ -94,9 +113,9 @@ public:
         line_.clear();
         appendEventJson(line_, e, f.timebase);
         line_ += '\n';
-        std::fwrite(line_.data(), 1, line_.size(), out_);
+        put(out_, line_);
     }
-    void end(const CaptureFacts&) override { std::fflush(out_); }
+    void end(const CaptureFacts&) override { flush(out_); }
 
 private:
     std::FILE* out_;

@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 
 #include "app/decode_args.h"
+#include "app/standard_streams.h"
 #include "core/options.h"
 #include "rule_checker.h"
 
@@ -22,15 +23,13 @@ namespace {
 void drawProgress(std::size_t done, std::size_t total) {
     constexpr int kWidth = 30;
     const int filled = total ? int(double(done) / double(total) * kWidth) : kWidth;
-    fmt::print(stderr, "\r[{}{}] {:>{}}/{} captures", std::string(std::size_t(filled), '#'),
-               std::string(std::size_t(kWidth - filled), '-'), done,
-               fmt::formatted_size("{}", total), total);
-    std::fflush(stderr);
+    printError(fmt::format("\r[{}{}] {:>{}}/{} captures", std::string(std::size_t(filled), '#'),
+                           std::string(std::size_t(kWidth - filled), '-'), done,
+                           fmt::formatted_size("{}", total), total));
 }
 
 void clearProgress() {
-    fmt::print(stderr, "\r\033[K");
-    std::fflush(stderr);
+    printError("\r\033[K");
 }
 
 std::string keyOf(const std::string& assignment) {
@@ -73,7 +72,7 @@ CaptureVerdict verifyCapture(const std::string& capture, const Rules& rules,
     const auto t0 = std::chrono::steady_clock::now();
     try {
         RuleChecker checker(rules);
-        v.hints = decodeCapture(capture, requests, open, {&checker}).advice;
+        v.hints = decodeCapture(capture, requests, open, {&checker}, false, open.stop).advice;
         v.outcomes = checker.outcomes();
         v.events = checker.eventSummary();
     } catch (const InputError& e) {
@@ -103,7 +102,14 @@ std::vector<CaptureVerdict> verifyCaptures(
         for (;;) {
             const std::size_t i = next.fetch_add(1);
             if (i >= n) return;
-            CaptureVerdict v = verifyCapture(captures[i], rules, requests, job_open);
+            CaptureVerdict v;
+            if (open.stop && *open.stop) {  // interrupted: the rest are not started
+                v.capture = captures[i];
+                v.input_error = true;
+                v.error = "not verified: interrupted";
+            } else {
+                v = verifyCapture(captures[i], rules, requests, job_open);
+            }
             {
                 std::lock_guard<std::mutex> lock(mu);
                 slots[i] = std::move(v);

@@ -16,7 +16,8 @@ struct BatchOptions {
     bool progress = false;  // draw a progress bar on stderr
 };
 
-// Decodes one capture through a RuleChecker. Input errors become an ERROR verdict.
+// Decodes one capture through a RuleChecker. Input errors become an ERROR verdict, and
+// so does a stop (open.stop set by Ctrl-C): the batch then starts no other capture.
 CaptureVerdict verifyCapture(const std::string& capture, const Rules& rules,
                              const std::vector<DecoderRequest>& requests, const OpenOptions& open);
 

@@ -7,7 +7,10 @@
 #include <fmt/format.h>
 
 #include "app/decode_args.h"
+#include "app/interruption.h"
 #include "app/plugin_loader.h"
+#include "app/report_paths.h"
+#include "app/standard_streams.h"
 #include "batch.h"
 #include "core/atomic_file.h"
 #include "core/options.h"
@@ -26,24 +29,38 @@ int runVerify(const DecodeArgs& args) {
         const DecodeChoice choice = combineDecodeChoice(rules, args.protos, args.maps, args.opts);
         const auto requests = buildRequests(choice.protos, choice.maps, choice.opts);
         if (args.captures.empty()) throw InputError("decode verify: no capture given");
-        if (!args.junit.empty()) checkWritable(args.junit);  // before a long batch, not after
+        if (!args.junit.empty()) {
+            refuseOutputOnCapture("--junit", args.junit, args.captures);
+            checkWritable(args.junit);  // before a long batch, not after
+        }
 
         OpenOptions open;
         open.rate_hz = args.rate_hz > 0 ? args.rate_hz : rules.decode.rate_hz;
         open.read_ahead = args.threads > 1;
+        open.stop = interruptionFlag();
         BatchOptions batch;
         batch.jobs = args.jobs;
         batch.progress = ::isatty(STDERR_FILENO) && args.captures.size() > 1;
+        std::size_t printed = 0;
         const auto verdicts = verifyCaptures(
-            args.captures, rules, requests, open, batch, [](const CaptureVerdict& v) {
-                fmt::print("{}\n", verdictLine(v));
+            args.captures, rules, requests, open, batch, [&](const CaptureVerdict& v) {
+                if (interrupted()) return;  // what follows was cut short
+                std::fputs((verdictLine(v) + "\n").c_str(), stdout);
                 std::fflush(stdout);
+                ++printed;
                 // stdout keeps one line per capture
                 for (const auto& h : v.hints)
-                    std::fputs(hintLine(v.capture, h).c_str(), stderr);
+                    printError(hintLine(v.capture, h));
             });
-        fmt::print("{}\n", summaryLine(verdicts));
-        std::fflush(stdout);
+        if (interrupted()) {
+            printError(
+                fmt::format("decode verify: interrupted ({}) after {} of {} captures{}\n",
+                            interruptingSignalName(), printed, verdicts.size(),
+                            args.junit.empty() ? "" : "; nothing written to the JUnit file"));
+            return interruptedStatus();
+        }
+        std::fputs((summaryLine(verdicts) + "\n").c_str(), stdout);
+        checkStandardOutput();
         if (!args.junit.empty()) writeFileAtomically(args.junit, junitXml(verdicts, args.rules));
 
         bool any_error = false, any_fail = false;
@@ -55,12 +72,13 @@ int runVerify(const DecodeArgs& args) {
         for (const auto& v : verdicts)
             if (v.input_error) {
                 const bool named = v.error.rfind(v.capture + ":", 0) == 0;
-                fmt::print(stderr, "decode verify: {}{}\n", named ? "" : v.capture + ": ", v.error);
+                printError(
+                    fmt::format("decode verify: {}{}\n", named ? "" : v.capture + ": ", v.error));
             }
         return any_error ? 2 : any_fail ? 1 : 0;
     } catch (const InputError& e) {
         std::fflush(stdout);
-        fmt::print(stderr, "decode verify: {}\n", e.what());
+        printError(fmt::format("decode verify: {}\n", e.what()));
         return 2;
     }
 }
