@@ -60,8 +60,8 @@ QStringList normaliseArgs(int argc, char** argv) {
 struct Parsed {
     DecodeArgs args;
     bool list = false;
-    bool formats = false;  // --formats: the capture formats, or what each capture is
     bool done = false;     // --help or --version printed
+    bool formats = false;  // --formats: the capture formats, or what each capture is
 };
 
 Parsed parse(const QStringList& argv, bool verify) {
