@@ -10,6 +10,7 @@
 
 #include "bench_captures.h"
 #include "capture/capture_writer.h"
+#include "capture/scope_csv_writer.h"
 #include "core/registry.h"
 #include "fuzz_harness.h"
 
@@ -119,6 +120,17 @@ int main(int argc, char** argv) {
             w.end - w.start < 20000) {  // dense dialects: short captures only
             writeCsv(w, (out / "csv_sigrok" / (id + ".csv")).string(), CsvDialect::SigrokDense);
             writeCsv(w, (out / "csv_plain" / (id + ".csv")).string(), CsvDialect::Plain);
+            // Every scope dialect (read through the same content sniffing as Saleae's).
+            AnalogStyle style;
+            style.sample_ns = w.timebase.nsPerTick();
+            style.rise_ns = 4 * style.sample_ns;
+            style.snr_db = 24;
+            style.differential = id == "uart";
+            for (const ScopeDialect d : kScopeDialects)
+                writeScopeCsv(w,
+                              (out / "csv_saleae" / (id + "_" + scopeDialectName(d) + ".csv"))
+                                  .string(),
+                              d, style);
         }
         put(out / "sr" / (id + ".bin"), srSeed(w));
         for (const auto* f : Registry::instance().all()) {

@@ -18,11 +18,13 @@
 #include "app/plugin_loader.h"
 #include "app/report_paths.h"
 #include "app/standard_streams.h"
+#include "capture/analog_lines.h"
 #include "capture/format_list.h"
 #include "core/interrupted.h"
 #include "core/options.h"
 #include "core/registry.h"
 #include "lcm/lcm_sink.h"
+#include "lcm/monitor.h"
 #include "report/report_sink.h"
 #include "sinks/stream_sinks.h"
 #include "verify/verify.h"
@@ -77,6 +79,10 @@ Parsed parse(const QStringList& argv, bool verify) {
     QCommandLineOption report("report", "write a text or .html report", "FILE");
     QCommandLineOption lcm("lcm", "publish events over LCM (optional URL)", "URL");
     QCommandLineOption rate("rate", "sample rate for CSV files without time or rate", "HZ");
+    QCommandLineOption threshold("threshold",
+                                 "analog lines: switching threshold for all lines, or one line's",
+                                 "[SIGNAL=]V");
+    QCommandLineOption hysteresis("hysteresis", "analog lines: hysteresis band width", "V");
     QCommandLineOption follow("follow", "keep reading a growing capture (or a pipe)");
     QCommandLineOption realtime("realtime", "pace a recorded capture at its own time scale");
     QCommandLineOption list("list", "list decoders, roles, options and defaults");
@@ -90,8 +96,9 @@ Parsed parse(const QStringList& argv, bool verify) {
         "2");
     QCommandLineOption help({"h", "help"}, "show this help");
     QCommandLineOption version("version", "show the version");
-    for (auto* o : {&proto, &map, &opt, &format, &report, &lcm, &rate, &follow, &realtime, &list,
-                    &formats, &rules, &junit, &jobs, &threads, &help, &version})
+    for (auto* o :
+         {&proto, &map, &opt, &format, &report, &lcm, &rate, &threshold, &hysteresis, &follow,
+          &realtime, &list, &formats, &rules, &junit, &jobs, &threads, &help, &version})
         p.addOption(*o);
     if (!p.parse(argv)) throw InputError(p.errorText().toStdString());
     if (p.isSet(help)) {
@@ -126,6 +133,15 @@ Parsed parse(const QStringList& argv, bool verify) {
             throw InputError(fmt::format("--rate {}: expected a positive number of Hz",
                                          p.value(rate).toStdString()));
         a.rate_hz = *r;
+    }
+    for (const auto& t : toStd(p.values(threshold)))
+        a.thresholds.push_back(parseThresholdOption(t));
+    if (p.isSet(hysteresis)) {
+        auto h = parseNumber(p.value(hysteresis).toStdString());
+        if (!h || *h < 0)
+            throw InputError(fmt::format("--hysteresis {}: expected a number of volts, 0 or more",
+                                         p.value(hysteresis).toStdString()));
+        a.hysteresis = *h;
     }
     a.follow = p.isSet(follow);
     a.realtime = p.isSet(realtime);
@@ -163,6 +179,8 @@ int runDecode(const DecodeArgs& a) {
     auto requests = buildRequests(a.protos, a.maps, a.opts);
     OpenOptions open;
     open.rate_hz = a.rate_hz;
+    open.thresholds = a.thresholds;
+    open.hysteresis = a.hysteresis;
     open.follow = a.follow;
     open.read_ahead = a.threads > 1;
     open.stop = interruptionFlag();
@@ -199,11 +217,11 @@ int runDecode(const DecodeArgs& a) {
     return 0;
 }
 
-// "decode: FILE: interrupted at byte N of M (SIGINT); no report written"
+// "decode: FILE: interrupted, after reading N of M bytes (SIGINT); nothing written to the
+// report"
 std::string interruptionLine(const std::string& what, const DecodeArgs& a) {
-    const bool outputs = !a.report.empty() || !a.junit.empty();
     return fmt::format("decode: {} ({}){}\n", what, interruptingSignalName(),
-                       outputs ? "; nothing written to the report" : "");
+                       a.report.empty() ? "" : "; nothing written to the report");
 }
 
 int run(int argc, char** argv, DecodeArgs& args) {

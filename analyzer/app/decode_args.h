@@ -8,6 +8,7 @@
 
 #include "capture/capture_reader.h"
 #include "core/session.h"
+#include "decode_capture.h"  // decodeCapture(), which takes the requests built here
 
 namespace busdecode {
 
@@ -20,9 +21,12 @@ struct DecodeArgs {
     std::string report;                  // --report FILE ("" = none)
     std::optional<std::string> lcm_url;  // --lcm [URL] (empty string = LCM's default)
     double rate_hz = 0;                  // --rate
-    bool follow = false;                 // --follow
-    bool realtime = false;               // --realtime
-    int threads = 2;                     // --threads N per capture: 1 or 2 (read ahead)
+    // --threshold [SIGNAL=]V and --hysteresis V (OpenOptions)
+    std::vector<std::pair<std::string, double>> thresholds;
+    double hysteresis = -1;
+    bool follow = false;    // --follow
+    bool realtime = false;  // --realtime
+    int threads = 2;        // --threads N per capture: 1 or 2 (read ahead)
     // verify only
     std::string rules;  // --rules FILE
     std::string junit;  // --junit FILE
@@ -39,15 +43,5 @@ std::vector<DecoderRequest> buildRequests(const std::vector<std::string>& protos
 // A decoder's advice (CaptureFacts::advice) as a line for stderr (with --format jsonl and
 // verify, whose stdout has no room for it): "decode: CAPTURE: hint: TEXT\n".
 std::string hintLine(const std::string& capture, const std::string& hint);
-
-// Opens one capture and decodes it into the sinks. Throws InputError on bad input.
-CaptureFacts decodeCapture(const std::string& path, const std::vector<DecoderRequest>& requests,
-                           const OpenOptions& open, const std::vector<OutputSink*>& sinks);
-// The same, optionally paced at the capture's own time scale (--realtime) and stopped
-// between blocks when *stop becomes true (Ctrl-C): a followed capture then ends as if
-// it ended there; any other throws Interrupted (core/interrupted.h), its sinks not ended.
-CaptureFacts decodeCapture(const std::string& path, const std::vector<DecoderRequest>& requests,
-                           const OpenOptions& open, const std::vector<OutputSink*>& sinks,
-                           bool realtime, const std::atomic<bool>* stop);
 
 }  // namespace busdecode

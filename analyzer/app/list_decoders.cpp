@@ -7,9 +7,7 @@
 
 namespace busdecode {
 
-namespace {
-
-const char* kindName(OptionSpec::Kind k) {
+const char* optionKindName(OptionSpec::Kind k) {
     switch (k) {
         case OptionSpec::Kind::Int:
             return "int";
@@ -24,8 +22,6 @@ const char* kindName(OptionSpec::Kind k) {
     }
     return "";
 }
-
-}  // namespace
 
 void printDecoderList(std::FILE* out) {
     const auto all = Registry::instance().all();
@@ -53,7 +49,7 @@ void printDecoderList(std::FILE* out) {
                                     o.max < 1e299 ? fmt::format("{}", o.max) : "");
                 if (o.allow_auto) allowed += " or auto";
             }
-            fmt::print(out, "    {:<14} {:<7} default {:<8}{}  {}\n", o.key, kindName(o.kind),
+            fmt::print(out, "    {:<14} {:<7} default {:<8}{}  {}\n", o.key, optionKindName(o.kind),
                        o.default_value.empty() ? "-" : o.default_value, allowed, o.help);
         }
         fmt::print(out, "    {:<14} {:<7} default {:<8}  {}\n", "glitch_ns", "number", "0",

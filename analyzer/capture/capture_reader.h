@@ -7,6 +7,7 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/edge.h"
@@ -24,34 +25,6 @@ struct SignalInfo {
 struct LineRef {
     int signal = 0;
     int bit = -1;
-};
-
-// Work a reader that tokenises pieces of a file on several threads (segmented_vcd_reader.h)
-// does on each piece beside the tokenising, on the thread that tokenised it: the session
-// decodes the piece there on speculation (core/piece_speculation.h).
-class PieceWork {
-public:
-    struct Result {
-        virtual ~Result() = default;
-    };
-    // A piece's edges as tokenised, before the piece was joined to the one before it:
-    // each line's first edge may repeat the level the line already had (it is then
-    // dropped from what next() hands out, and nothing else is).
-    struct Piece {
-        const EdgeBlock* blocks = nullptr;  // blocks[0, used)
-        std::size_t used = 0;
-        // Per selected line, the index (block * kEdgeBlockSize + position) of its first
-        // edge in the piece, or kNoEdge.
-        const std::vector<std::uint32_t>* first_edge = nullptr;
-        // The thread running the work: 0, the one that calls next(); 1, the other.
-        int thread = 0;
-    };
-    static constexpr std::uint32_t kNoEdge = ~std::uint32_t(0);
-
-    virtual ~PieceWork() = default;
-    // Any thread, several at once. Null: nothing worth handing on. May throw: the piece
-    // then has no result, and nothing else changes.
-    virtual std::unique_ptr<Result> run(const Piece& piece) = 0;
 };
 
 class CaptureReader {
@@ -83,20 +56,9 @@ public:
     // True if next() already reads ahead on a thread of its own (a reader that is not
     // to be wrapped in prefetchReader()).
     virtual bool readsAhead() const { return false; }
-    // Asks the reader to run `work` on every piece it tokenises ahead but the first; call
-    // before the first next(). False: this reader has no pieces (work is never run).
-    // The reader keeps `work` as long as it may still run it.
-    virtual bool setPieceWork(std::shared_ptr<PieceWork> work) {
-        (void)work;
-        return false;
-    }
-    // After a next() that returned a piece's first block: the work's result for that
-    // piece, and how many of its first edges were dropped (PieceWork::Piece). Null
-    // otherwise, or when the piece has none; each result is handed out once.
-    virtual std::unique_ptr<PieceWork::Result> takePieceResult(std::uint32_t& dropped) {
-        (void)dropped;
-        return nullptr;
-    }
+    // What the reader chose or found that the user should see in the summary (thresholds
+    // of analog lines, lines that never crossed them); valid after next() = false.
+    virtual std::vector<std::string> notes() const { return {}; }
 };
 
 // For select(): more lines than an Edge can name is the caller's mistake (Session refuses
@@ -126,6 +88,12 @@ struct OpenOptions {
     std::uint64_t vcd_boundary_search = 0;
     // Set (e.g. by Ctrl-C) to make a following reader return at its next poll.
     const std::atomic<bool>* stop = nullptr;
+    // Analog lines (scope captures): --threshold VOLTS for every line ("" signal) or
+    // SIGNAL=VOLTS, --hysteresis VOLTS (< 0: a tenth of the swing); unset: from the data.
+    std::vector<std::pair<std::string, double>> thresholds;
+    double hysteresis = -1;
+    // Differential pairs named in --map ("MA+,MA-"): each becomes a signal of that name.
+    std::vector<std::string> pairs;
 };
 
 // Picks the reader by content (and extension as a hint). Throws InputError naming the

@@ -121,6 +121,9 @@ std::unique_ptr<CaptureReader> openZip(std::unique_ptr<TextSource> src, const st
                          ": a Saleae Logic 2 session (.sal): its format is undocumented and "
                          "changes between releases; export the channels as binary files in "
                          "Logic 2 (File > Export Data > Binary) and decode those");
+    if (path != "-") {
+        if (auto analog = openSrAnalogIfAnalog(path, name, opts)) return analog;
+    }
     return openSr(std::move(zip), opts);
 }
 
@@ -154,6 +157,7 @@ std::unique_ptr<CaptureReader> openSource(std::unique_ptr<TextSource> src, const
     if (!text.empty() && text.front() == '$') return openVcd(std::move(src), opts);
     if (auto r = openIlaCsv(src, head, opts)) return r;
     if (auto r = openSampleList(src, head, opts)) return r;
+    if (auto scope = openScopeCsvIfScope(src, opts)) return scope;
     return openCsv(std::move(src), opts);
 }
 

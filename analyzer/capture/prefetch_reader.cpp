@@ -71,6 +71,7 @@ public:
     }
     // Valid once next() has returned false (the worker has finished by then).
     Tick endTick() const override { return in_->endTick(); }
+    std::vector<std::string> notes() const override { return in_->notes(); }
     std::uint64_t bytesRead() const override { return bytes_read_.load(std::memory_order_relaxed); }
     std::uint64_t bytesTotal() const override { return in_->bytesTotal(); }
     bool changesOnly() const override { return in_->changesOnly(); }

@@ -12,6 +12,9 @@ namespace busdecode {
 
 std::unique_ptr<CaptureReader> openVcd(std::unique_ptr<TextSource> src, const OpenOptions& opts);
 std::unique_ptr<CaptureReader> openCsv(std::unique_ptr<TextSource> src, const OpenOptions& opts);
+// A scope's CSV (scope_csv_layout.h), taking `src`; null, leaving `src`, for other CSVs.
+std::unique_ptr<CaptureReader> openScopeCsvIfScope(std::unique_ptr<TextSource>& src,
+                                                   const OpenOptions& opts);
 class ZipArchive;
 // ZIP captures, the archive already open (zip_archive.h).
 std::unique_ptr<CaptureReader> openSr(std::unique_ptr<ZipArchive> archive, const OpenOptions& opts);
@@ -20,6 +23,11 @@ std::unique_ptr<CaptureReader> openDsl(std::unique_ptr<ZipArchive> archive,
 
 // Saleae Logic 2 binary export: one digital_N.bin, or a folder of them.
 std::unique_ptr<CaptureReader> openSaleaeBin(const std::string& path);
+
+// A sigrok session of analog channels only (sr_analog_samples.cpp); null for others.
+std::unique_ptr<CaptureReader> openSrAnalogIfAnalog(const std::string& path,
+                                                    const std::string& name,
+                                                    const OpenOptions& opts);
 
 // "24 MHz", "1MHz", "5 Hz", "100 kHz", "24000000" -> Hz (0 if it is not a rate).
 std::int64_t parseRateHz(std::string_view text);

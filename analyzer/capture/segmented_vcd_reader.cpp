@@ -15,6 +15,7 @@
 #include <unistd.h>
 
 #include "guarded_mapping.h"
+#include "piece_work.h"
 
 namespace busdecode {
 
@@ -54,7 +55,7 @@ struct Piece {
 };
 constexpr std::uint32_t kNoEdge = PieceWork::kNoEdge;
 
-class SegmentedVcdReader final : public CaptureReader {
+class SegmentedVcdReader final : public CaptureReader, public PieceReader {
 public:
     SegmentedVcdReader(std::unique_ptr<VcdTokeniser> vcd, std::uint64_t size,
                        std::uint64_t piece_bytes, std::uint64_t boundary_search)

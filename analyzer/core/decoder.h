@@ -1,10 +1,11 @@
 #pragma once
 // The decoder interface. A decoder is a plain C++ state machine fed with the edges of
 // its bound lines in time order (merged next-edge iteration, as in libscopehal): cost
-// grows with edges, not samples. No Qt in here.
+// grows with edges, not samples. No Qt in here. CONTRIBUTING.md shows how to add one.
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "decoder_info.h"
@@ -17,66 +18,28 @@ namespace busdecode {
 
 class EventWindow;
 
-// What a decoder is at one point of the edge stream, for decoding a capture in pieces on
-// several threads at once (core/piece_speculation.h): a decoder started fresh partway
-// through the capture takes over from the one that decoded up to there, from the first
-// point where their states are the same. `words` is everything that decides what the
-// decoder does with the edges after that point; two decoders with the same words there
-// emit the same events from then on. `counts` are running totals (frames seen, say)
-// that do not decide anything: the one taking over adds the other's (addCounts()).
-struct SpliceState {
-    std::vector<std::uint64_t> words;
-    std::vector<std::uint64_t> counts;
-};
-
 struct DecoderContext {
     Timebase timebase;
     // Initial level of each role, in DecoderInfo::roles order; -1 when the role is unbound.
     std::vector<int> initial_levels;
     EventSink* sink = nullptr;
     Tick capture_start = 0;  // first tick of the capture (may be negative)
-    // False when nothing reads the events' fields: only text output, which prints the
-    // summary, and no decoder correlating or stacked on this one. A decoder whose events
-    // always carry a summary may then leave its fields out (a BiSS-C frame's 20 fields
-    // are a tenth of decode's time on a busy bus).
-    bool fields_wanted = true;
-    // Every edge handed to edges() has its role for its line (role_of_line maps each line
-    // that carries edges to itself): a decoder may take the role from Edge::line and skip
-    // the look-up, which sits on the way to the branch on the role (mispredicted at
-    // random where the data is random: BiSS-C's `decode/bissc` micro-benchmark 3-4 %
-    // faster without it). The session's usual case: one
-    // decoder, its roles bound in order.
-    bool lines_are_roles = false;
 };
 
-// Whether role_of_line maps every line that carries edges (those with a role, >= 0) to
-// itself: DecoderContext::lines_are_roles for edges() handed that table.
-inline bool linesAreRoles(const std::vector<int>& role_of_line) {
-    for (std::size_t line = 0; line < role_of_line.size(); ++line)
-        if (role_of_line[line] >= 0 && role_of_line[line] != int(line)) return false;
-    return true;
-}
-
+// What a decoder implements. Edges arrive one at a time through edge(); a decoder on
+// the hot path may also take whole blocks (core/block_decoding.h) and be spliced for
+// piece-parallel decoding (core/splicing.h), but none has to.
 class Decoder {
 public:
+    Decoder() = default;
+    // `proto`: the decoder's id, which newEvent() puts in every event (a literal).
+    explicit Decoder(std::string_view proto) : proto_(proto) {}
     virtual ~Decoder() = default;
 
     // Called once before any edge.
     virtual void start(const DecoderContext& ctx) { ctx_ = ctx; }
     // A level change on role `role` (index into DecoderInfo::roles) at tick t.
     virtual void edge(Tick t, int role, bool level) = 0;
-    // A run of edges in time order, none repeating its line's level; role_of_line maps
-    // Edge::line to the role. The session hands over whole blocks this way when this is
-    // the only decoder and no glitch filter sits in between. BlockDecoder below inlines
-    // the decoder's edge() into the loop; this fallback makes one virtual call per edge.
-    virtual void edges(const Edge* first, const Edge* last, const int* role_of_line) {
-        for (; first != last; ++first)
-            edge(first->t, role_of_line[first->line], first->level != 0);
-    }
-    // One edge through the decoder's general code alone: what edge() does, without the
-    // fast paths a decoder may take in edge() or edges(). Such a decoder overrides it,
-    // and its tests and the fuzz harness check the fast paths against it.
-    virtual void edgeReference(Tick t, int role, bool level) { edge(t, role, level); }
     // Time has advanced to `now` with no further edge on this decoder's lines before it.
     // Called between edge blocks; lets timeouts close frames promptly in live decoding.
     virtual void advance(Tick now) { (void)now; }
@@ -107,41 +70,26 @@ public:
     // Stacked decoders override it to include their lower decoder's.
     virtual Tick watermark(Tick now) const { return busy_since_ == kNoTick ? now : busy_since_; }
 
-    // Piece-parallel decoding (core/piece_speculation.h). A decoder that can be spliced
-    // says so here, and fills `out` in spliceState() wherever it is at a point it can be
-    // compared at (between frames, say), returning false elsewhere: a false costs
-    // nothing but a later splice. Every field it leaves out of SpliceState::words must
-    // be one that two decoders of the same options given the same edges from that point
-    // on cannot differ in.
-    virtual bool splices() const { return false; }
-    virtual bool spliceState(SpliceState& out) const {
-        (void)out;
-        return false;
-    }
-    // Called after start() on a decoder started partway through the capture: it may set
-    // what it cannot know to what a long capture most likely left (BiSS-C: a preamble of
-    // CDM zeros seen), so that its state meets the other's sooner. A wrong guess costs a
-    // later splice, never a different output.
-    virtual void guessHistory() {}
-    // Adds `delta` to SpliceState::counts, element by element (modulo 2^64): this
-    // decoder takes over from one whose totals were that much higher.
-    virtual void addCounts(const std::vector<std::uint64_t>& delta) { (void)delta; }
-
     // Events this decoder emits go to `sink`.
     void setSink(EventSink* sink) { ctx_.sink = sink; }
     const DecoderContext& context() const { return ctx_; }
 
 protected:
-    void emit(Event&& e) {
-        if (ctx_.sink) ctx_.sink->onEvent(std::move(e));
+    // An event of this decoder's proto and `type` from `start` to `end`, to fill and
+    // emit(); its storage recycled by the sink where it can be.
+    EventPtr newEvent(std::string_view type, Tick start, Tick end) {
+        EventPtr e = ctx_.sink ? ctx_.sink->freshEvent() : std::make_unique<Event>();
+        e->proto.assign(proto_);
+        e->type.assign(type);
+        e->start = start;
+        e->end = end;
+        return e;
     }
-    // An event from freshEvent(), handed over by its pointer.
     void emit(EventPtr e) {
         if (ctx_.sink) ctx_.sink->onOwnedEvent(std::move(e));
     }
-    // The event to fill for emit(): empty, with storage recycled by the sink if it can.
-    EventPtr freshEvent() {
-        return ctx_.sink ? ctx_.sink->freshEvent() : std::make_unique<Event>();
+    void emit(Event&& e) {
+        if (ctx_.sink) ctx_.sink->onEvent(std::move(e));
     }
     // Call when a frame (or anything that will become an event) starts / is done.
     void busyFrom(Tick t) {
@@ -149,28 +97,15 @@ protected:
     }
     void setBusyFrom(Tick t) { busy_since_ = t; }
     void idle() { busy_since_ = kNoTick; }
-    // For spliceState(): the earliest start of an event still to come, or kNoTick.
+    // The earliest start of an event still to come, or kNoTick.
     Tick busySince() const { return busy_since_; }
     const Timebase& tb() const { return ctx_.timebase; }
-    // Whether to add fields to the events (DecoderContext::fields_wanted).
-    bool fieldsWanted() const { return ctx_.fields_wanted; }
 
     DecoderContext ctx_;
 
 private:
+    std::string_view proto_;
     Tick busy_since_ = kNoTick;
-};
-
-// Base for decoders: the block loop calls Derived::edge directly (no virtual call per
-// edge), so the compiler can inline the decoder's edge handling into it.
-template <class Derived>
-class BlockDecoder : public Decoder {
-public:
-    void edges(const Edge* first, const Edge* last, const int* role_of_line) final {
-        Derived& d = static_cast<Derived&>(*this);
-        for (; first != last; ++first)
-            d.Derived::edge(first->t, role_of_line[first->line], first->level != 0);
-    }
 };
 
 class DecoderFactory {

@@ -50,12 +50,13 @@ private:
 }  // namespace
 
 PieceSpeculator::PieceSpeculator(const DecoderFactory& factory, Options options, DecoderContext ctx,
-                                 std::vector<int> role_of_line,
+                                 FastPathHints hints, std::vector<int> role_of_line,
                                  std::shared_ptr<EventPool> decoding_pool,
                                  std::shared_ptr<EventPool> other_pool, std::string instance)
     : factory_(factory),
       options_(std::move(options)),
       ctx_(std::move(ctx)),
+      hints_(hints),
       role_of_line_(std::move(role_of_line)),
       decoding_pool_(std::move(decoding_pool)),
       other_pool_(std::move(other_pool)),
@@ -86,7 +87,8 @@ std::unique_ptr<PieceWork::Result> PieceSpeculator::run(const Piece& piece) {
     const bool other = piece.thread != 0 && other_pool_;
     KeepEvents keep(spec->events, other ? other_pool_.get() : decoding_pool_.get(),
                     std::uint8_t(other ? 1 : 0), instance_);
-    Decoder* d = nullptr;
+    FastDecoder* d = nullptr;
+    SpliceableDecoder* splicing = nullptr;
     std::vector<int> level(lines, -1);
     Pauses pauses;
     SpliceState state;
@@ -107,6 +109,8 @@ std::unique_ptr<PieceWork::Result> PieceSpeculator::run(const Piece& piece) {
                     continue;
                 }
                 d = startDecoder(*spec, keep, level);
+                if (!d) return nullptr;
+                splicing = splicingOf(*d);
                 i = j;
             } else if (!pause) {
                 continue;
@@ -116,7 +120,7 @@ std::unique_ptr<PieceWork::Result> PieceSpeculator::run(const Piece& piece) {
             if (++pause_count > kDenseSnapshots && pause_count % kSparseEvery != 0) continue;
             d->edges(e + i, e + j + 1, roles);
             i = j + 1;
-            if (d->spliceState(state)) {
+            if (splicing->spliceState(state)) {
                 spec->snapshots.push_back({taken + i, spec->events.size(), std::move(state)});
                 state = SpliceState{};
             }
@@ -134,8 +138,8 @@ std::unique_ptr<PieceWork::Result> PieceSpeculator::run(const Piece& piece) {
     return spec;
 }
 
-Decoder* PieceSpeculator::startDecoder(Speculation& spec, EventSink& sink,
-                                       const std::vector<int>& level_of_line) const {
+FastDecoder* PieceSpeculator::startDecoder(Speculation& spec, EventSink& sink,
+                                           const std::vector<int>& level_of_line) const {
     DecoderContext ctx = ctx_;
     for (std::size_t line = 0; line < role_of_line_.size(); ++line) {
         const int role = role_of_line_[line];
@@ -144,10 +148,14 @@ Decoder* PieceSpeculator::startDecoder(Speculation& spec, EventSink& sink,
     }
     ctx.sink = &sink;
     spec.decoder = factory_.create(options_);
+    FastDecoder* fast = fastPathOf(*spec.decoder);
+    SpliceableDecoder* splicing = splicingOf(*spec.decoder);
+    if (!fast || !splicing) return nullptr;
+    fast->setHints(hints_);
     spec.decoder->start(ctx);
-    spec.decoder->guessHistory();
+    splicing->guessHistory();
     spec.decoder->setSink(&sink);
-    return spec.decoder.get();
+    return fast;
 }
 
 void SpeculationSplicer::startPiece(std::unique_ptr<Speculation> s, std::uint64_t taken,
@@ -168,10 +176,10 @@ bool SpeculationSplicer::decode(const Edge* first, const Edge* last, std::uint64
         if (pos > taken + n) break;                  // in a later block
         ++next_;
         if (pos < taken + done) continue;  // (cannot be: each lies past the one before)
-        decoder_->edges(first + done, first + (pos - taken), role_of_line_);
+        fast_->edges(first + done, first + (pos - taken), role_of_line_);
         done = pos - taken;
         SpliceState mine;
-        if (decoder_->spliceState(mine) && mine.words == at.state.words) {
+        if (splicing_->spliceState(mine) && mine.words == at.state.words) {
             skip_until_ = base_ + spec_->edges;
             decoded_until_ = spec_->last;
             stats_.edges_ahead += skip_until_ - pos;
@@ -180,7 +188,7 @@ bool SpeculationSplicer::decode(const Edge* first, const Edge* last, std::uint64
         }
     }
     if (spec_ && next_ == spec_->snapshots.size()) spec_.reset();  // no splice: decode on
-    decoder_->edges(first + done, last, role_of_line_);
+    fast_->edges(first + done, last, role_of_line_);
     return true;
 }
 
@@ -190,12 +198,18 @@ void SpeculationSplicer::splice(Speculation::Snapshot& at, const SpliceState& mi
     for (std::size_t i = 0; i < delta.size() && i < at.state.counts.size(); ++i)
         delta[i] = mine.counts[i] - at.state.counts[i];
     std::unique_ptr<Decoder> next = std::move(spec_->decoder);
-    next->addCounts(delta);
+    splicingOf(*next)->addCounts(delta);
     next->setSink(&sink_);
     for (std::size_t i = at.events; i < spec_->events.size(); ++i)
         sink_.onOwnedEvent(std::move(spec_->events[i]));
     decoder_ = std::move(next);
     spec_.reset();
+    lookUpDecoder();
+}
+
+void SpeculationSplicer::lookUpDecoder() {
+    fast_ = fastPathOf(*decoder_);
+    splicing_ = splicingOf(*decoder_);
 }
 
 }  // namespace busdecode

@@ -8,7 +8,7 @@
 // tokenised it, by a decoder of its own started fresh at the piece's start, its events
 // kept aside. When the decoding thread, in order, comes to that piece, its decoder goes
 // on into the piece only as far as the first point where the two decoders' states are
-// the same (Decoder::spliceState(): between two frames, once the fresh one has seen a
+// the same (SpliceableDecoder::spliceState(): between two frames, once the fresh one has seen a
 // frame or two and measured what the other carries over): from there the fresh decoder
 // has already done the rest of the piece, so it takes over, its events from that point on
 // are output, and the rest of the piece is not decoded again. A piece where the states
@@ -19,10 +19,12 @@
 #include <string>
 #include <vector>
 
-#include "capture/capture_reader.h"
+#include "block_decoding.h"
+#include "capture/piece_work.h"
 #include "decoder.h"
 #include "event_pool.h"
 #include "options.h"
+#include "splicing.h"
 
 namespace busdecode {
 
@@ -44,20 +46,21 @@ struct Speculation final : PieceWork::Result {
 // The PieceWork of a session with one decoder, handed its edges in blocks.
 class PieceSpeculator final : public PieceWork {
 public:
-    // ctx: the session's decoder's (sink and initial levels are replaced); role_of_line:
+    // ctx, hints: the session's decoder's (sink and initial levels are replaced); role_of_line:
     // the session's, line -> role; decoding_pool: where the session gives back the events
     // it is done with (or null), for pieces run on the decoding thread (Piece::thread 0);
     // other_pool: where it gives back those of pieces run on the other thread, marked
     // Event::home 1 (or null: they use decoding_pool too); instance: what the session
     // sets Event::instance to, set here already.
     PieceSpeculator(const DecoderFactory& factory, Options options, DecoderContext ctx,
-                    std::vector<int> role_of_line, std::shared_ptr<EventPool> decoding_pool,
+                    FastPathHints hints, std::vector<int> role_of_line,
+                    std::shared_ptr<EventPool> decoding_pool,
                     std::shared_ptr<EventPool> other_pool = nullptr, std::string instance = {});
     std::unique_ptr<Result> run(const Piece& piece) override;
 
     // Splice points kept per piece. A fresh decoder's state meets the other's once it has
     // seen what the other carries from frame to frame (a frame's measurements, after one
-    // frame) and guessed the rest right (Decoder::guessHistory()); else once the other's
+    // frame) and guessed the rest right (SpliceableDecoder::guessHistory()); else once the other's
     // history no longer matters (BiSS-C's run of CDM zeros before a control access: after
     // 14 frames).
     static constexpr std::size_t kSnapshots = 8;
@@ -73,13 +76,14 @@ public:
 
 private:
     // A fresh decoder in `spec`, started with the lines at `level_of_line`, its events
-    // going to `sink`.
-    Decoder* startDecoder(Speculation& spec, EventSink& sink,
-                          const std::vector<int>& level_of_line) const;
+    // going to `sink`; null if it is not a spliceable FastDecoder.
+    FastDecoder* startDecoder(Speculation& spec, EventSink& sink,
+                              const std::vector<int>& level_of_line) const;
 
     const DecoderFactory& factory_;
     const Options options_;
     const DecoderContext ctx_;
+    const FastPathHints hints_;
     const std::vector<int> role_of_line_;
     const std::shared_ptr<EventPool> decoding_pool_;
     const std::shared_ptr<EventPool> other_pool_;
@@ -97,7 +101,9 @@ public:
     // `decoder`: the session's, replaced by each spliced piece's; `sink`: where the
     // spliced-in events go (the session); `role_of_line`: the session's.
     SpeculationSplicer(std::unique_ptr<Decoder>& decoder, EventSink& sink, const int* role_of_line)
-        : decoder_(decoder), sink_(sink), role_of_line_(role_of_line) {}
+        : decoder_(decoder), sink_(sink), role_of_line_(role_of_line) {
+        lookUpDecoder();
+    }
 
     // A piece's first block is next, `taken` edges handed out before it: its speculation,
     // `dropped` its first edges not handed out.
@@ -114,8 +120,12 @@ public:
 
 private:
     void splice(Speculation::Snapshot& at, const SpliceState& mine);
+    // The session's decoder's fast path and splicing, looked up again after each splice.
+    void lookUpDecoder();
 
     std::unique_ptr<Decoder>& decoder_;
+    FastDecoder* fast_ = nullptr;
+    SpliceableDecoder* splicing_ = nullptr;
     EventSink& sink_;
     const int* role_of_line_;
     std::unique_ptr<Speculation> spec_;

@@ -10,12 +10,14 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include "block_decoding.h"
 #include "event_pool.h"
 #include "event_window.h"
 #include "glitch_filter.h"
 #include "interrupted.h"
-#include "piece_speculation.h"
+#include "parallel_pipeline.h"
 #include "registry.h"
+#include "splicing.h"
 #include "waveform.h"
 
 namespace busdecode {
@@ -62,13 +64,8 @@ std::string signalList(const std::vector<SignalInfo>& sigs) {
 }
 
 OptionSpec glitchOption() {
-    OptionSpec o;
-    o.key = "glitch_ns";
-    o.kind = OptionSpec::Kind::Float;
-    o.default_value = "0";
-    o.min = 0;
-    o.help = "ignore pulses shorter than this on every mapped line (ns)";
-    return o;
+    return numberOption("glitch_ns", "0", 0, 1e300,
+                        "ignore pulses shorter than this on every mapped line (ns)");
 }
 
 }  // namespace
@@ -88,6 +85,8 @@ struct Session::Impl : EventSink {
         std::vector<int> role_line;  // role index -> selected line, -1 unbound
         std::optional<GlitchFilter> glitch;
         DecoderContext ctx;
+        FastDecoder* fast = nullptr;  // the decoder's fast path (block_decoding.h), if any
+        FastPathHints hints;
     };
     // Where a selected line's edges go; the decoder and its glitch filter (or null) are
     // resolved once here, not per edge.
@@ -109,7 +108,7 @@ struct Session::Impl : EventSink {
     std::deque<int> pending_slot;
     EventWindow window;
     bool keep_window = false;  // some decoder correlates: remember released events
-    // One decoder, no glitch filter, one role per line: blocks go to Decoder::edges.
+    // One decoder, no glitch filter, one role per line: blocks go to the decoder whole.
     bool block_path = false;
     std::vector<int> role_of_line;
     int emitting = -1;
@@ -131,9 +130,8 @@ struct Session::Impl : EventSink {
     // (piece_speculation.h), most events are built on the reader's threads: what this
     // store cannot hold goes back to them through the shared pool.
     static constexpr std::size_t kMaxSpare = 1024;
-    // (Declared first: `spare` gives back to them.) The decoding thread's pieces' events,
-    // and the other reader thread's (Event::home 1), given back not emptied.
-    std::shared_ptr<EventPool> shared_pool, other_pool;
+    // The parallel path, where it runs (declared first: `spare` gives back to its pools).
+    std::unique_ptr<ParallelVcdPipeline> parallel;
     RecycledEvents spare{kMaxSpare};
 
     EventPtr freshEvent() override { return spare.fresh(); }
@@ -229,6 +227,141 @@ struct Session::Impl : EventSink {
         tg.glitch->push(t, tg.role, level, filtered(*tg.decoder));
     }
 
+    // A decoder for `req` (its glitch_ns taken out of the options), not yet bound.
+    Slot makeSlot(DecoderRequest& req, std::string instance) {
+        const DecoderFactory* f = Registry::instance().find(req.proto);
+        if (!f) Registry::instance().create(req.proto, {});  // throws the "unknown decoder" error
+        const DecoderInfo& info = f->info();
+        Slot slot;
+        slot.instance = std::move(instance);
+        // glitch_ns is handled here for every decoder.
+        double glitch_ns = 0;
+        if (auto it = req.options.find("glitch_ns"); it != req.options.end()) {
+            DecoderInfo gi;
+            gi.id = info.id;
+            gi.options = {glitchOption()};
+            glitch_ns = Options::resolve(gi, {{"glitch_ns", it->second}}).number("glitch_ns");
+            req.options.erase(it);
+        }
+        slot.options = Options::resolve(info, req.options);
+        slot.factory = f;
+        slot.decoder = f->create(slot.options);
+        if (glitch_ns > 0) {
+            Tick w = Tick(std::llround(reader->timebase().fromNs(glitch_ns)));
+            if (w > 0) slot.glitch.emplace(w);
+        }
+        return slot;
+    }
+
+    // Binds each of the slot's roles to a line: as --map says, else by name or alias.
+    void bindRoles(Slot& slot, const std::map<std::string, std::string>& map) {
+        const DecoderInfo& info = slot.factory->info();
+        checkRolesKnown(info, map);
+        std::vector<LineRef> bound_refs;
+        for (const auto& rs : info.roles) {
+            std::optional<LineRef> ref = findRole(info, rs, map, bound_refs);
+            if (!ref) {
+                slot.role_line.push_back(-1);
+                if (rs.required)
+                    throw InputError(fmt::format(
+                        "decoder {}: role '{}' is not bound: use --map {}=SIGNAL (signals: {})",
+                        info.id, rs.name, rs.name, signalList(reader->signals())));
+                continue;
+            }
+            bound_refs.push_back(*ref);
+            slot.role_line.push_back(lineOf(*ref));
+            std::string sname = reader->signals()[ref->signal].full_name;
+            if (ref->bit >= 0) sname += fmt::format("[{}]", ref->bit);
+            facts->bindings.push_back({info.id, slot.instance, rs.name, sname});
+        }
+        checkOneOfBound(info, slot.role_line);
+    }
+
+    void checkRolesKnown(const DecoderInfo& info, const std::map<std::string, std::string>& map) {
+        for (const auto& [role, _] : map) {
+            bool known = false;
+            for (const auto& rs : info.roles)
+                known |= rs.name == role;
+            if (known) continue;
+            std::vector<std::string> roles;
+            for (const auto& rs : info.roles)
+                roles.push_back(rs.name);
+            throw InputError(fmt::format("decoder {}: unknown role '{}' in --map (roles: {})",
+                                         info.id, role, fmt::join(roles, ", ")));
+        }
+    }
+
+    // The signal for role `rs`, or none (throws where --map names no signal).
+    std::optional<LineRef> findRole(const DecoderInfo& info, const RoleSpec& rs,
+                                    const std::map<std::string, std::string>& map,
+                                    const std::vector<LineRef>& bound_refs) {
+        const auto& sigs = reader->signals();
+        std::optional<LineRef> ref;
+        if (auto it = map.find(rs.name); it != map.end()) {
+            ref = findSignal(sigs, it->second, false);
+            if (!ref) ref = findSignal(sigs, it->second, true);
+            if (ref) return ref;
+            // "--map cs=CS,sclk=CLK" reads as one role bound to a signal "CS,sclk=CLK".
+            const bool several = it->second.find(',') != std::string::npos &&
+                                 it->second.find('=') != std::string::npos;
+            throw InputError(fmt::format(
+                "decoder {}: --map {}={}: no such signal in the capture (signals: {}){}", info.id,
+                rs.name, it->second, signalList(sigs),
+                several ? "; one --map per role: --map ROLE=SIGNAL --map ROLE=SIGNAL" : ""));
+        }
+        std::vector<std::string> names = {rs.name};
+        names.insert(names.end(), rs.aliases.begin(), rs.aliases.end());
+        for (const auto& n2 : names) {
+            if ((ref = findSignal(sigs, n2, true))) break;
+        }
+        // Never bind one signal to two roles automatically.
+        if (ref)
+            for (const auto& b : bound_refs)
+                if (b.signal == ref->signal && b.bit == ref->bit) ref.reset();
+        return ref;
+    }
+
+    void checkOneOfBound(const DecoderInfo& info, const std::vector<int>& role_line) {
+        if (info.need_one_of.empty()) return;
+        bool any = false;
+        for (std::size_t r = 0; r < info.roles.size(); ++r)
+            for (const auto& name : info.need_one_of)
+                any |= info.roles[r].name == name && role_line[r] >= 0;
+        if (!any)
+            throw InputError(
+                fmt::format("decoder {}: bind at least one of the roles {} (signals: {})", info.id,
+                            fmt::join(info.need_one_of, ", "), signalList(reader->signals())));
+    }
+
+    // The selected line of `ref`, selected now if no decoder has it yet.
+    int lineOf(const LineRef& ref) {
+        for (int i = 0; i < int(lines.size()); ++i)
+            if (lines[i].signal == ref.signal && lines[i].bit == ref.bit) return i;
+        if (lines.size() == kMaxSelectedLines)  // what an Edge can name
+            throw InputError(
+                fmt::format("{}: more than {} signals mapped", facts->file, kMaxSelectedLines));
+        lines.push_back(ref);
+        return int(lines.size()) - 1;
+    }
+
+    // Where each selected line's edges go, and whether whole blocks can go to one decoder.
+    void routeLines() {
+        for (const auto& slot : slots)
+            keep_window |= slot.decoder->correlates();
+        targets.resize(lines.size());
+        for (int s = 0; s < int(slots.size()); ++s)
+            for (int r = 0; r < int(slots[s].role_line.size()); ++r)
+                if (slots[s].role_line[r] >= 0)
+                    targets[slots[s].role_line[r]].push_back(
+                        {s, r, slots[s].decoder.get(),
+                         slots[s].glitch ? &*slots[s].glitch : nullptr});
+        block_path = slots.size() == 1 && !slots[0].glitch;
+        for (const auto& tgs : targets) {
+            block_path &= tgs.size() == 1;
+            role_of_line.push_back(tgs.empty() ? -1 : tgs[0].role);
+        }
+    }
+
     void advanceAll(Tick t) {
         for (int i = 0; i < int(slots.size()); ++i) {
             Slot& s = slots[i];
@@ -253,133 +386,20 @@ Session::Session(std::vector<DecoderRequest> requests, CaptureReader& reader, st
     facts_.timebase = reader.timebase();
     if (requests.empty())
         throw InputError("no decoder chosen: use --proto NAME (see decode --list)");
-
-    const auto& sigs = reader.signals();
     std::map<std::string, int> proto_count;
     for (const auto& r : requests)
         proto_count[r.proto]++;
     std::map<std::string, int> proto_seen;
-
     for (auto& req : requests) {
-        const DecoderFactory* f = Registry::instance().find(req.proto);
-        if (!f) Registry::instance().create(req.proto, {});  // throws the "unknown decoder" error
-        const DecoderInfo& info = f->info();
-        Impl::Slot slot;
-        int n = ++proto_seen[req.proto];
-        slot.instance = proto_count[req.proto] > 1 ? fmt::format("{}#{}", req.proto, n) : req.proto;
-
-        // glitch_ns is handled here for every decoder.
-        double glitch_ns = 0;
-        if (auto it = req.options.find("glitch_ns"); it != req.options.end()) {
-            DecoderInfo gi;
-            gi.id = info.id;
-            gi.options = {glitchOption()};
-            glitch_ns = Options::resolve(gi, {{"glitch_ns", it->second}}).number("glitch_ns");
-            req.options.erase(it);
-        }
-        slot.options = Options::resolve(info, req.options);
-        slot.factory = f;
-        slot.decoder = f->create(slot.options);
-        if (glitch_ns > 0) {
-            Tick w = Tick(std::llround(reader.timebase().fromNs(glitch_ns)));
-            if (w > 0) slot.glitch.emplace(w);
-        }
-
-        for (const auto& [role, _] : req.map) {
-            bool known = false;
-            for (const auto& rs : info.roles)
-                known |= rs.name == role;
-            if (!known) {
-                std::vector<std::string> roles;
-                for (const auto& rs : info.roles)
-                    roles.push_back(rs.name);
-                throw InputError(fmt::format("decoder {}: unknown role '{}' in --map (roles: {})",
-                                             info.id, role, fmt::join(roles, ", ")));
-            }
-        }
-        std::vector<LineRef> bound_refs;
-        for (const auto& rs : info.roles) {
-            std::optional<LineRef> ref;
-            if (auto it = req.map.find(rs.name); it != req.map.end()) {
-                ref = findSignal(sigs, it->second, false);
-                if (!ref) ref = findSignal(sigs, it->second, true);
-                if (!ref) {
-                    // "--map cs=CS,sclk=CLK" reads as one role bound to a signal "CS,sclk=CLK".
-                    const bool several = it->second.find(',') != std::string::npos &&
-                                         it->second.find('=') != std::string::npos;
-                    throw InputError(fmt::format(
-                        "decoder {}: --map {}={}: no such signal in the capture (signals: "
-                        "{}){}",
-                        info.id, rs.name, it->second, signalList(sigs),
-                        several ? "; one --map per role: --map ROLE=SIGNAL --map ROLE=SIGNAL"
-                                : ""));
-                }
-            } else {
-                std::vector<std::string> names = {rs.name};
-                names.insert(names.end(), rs.aliases.begin(), rs.aliases.end());
-                for (const auto& n2 : names) {
-                    if ((ref = findSignal(sigs, n2, true))) break;
-                }
-                // Never bind one signal to two roles automatically.
-                if (ref)
-                    for (const auto& b : bound_refs)
-                        if (b.signal == ref->signal && b.bit == ref->bit) ref.reset();
-            }
-            if (!ref) {
-                slot.role_line.push_back(-1);
-                if (rs.required)
-                    throw InputError(fmt::format(
-                        "decoder {}: role '{}' is not bound: use --map {}=SIGNAL (signals: {})",
-                        info.id, rs.name, rs.name, signalList(sigs)));
-                continue;
-            }
-            bound_refs.push_back(*ref);
-            int line = -1;
-            for (int i = 0; i < int(impl_->lines.size()); ++i)
-                if (impl_->lines[i].signal == ref->signal && impl_->lines[i].bit == ref->bit)
-                    line = i;
-            if (line < 0) {
-                if (impl_->lines.size() == kMaxSelectedLines)  // what an Edge can name
-                    throw InputError(fmt::format("{}: more than {} signals mapped", facts_.file,
-                                                 kMaxSelectedLines));
-                line = int(impl_->lines.size());
-                impl_->lines.push_back(*ref);
-            }
-            slot.role_line.push_back(line);
-            std::string sname = sigs[ref->signal].full_name;
-            if (ref->bit >= 0) sname += fmt::format("[{}]", ref->bit);
-            facts_.bindings.push_back({info.id, slot.instance, rs.name, sname});
-        }
-        if (!info.need_one_of.empty()) {
-            bool any = false;
-            for (std::size_t r = 0; r < info.roles.size(); ++r)
-                for (const auto& name : info.need_one_of)
-                    any |= info.roles[r].name == name && slot.role_line[r] >= 0;
-            if (!any)
-                throw InputError(
-                    fmt::format("decoder {}: bind at least one of the roles {} (signals: {})",
-                                info.id, fmt::join(info.need_one_of, ", "), signalList(sigs)));
-        }
+        const int n = ++proto_seen[req.proto];
+        Impl::Slot slot = impl_->makeSlot(
+            req, proto_count[req.proto] > 1 ? fmt::format("{}#{}", req.proto, n) : req.proto);
+        impl_->bindRoles(slot, req.map);
         facts_.protos.push_back(slot.instance);
         impl_->slots.push_back(std::move(slot));
     }
-
-    for (const auto& slot : impl_->slots)
-        impl_->keep_window |= slot.decoder->correlates();
-    impl_->targets.resize(impl_->lines.size());
-    for (int s = 0; s < int(impl_->slots.size()); ++s)
-        for (int r = 0; r < int(impl_->slots[s].role_line.size()); ++r)
-            if (impl_->slots[s].role_line[r] >= 0)
-                impl_->targets[impl_->slots[s].role_line[r]].push_back(
-                    {s, r, impl_->slots[s].decoder.get(),
-                     impl_->slots[s].glitch ? &*impl_->slots[s].glitch : nullptr});
-    Impl& im = *impl_;
-    im.block_path = im.slots.size() == 1 && !im.slots[0].glitch;
-    for (const auto& tgs : im.targets) {
-        im.block_path &= tgs.size() == 1;
-        im.role_of_line.push_back(tgs.empty() ? -1 : tgs[0].role);
-    }
-    reader.select(im.lines);
+    impl_->routeLines();
+    reader.select(impl_->lines);
 }
 
 Session::~Session() = default;
@@ -408,6 +428,40 @@ void Session::run() {
     im.levels = reader.initialLevels();
     facts_.start = reader.startTick();
     im.now = facts_.start;
+    startDecoders();
+    for (auto* s : sinks_)
+        s->begin(facts_);
+    // Pieces decoded ahead on the reader's threads, where that applies.
+    if (im.speculate && im.block_path && !im.keep_window) {
+        Impl::Slot& slot = im.slots[0];
+        im.parallel = ParallelVcdPipeline::start(
+            reader, {*slot.factory, slot.options, slot.ctx, slot.hints, slot.instance},
+            im.role_of_line, slot.decoder, im, im.spare);
+    }
+    EdgeBlock block;
+    block.edges.reserve(kEdgeBlockSize);
+    std::uint64_t edges = 0;
+    while (!im.stopped() && reader.next(block)) {
+        edges = decodeBlock(block, edges);
+        facts_.edges = edges;
+    }
+    if (im.parallel) endParallelPath();
+    if (im.stopped() && im.abandon_when_stopped) {
+        const double seconds = double(im.now - facts_.start) * reader.timebase().secondsPerTick();
+        throw Interrupted(interruptedAt(facts_.file,
+                                        fmt::format("{:.6g} s into the capture", seconds),
+                                        reader.bytesRead(), reader.bytesTotal()));
+    }
+    // Drain the reader's end (a stopped follow has no end tick yet).
+    facts_.end = im.stopped() ? im.now : std::max(reader.endTick(), im.now);
+    finishDecoders();
+    facts_.bytes = reader.bytesRead();
+    for (auto* s : sinks_)
+        s->end(facts_);
+}
+
+void Session::startDecoders() {
+    Impl& im = *impl_;
     // Fields are built only if a sink reads them or a decoder correlates (it looks at
     // the other decoders' events in the window).
     bool fields_wanted = im.keep_window;
@@ -415,9 +469,11 @@ void Session::run() {
         fields_wanted |= sink->readsFields();
     for (int s = 0; s < int(im.slots.size()); ++s) {
         auto& slot = im.slots[s];
-        slot.ctx.fields_wanted = fields_wanted;
-        slot.ctx.lines_are_roles = im.block_path && linesAreRoles(im.role_of_line);
-        slot.ctx.timebase = reader.timebase();
+        slot.hints.fields_wanted = fields_wanted;
+        slot.hints.lines_are_roles = im.block_path && linesAreRoles(im.role_of_line);
+        slot.fast = fastPathOf(*slot.decoder);
+        if (slot.fast) slot.fast->setHints(slot.hints);
+        slot.ctx.timebase = im.reader->timebase();
         slot.ctx.capture_start = facts_.start;
         for (int line : slot.role_line)
             slot.ctx.initial_levels.push_back(line < 0 ? -1 : im.levels[line]);
@@ -426,94 +482,54 @@ void Session::run() {
         slot.decoder->start(slot.ctx);
         slot.decoder->setSink(&im);
     }
-    for (auto* s : sinks_)
-        s->begin(facts_);
+}
 
-    // Pieces decoded ahead on the reader's threads, where it has pieces and the one
-    // decoder takes whole blocks and can be spliced.
-    std::optional<SpeculationSplicer> splicer;
-    if (im.speculate && im.block_path && !im.keep_window && reader.changesOnly() &&
-        im.slots[0].decoder->splices()) {
-        Impl::Slot& slot = im.slots[0];
-        DecoderContext ctx = slot.ctx;
-        ctx.sink = nullptr;
-        auto pool = std::make_shared<EventPool>();
-        auto other_pool = std::make_shared<EventPool>();
-        if (reader.setPieceWork(std::make_shared<PieceSpeculator>(*slot.factory, slot.options, ctx,
-                                                                  im.role_of_line, pool, other_pool,
-                                                                  slot.instance))) {
-            splicer.emplace(slot.decoder, im, im.role_of_line.data());
-            im.shared_pool = std::move(pool);
-            im.other_pool = std::move(other_pool);
-            im.spare.setShared(im.shared_pool.get());
-            im.spare.sendHome(im.other_pool.get());
+std::uint64_t Session::decodeBlock(EdgeBlock& block, std::uint64_t before) {
+    Impl& im = *impl_;
+    // Repeated values (not edges) dropped in place, unless the reader did.
+    Edge* kept = block.edges.data();
+    std::size_t n = block.edges.size();
+    if (!im.reader->changesOnly()) {
+        n = 0;
+        for (const Edge& e : block.edges) {
+            if (im.levels[e.line] == e.level) continue;
+            im.levels[e.line] = e.level;
+            kept[n++] = e;
         }
     }
-
-    EdgeBlock block;
-    block.edges.reserve(kEdgeBlockSize);
-    const bool changes_only = reader.changesOnly();
-    std::uint64_t edges = 0;
-    while (!im.stopped() && reader.next(block)) {
-        // Repeated values (not edges) dropped in place, unless the reader did.
-        Edge* kept = block.edges.data();
-        std::size_t n = block.edges.size();
-        if (!changes_only) {
-            n = 0;
-            for (const Edge& e : block.edges) {
-                if (im.levels[e.line] == e.level) continue;
-                im.levels[e.line] = e.level;
-                kept[n++] = e;
-            }
-        }
-        const std::uint64_t before = edges;
-        edges += n;
-        bool advance = true;
-        if (splicer) {
-            im.emitting = 0;
-            std::uint32_t dropped = 0;
-            if (auto r = reader.takePieceResult(dropped))
-                if (auto* s = dynamic_cast<Speculation*>(r.get())) {
-                    r.release();
-                    splicer->startPiece(std::unique_ptr<Speculation>(s), before, dropped);
-                }
-            advance = splicer->decode(kept, kept + n, before);
-        } else if (im.block_path) {  // the whole block in one call
-            im.emitting = 0;
-            im.slots[0].decoder->edges(kept, kept + n, im.role_of_line.data());
-        } else {
-            for (std::size_t i = 0; i < n; ++i)
-                for (const auto& tg : im.targets[kept[i].line])
-                    im.deliver(tg, kept[i].t, kept[i].level);
-        }
-        facts_.edges = edges;
-        if (!block.edges.empty()) im.now = std::max(im.now, block.edges.back().t);
-        if (block.known_until != kNoTick && block.known_until > im.now) im.now = block.known_until;
-        if (advance) im.advanceAll(im.now);
-        im.release(false);
-    }
-    if (splicer) {
-        im.piece_stats = {splicer->stats().pieces, splicer->stats().spliced,
-                          splicer->stats().edges_ahead};
-        // The targets name the decoder that took over.
-        for (auto& tgs : im.targets)
-            for (auto& tg : tgs)
-                tg.decoder = im.slots[std::size_t(tg.slot)].decoder.get();
-        // Stopped within a piece decoded ahead: the decoder has seen it to its end.
-        if (im.stopped()) im.now = std::max(im.now, splicer->decodedUntil());
-    }
-    if (im.stopped() && im.abandon_when_stopped) {
-        const double seconds = double(im.now - facts_.start) * reader.timebase().secondsPerTick();
-        throw Interrupted(interruptedAt(facts_.file,
-                                        fmt::format("{:.6g} s into the capture", seconds),
-                                        reader.bytesRead(), reader.bytesTotal()));
-    }
-    if (!im.stopped()) {
-        // Drain the reader's end (a stopped follow has no end tick yet).
-        facts_.end = std::max(reader.endTick(), im.now);
+    bool advance = true;
+    if (im.parallel) {
+        im.emitting = 0;
+        advance = im.parallel->decode(kept, kept + n, before);
+    } else if (im.block_path) {  // the whole block in one call
+        im.emitting = 0;
+        feedEdges(*im.slots[0].decoder, im.slots[0].fast, kept, kept + n, im.role_of_line.data());
     } else {
-        facts_.end = im.now;
+        for (std::size_t i = 0; i < n; ++i)
+            for (const auto& tg : im.targets[kept[i].line])
+                im.deliver(tg, kept[i].t, kept[i].level);
     }
+    if (!block.edges.empty()) im.now = std::max(im.now, block.edges.back().t);
+    if (block.known_until != kNoTick && block.known_until > im.now) im.now = block.known_until;
+    if (advance) im.advanceAll(im.now);
+    im.release(false);
+    return before + n;
+}
+
+void Session::endParallelPath() {
+    Impl& im = *impl_;
+    const auto& st = im.parallel->stats();
+    im.piece_stats = {st.pieces, st.spliced, st.edges_ahead};
+    // The targets name the decoder that took over.
+    for (auto& tgs : im.targets)
+        for (auto& tg : tgs)
+            tg.decoder = im.slots[std::size_t(tg.slot)].decoder.get();
+    // Stopped within a piece decoded ahead: the decoder has seen it to its end.
+    if (im.stopped()) im.now = std::max(im.now, im.parallel->decodedUntil());
+}
+
+void Session::finishDecoders() {
+    Impl& im = *impl_;
     for (int s = 0; s < int(im.slots.size()); ++s) {
         auto& slot = im.slots[s];
         im.emitting = s;
@@ -526,9 +542,8 @@ void Session::run() {
     for (const auto& slot : im.slots)
         for (const auto& a : slot.decoder->advice())
             facts_.advice.push_back(slot.instance + ": " + a);
-    facts_.bytes = reader.bytesRead();
-    for (auto* s : sinks_)
-        s->end(facts_);
+    for (const auto& note : im.reader->notes())
+        facts_.advice.push_back(note);
 }
 
 namespace {

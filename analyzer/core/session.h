@@ -84,6 +84,13 @@ public:
     struct Impl;
 
 private:
+    // run()'s steps.
+    void startDecoders();
+    // Decodes one block read, `before` edges before it; returns the edges so far.
+    std::uint64_t decodeBlock(EdgeBlock& block, std::uint64_t before);
+    void endParallelPath();
+    void finishDecoders();
+
     std::unique_ptr<Impl> impl_;
     std::vector<OutputSink*> sinks_;
     CaptureFacts facts_;

@@ -1,5 +1,5 @@
 #pragma once
-// Helpers for Decoder::spliceState(): a decoder's fields as 64-bit words, compared for
+// Helpers for SpliceableDecoder::spliceState(): a decoder's fields as 64-bit words, compared for
 // equality only. Doubles go in bit for bit (two states that differ in the last bit of a
 // period would sample differently one day).
 #include <algorithm>

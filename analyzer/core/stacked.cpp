@@ -21,8 +21,6 @@ LowerStack::~LowerStack() = default;
 
 void LowerStack::start(const DecoderContext& upper_ctx) {
     DecoderContext c = upper_ctx;
-    c.fields_wanted = true;     // the upper decoder reads the lower one's fields
-    c.lines_are_roles = false;  // its roles are mapped from the upper decoder's (edge())
     c.sink = this;
     c.initial_levels.assign(lower_roles_, -1);
     for (std::size_t u = 0; u < role_map_.size() && u < upper_ctx.initial_levels.size(); ++u)

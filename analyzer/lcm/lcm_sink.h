@@ -12,7 +12,4 @@ namespace busdecode {
 // unavailable. The sink prints a count of dropped messages at the end, if any.
 std::unique_ptr<OutputSink> makeLcmSink(const std::string& url);
 
-// `decode monitor [--lcm URL]`: the terminal dashboard. Returns the exit status.
-int runMonitor(int argc, char** argv);
-
 }  // namespace busdecode

@@ -22,6 +22,9 @@ struct MonitorOptions {
 
 class MonitorModel;
 
+// `decode monitor [--lcm URL]`: the terminal dashboard. Returns the exit status.
+int runMonitor(int argc, char** argv);
+
 // The dashboard on an open LCM instance: subscribes at construction (so a test can
 // publish on memq:// afterwards), then run() shows it until q, Ctrl-C, --once or
 // --duration and prints the final snapshot to `out`. Returns the exit status (0).

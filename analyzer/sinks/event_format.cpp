@@ -53,12 +53,16 @@ void appendValue(std::string& out, const Value& v) {
             else if constexpr (std::is_same_v<T, std::int64_t> || std::is_same_v<T, std::uint64_t>)
                 appendDecimal(out, x);
             else if constexpr (std::is_same_v<T, double>) {
-                if (!std::isfinite(x))
-                    out += "null";
-                else if (x == std::floor(x) && std::fabs(x) < 1e15)
-                    appendDecimal(out, std::int64_t(x));
-                else
-                    fmt::format_to(std::back_inserter(out), "{}", x);
+                switch (jsonNumberKind(x)) {
+                    case JsonNumber::Null:
+                        out += "null";
+                        break;
+                    case JsonNumber::Integer:
+                        appendDecimal(out, std::int64_t(x));
+                        break;
+                    case JsonNumber::Real:
+                        fmt::format_to(std::back_inserter(out), "{}", x);
+                }
             } else if constexpr (std::is_same_v<T, std::string>)
                 appendJsonString(out, x);
             else {
@@ -131,9 +135,7 @@ void appendEventJson(std::string& out, const Event& e, const Timebase& tb) {
     fmt::format_to(std::back_inserter(out), ",\"start_ns\":{},\"end_ns\":{}", tb.toNs(e.start),
                    tb.toNs(e.end));
     for (const auto& f : e.fields) {
-        if (f.key == "proto" || f.key == "type" || f.key == "start_ns" || f.key == "end_ns" ||
-            f.key == "errors")
-            continue;  // the common keys are the session's, never a decoder's
+        if (isCommonEventKey(f.key)) continue;
         out += ',';
         appendJsonString(out, f.key);
         out += ':';

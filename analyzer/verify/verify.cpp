@@ -19,31 +19,40 @@
 
 namespace busdecode {
 
+VerifyPlan planVerify(const DecodeArgs& args) {
+    loadPlugins();  // every one: the rules may name any decoder
+    std::vector<std::string> known;
+    for (const auto* f : Registry::instance().all())
+        known.push_back(f->info().id);
+    VerifyPlan plan;
+    plan.rules = loadRules(args.rules, known);
+    const DecodeChoice choice = combineDecodeChoice(plan.rules, args.protos, args.maps, args.opts);
+    plan.requests = buildRequests(choice.protos, choice.maps, choice.opts);
+    plan.open.rate_hz = args.rate_hz > 0 ? args.rate_hz : plan.rules.decode.rate_hz;
+    plan.open.thresholds = args.thresholds;
+    plan.open.hysteresis = args.hysteresis;
+    plan.open.read_ahead = args.threads > 1;
+    return plan;
+}
+
 int runVerify(const DecodeArgs& args) {
     try {
-        loadPlugins();  // every one: the rules may name any decoder
-        std::vector<std::string> known;
-        for (const auto* f : Registry::instance().all())
-            known.push_back(f->info().id);
-        const Rules rules = loadRules(args.rules, known);
-        const DecodeChoice choice = combineDecodeChoice(rules, args.protos, args.maps, args.opts);
-        const auto requests = buildRequests(choice.protos, choice.maps, choice.opts);
+        const VerifyPlan plan = planVerify(args);
+        const Rules& rules = plan.rules;
         if (args.captures.empty()) throw InputError("decode verify: no capture given");
         if (!args.junit.empty()) {
             refuseOutputOnCapture("--junit", args.junit, args.captures);
             checkWritable(args.junit);  // before a long batch, not after
         }
 
-        OpenOptions open;
-        open.rate_hz = args.rate_hz > 0 ? args.rate_hz : rules.decode.rate_hz;
-        open.read_ahead = args.threads > 1;
+        OpenOptions open = plan.open;
         open.stop = interruptionFlag();
         BatchOptions batch;
         batch.jobs = args.jobs;
         batch.progress = ::isatty(STDERR_FILENO) && args.captures.size() > 1;
         std::size_t printed = 0;
         const auto verdicts = verifyCaptures(
-            args.captures, rules, requests, open, batch, [&](const CaptureVerdict& v) {
+            args.captures, rules, plan.requests, open, batch, [&](const CaptureVerdict& v) {
                 if (interrupted()) return;  // what follows was cut short
                 std::fputs((verdictLine(v) + "\n").c_str(), stdout);
                 std::fflush(stdout);

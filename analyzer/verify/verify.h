@@ -2,9 +2,19 @@
 // `decode verify CAPTURE... --rules FILE [--junit FILE] [--jobs N]`: checks every
 // capture against rules; exit 0 all pass, 1 any fails, 2 bad input.
 #include "app/decode_args.h"
+#include "rules.h"
 
 namespace busdecode {
 
 int runVerify(const DecodeArgs& args);
+
+// What a verify run decodes with: the rules, the decoders they and the arguments choose,
+// and how captures are opened. Throws InputError (bad rules, decoder, option).
+struct VerifyPlan {
+    Rules rules;
+    std::vector<DecoderRequest> requests;
+    OpenOptions open;
+};
+VerifyPlan planVerify(const DecodeArgs& args);
 
 }  // namespace busdecode

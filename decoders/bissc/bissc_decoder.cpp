@@ -25,7 +25,8 @@ constexpr double kMinQuietNs = 20000.0;
 }  // namespace
 
 BisscDecoder::BisscDecoder(const Options& options)
-    : s_(BisscSettings::from(options)),
+    : FastDecoder("bissc"),
+      s_(BisscSettings::from(options)),
       crc_(BitCrc::fromFullPoly(s_.crc_poly, s_.crc_init, s_.crc_inverted), s_.bits + 2),
       control_([this](Event&& e) { emit(std::move(e)); }) {}
 
@@ -183,8 +184,8 @@ void BisscDecoder::edges(const Edge* first, const Edge* last, const int* role_of
             // (a decoder started for each piece of a file, piece_speculation.h, would
             // otherwise clear and fault in a block's worth, 128 KiB, each).
             const Edge* end = last - first > kMaxRun ? first + kMaxRun : last;
-            first = context().lines_are_roles ? dataRun<true>(first, end, role_of_line)
-                                              : dataRun<false>(first, end, role_of_line);
+            first = hints().lines_are_roles ? dataRun<true>(first, end, role_of_line)
+                                            : dataRun<false>(first, end, role_of_line);
             if (first == last) break;
             if (first == end) continue;  // the run's limit, not an edge it could not take
         }
@@ -473,38 +474,51 @@ void BisscDecoder::takeSample(int index, bool level, double t) {
 }
 
 void BisscDecoder::closeFrame(Tick end, Tick timeout_end, const char* error, bool feed_control) {
-    EventPtr owned = freshEvent();
+    EventPtr owned =
+        newEvent("frame", f_.start, std::max(timeout_end != kNoTick ? timeout_end : end, f_.start));
     Event& e = *owned;
-    e.proto = "bissc";
-    e.type = "frame";
-    e.start = f_.start;
-    e.end = std::max(timeout_end != kNoTick ? timeout_end : end, f_.start);
     for (const auto& err : f_.errors)
         e.error(err);
     if (error) e.error(error);
+    const FrameOutcome out = checkFrame(e, timeout_end);
+    if (fieldsWanted()) addFrameFields(e, out);  // the summary below is always set
+    setFrameSummary(e, out);
+    countFrame(e, out);
 
-    const bool complete = f_.slot == Slot::Done;
+    ControlBits bits;
+    bits.start = e.start;
+    bits.end = e.end;
+    bits.cdm = out.cdm;
+    bits.cds = out.complete ? f_.cds : -1;
+
+    emit(std::move(owned));
+    sampler_.cancelAll();
+    f_.slot = Slot::Done;
+    idle();
+    if (feed_control) control_.push(bits);
+}
+
+BisscDecoder::FrameOutcome BisscDecoder::checkFrame(Event& e, Tick timeout_end) {
+    FrameOutcome out;
+    out.complete = f_.slot == Slot::Done;
     const int pos_bits = std::min(s_.bits, s_.st_bits + s_.mt_bits);
-    std::uint64_t pos = 0;
-    bool crc_good = true;
-    if (complete) {
-        pos = lowBits(f_.data, pos_bits);
+    if (out.complete) {
+        out.pos = lowBits(f_.data, pos_bits);
         if (s_.crc_bits > 0) {
             // The message: the data bits, then nE and nW (66 bits at most).
             const std::uint64_t low =
                 (f_.data << 2) | std::uint64_t((f_.ne & 1) << 1) | std::uint64_t(f_.nw & 1);
-            crc_good = crc_.of(low, f_.data >> 62) == f_.crc_rx;
-            if (!crc_good) e.error("crc");
+            out.crc_good = crc_.of(low, f_.data >> 62) == f_.crc_rx;
+            if (!out.crc_good) e.error("crc");
         }
         if (f_.ne == 0) e.error("error_bit");
         if (f_.nw == 0) e.error("warning_bit");
     }
-    const bool timed_out = timeout_end != kNoTick && complete;
-    const int cdm = timed_out ? (f_.ma_at_timeout_end ? 0 : 1) : -1;  // MA low: CDM = 1
-    std::int64_t timeout_ns = 0;
-    if (timed_out) {
-        timeout_ns = tb().toNs(timeout_end - f_.rises.back());
-        if (s_.timeout_min_ns > 0 && double(timeout_ns) < s_.timeout_min_ns)
+    out.timed_out = timeout_end != kNoTick && out.complete;
+    out.cdm = out.timed_out ? (f_.ma_at_timeout_end ? 0 : 1) : -1;  // MA low: CDM = 1
+    if (out.timed_out) {
+        out.timeout_ns = tb().toNs(timeout_end - f_.rises.back());
+        if (s_.timeout_min_ns > 0 && double(out.timeout_ns) < s_.timeout_min_ns)
             e.error("timeout_short");
         // The slave's timeout (with the line delay), learnt from a frame that ran to it,
         // bounds the clock pauses later frames can have (quietLimit()); never below two
@@ -515,90 +529,83 @@ void BisscDecoder::closeFrame(Tick end, Tick timeout_end, const char* error, boo
             updateQuietTicks();
         }
     }
-    const double period = meanPeriod();
-    const bool clocked = f_.rises.size() >= 2 && period > 0;
-    if (clocked) last_period_ = period;
+    out.period = meanPeriod();
+    out.clocked = f_.rises.size() >= 2 && out.period > 0;
+    if (out.clocked) last_period_ = out.period;
     if (f_.ack != kNoTick) last_delay_ = f_.delay;
-    const bool acked = f_.ack != kNoTick;
-    const std::int64_t delay_ns = acked ? std::llround(tb().toNsF(f_.delay)) : 0;
+    out.acked = f_.ack != kNoTick;
+    out.delay_ns = out.acked ? std::llround(tb().toNsF(f_.delay)) : 0;
+    return out;
+}
 
-    if (fieldsWanted()) {  // the summary below is always set
-        e.fields.reserve(20);
-        // Fields in place, Null where the frame did not get that far (one frame every few
-        // microseconds of capture: no temporaries).
-        auto add = [&e](std::string_view key, bool known, auto v) {
-            if (known)
-                e.add(key, v);
-            else
-                e.add(key, Null{});
-        };
-        add("position", complete, pos);
-        add("st", complete, lowBits(pos, s_.st_bits));
-        add("mt", complete,
-            s_.mt_bits > 0 ? lowBits(pos >> s_.st_bits, s_.mt_bits) : std::uint64_t(0));
-        add("nE", complete, std::int64_t(f_.ne));
-        add("nW", complete, std::int64_t(f_.nw));
-        add("crc_rx", complete && s_.crc_bits > 0, std::int64_t(f_.crc_rx));
-        add("crc_ok", complete && s_.crc_bits > 0, crc_good);
-        add("cds", f_.cds >= 0, std::int64_t(f_.cds));
-        add("cdm", timed_out, std::int64_t(cdm));
-        add("line_delay_ns", acked, delay_ns);
-        add("proc_cycles", f_.start_index >= 0, std::int64_t(f_.proc_cycles));
-        add("ack_delay_ns", acked,
-            acked ? std::int64_t(std::llround(tb().toNsF(f_.ack_delay))) : std::int64_t(0));
-        add("clock_hz", clocked,
-            clocked ? std::round(1.0 / (period * tb().secondsPerTick())) : 0.0);  // whole Hz
-        add("timeout_ns", timed_out, timeout_ns);
-        add("extra_clocks", f_.stop_index >= 0,
-            std::int64_t(f_.rises.size()) - 1 - std::int64_t(f_.stop_index));
-        e.add("clocks", std::int64_t(f_.rises.size()));
-        e.add("bits", std::int64_t(s_.bits));
-        e.add("crc_bits", std::int64_t(s_.crc_bits));
-        e.add("hold_cdm", f_.from_hold);
-        e.add("retriggered", f_.retriggered);
-    }
+void BisscDecoder::addFrameFields(Event& e, const FrameOutcome& out) const {
+    e.fields.reserve(20);
+    // Fields in place, Null where the frame did not get that far (one frame every few
+    // microseconds of capture: no temporaries).
+    auto add = [&e](std::string_view key, bool known, auto v) {
+        if (known)
+            e.add(key, v);
+        else
+            e.add(key, Null{});
+    };
+    const bool complete = out.complete, acked = out.acked, clocked = out.clocked;
+    add("position", complete, out.pos);
+    add("st", complete, lowBits(out.pos, s_.st_bits));
+    add("mt", complete,
+        s_.mt_bits > 0 ? lowBits(out.pos >> s_.st_bits, s_.mt_bits) : std::uint64_t(0));
+    add("nE", complete, std::int64_t(f_.ne));
+    add("nW", complete, std::int64_t(f_.nw));
+    add("crc_rx", complete && s_.crc_bits > 0, std::int64_t(f_.crc_rx));
+    add("crc_ok", complete && s_.crc_bits > 0, out.crc_good);
+    add("cds", f_.cds >= 0, std::int64_t(f_.cds));
+    add("cdm", out.timed_out, std::int64_t(out.cdm));
+    add("line_delay_ns", acked, out.delay_ns);
+    add("proc_cycles", f_.start_index >= 0, std::int64_t(f_.proc_cycles));
+    add("ack_delay_ns", acked,
+        acked ? std::int64_t(std::llround(tb().toNsF(f_.ack_delay))) : std::int64_t(0));
+    add("clock_hz", clocked,
+        clocked ? std::round(1.0 / (out.period * tb().secondsPerTick())) : 0.0);  // whole Hz
+    add("timeout_ns", out.timed_out, out.timeout_ns);
+    add("extra_clocks", f_.stop_index >= 0,
+        std::int64_t(f_.rises.size()) - 1 - std::int64_t(f_.stop_index));
+    e.add("clocks", std::int64_t(f_.rises.size()));
+    e.add("bits", std::int64_t(s_.bits));
+    e.add("crc_bits", std::int64_t(s_.crc_bits));
+    e.add("hold_cdm", f_.from_hold);
+    e.add("retriggered", f_.retriggered);
+}
 
+void BisscDecoder::setFrameSummary(Event& e, const FrameOutcome& out) const {
     // "pos={} (0x{:X}) nE={} nW={} crc=0x{:02X} {} cds={} cdm={} delay={}ns busy={}",
     // at most about 180 characters.
     ShortLine text;
-    if (complete) {
-        text.text("pos=").dec(pos).text(" (0x").hex(pos, 1).text(") nE=").dec(f_.ne);
+    if (out.complete) {
+        text.text("pos=").dec(out.pos).text(" (0x").hex(out.pos, 1).text(") nE=").dec(f_.ne);
         text.text(" nW=").dec(f_.nw).text(" crc=0x").hex(f_.crc_rx, 2);
-        text.text(crc_good ? " ok cds=" : " bad cds=").dec(f_.cds).text(" cdm=");
-        if (cdm < 0)
+        text.text(out.crc_good ? " ok cds=" : " bad cds=").dec(f_.cds).text(" cdm=");
+        if (out.cdm < 0)
             text.text("?");
         else
-            text.dec(cdm);
+            text.dec(out.cdm);
     } else {
         text.text("incomplete frame");
     }
-    if (acked) text.text(" delay=").dec(delay_ns).text("ns");
+    if (out.acked) text.text(" delay=").dec(out.delay_ns).text("ns");
     if (f_.proc_cycles > 0) text.text(" busy=").dec(f_.proc_cycles);
     e.summary.assign(text.view());
+}
 
+void BisscDecoder::countFrame(const Event& e, const FrameOutcome& out) {
     ++frames_;
-    if (acked) {
-        ++answered_frames_;
-        const auto benign = [](const std::string& err) {
-            return err == "error_bit" || err == "warning_bit" || err == "timeout_short" ||
-                   err == "glitch";
-        };
-        if (complete && s_.crc_bits > 0 && crc_good &&
-            std::all_of(e.errors.begin(), e.errors.end(), benign))
-            ++clean_frames_;
-    }
-
-    ControlBits bits;
-    bits.start = e.start;
-    bits.end = e.end;
-    bits.cdm = cdm;
-    bits.cds = complete ? f_.cds : -1;
-
-    emit(std::move(owned));
-    sampler_.cancelAll();
-    f_.slot = Slot::Done;
-    idle();
-    if (feed_control) control_.push(bits);
+    if (!out.acked) return;
+    ++answered_frames_;
+    const auto benign = [](const std::string& err) {
+        return err == "error_bit" || err == "warning_bit" || err == "timeout_short" ||
+               err == "glitch";
+    };
+    if (out.complete && s_.crc_bits > 0 && out.crc_good &&
+        std::all_of(e.errors.begin(), e.errors.end(), benign))
+        ++clean_frames_;
 }
 
 std::vector<std::string> BisscDecoder::advice() const {

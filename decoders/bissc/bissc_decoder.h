@@ -18,15 +18,16 @@
 
 #include "bissc_control.h"
 #include "bissc_options.h"
+#include "core/block_decoding.h"
 #include "core/crc.h"
-#include "core/decoder.h"
 #include "core/line_sampler.h"
 #include "core/registry.h"
+#include "core/splicing.h"
 #include "rise_list.h"
 
 namespace busdecode {
 
-class BisscDecoder : public Decoder {
+class BisscDecoder : public FastDecoder, public SpliceableDecoder {
 public:
     enum Role { kMa = 0, kSl = 1 };
 
@@ -53,7 +54,6 @@ public:
     // Splice points (core/piece_speculation.h): at a frame's first clock edge (no rise
     // yet) or idle, with no sample waiting and no control access open; every field
     // compared but the running totals (bissc_splice.cpp).
-    bool splices() const override { return true; }
     bool spliceState(SpliceState& out) const override;
     void addCounts(const std::vector<std::uint64_t>& delta) override;
     // Outside a control access, with the preamble of CDM zeros seen: what every capture
@@ -241,7 +241,7 @@ private:
     template <class DataState>
     [[gnu::always_inline]] inline bool takeDataEdge(DataState& s, Tick t, unsigned key);
     // takeDataEdge()'s key: role * 2 + level, the low byte of an Edge whose line is its
-    // role (DecoderContext::lines_are_roles); beyond kSl * 2 + 1 for any other role.
+    // role (FastPathHints::lines_are_roles); beyond kSl * 2 + 1 for any other role.
     static unsigned edgeKey(int role, bool level) { return unsigned(role) * 2u + unsigned(level); }
     template <bool kLevel, class DataState>
     [[gnu::always_inline]] inline bool takeMaEdge(DataState& s, Tick t);
@@ -262,7 +262,7 @@ private:
     }
     // Takes the edges from `first` on through takeDataEdge(), the state in locals;
     // returns the first edge it did not take. kLinesAreRoles: the role is the edge's line
-    // (DecoderContext::lines_are_roles), not looked up.
+    // (FastPathHints::lines_are_roles), not looked up.
     // Out of line, as it was before it became a template: the function perf names, and
     // the code the micro-benchmarks measure.
     static constexpr std::ptrdiff_t kMaxRun = 1024;  // edges a run takes at most (edges())
@@ -391,6 +391,20 @@ private:
     // Emits the frame in progress. timeout_end = the SL rising edge ending the slave's
     // timeout, or kNoTick; feed_control passes its CDM/CDS bits on to the reassembler.
     void closeFrame(Tick end, Tick timeout_end, const char* error, bool feed_control);
+    // closeFrame()'s steps: what the frame came to (its faults added to `e`), its fields,
+    // its summary, and the running totals.
+    struct FrameOutcome {
+        bool complete = false, crc_good = true, timed_out = false, acked = false;
+        bool clocked = false;
+        std::uint64_t pos = 0;
+        int cdm = -1;
+        std::int64_t timeout_ns = 0, delay_ns = 0;
+        double period = 0;
+    };
+    FrameOutcome checkFrame(Event& e, Tick timeout_end);
+    void addFrameFields(Event& e, const FrameOutcome& out) const;
+    void setFrameSummary(Event& e, const FrameOutcome& out) const;
+    void countFrame(const Event& e, const FrameOutcome& out);
     void addError(const std::string& e);
     // Closes a frame whose clock went quiet. Called on every edge: the inline part only
     // rules out the usual case (clock running, well within kMinQuietNs and, before the

@@ -122,7 +122,7 @@ BisscWidthFinder::Scores BisscWidthFinder::score(Tick end) const {
         // clean frames itself.
         DecoderContext ctx = ctx_;
         ctx.sink = nullptr;
-        ctx.fields_wanted = false;
+        candidate->setHints({false, false});
         candidate->start(ctx);
         replay(*candidate, held_);
         // Mid-capture, only the frames that ended among the held edges count (the one in
@@ -151,6 +151,7 @@ void BisscWidthFinder::decide(int best) {
         width_ = kMaxBits;
         decoder_ = makeDecoder(width_);  // checked in the constructor
     }
+    decoder_->setHints(hints());
     decoder_->start(ctx_);
     replay(*decoder_, held_);
     if (last_advance_ != kNoTick && (held_.empty() || last_advance_ > held_.back().t))

@@ -18,14 +18,14 @@
 #include <string>
 #include <vector>
 
-#include "core/decoder.h"
+#include "core/block_decoding.h"
 #include "core/options.h"
 
 namespace busdecode {
 
 class BisscDecoder;
 
-class BisscWidthFinder : public Decoder {
+class BisscWidthFinder : public FastDecoder {
 public:
     static constexpr std::size_t kLearnEdges = 20000;  // about 200 frames of 26 bits
     static constexpr double kLearnSeconds = 0.5;       // bounds --follow's wait

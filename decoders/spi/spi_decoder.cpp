@@ -16,7 +16,8 @@
 namespace busdecode {
 
 SpiDecoder::SpiDecoder(const Options& o)
-    : cpol_(int(o.integer("cpol"))),
+    : FastDecoder("spi"),
+      cpol_(int(o.integer("cpol"))),
       cpha_(int(o.integer("cpha"))),
       bits_(int(o.integer("bits"))),
       lsb_first_(o.flag("lsb_first")),
@@ -54,7 +55,7 @@ void SpiDecoder::edge(Tick t, int role, bool level) {
 // miso change, and only the sclk edges to the sampling level do anything but keep the
 // levels. Sixty-four edges at a time become bit masks (bit i for edge i): which line
 // each is on, its level, and whether the next edge is later (the end of its tick group).
-// Edges never repeat their line's level (Decoder::edges), so a line's level after edge i
+// Edges never repeat their line's level (FastDecoder::edges), so a line's level after edge i
 // is its level before XOR the parity of its edges up to i, for all 64 edges in a few
 // shifts. Then only the sampling clock edges are visited. Everything else (a cs edge, an
 // edge of another role, a window the masks cannot describe) goes through step(), and
@@ -323,12 +324,8 @@ void SpiDecoder::emitWord(Tick end, bool short_frame) {
     ++words_;
     if (short_frame)
         short_bits_ = ++short_words_ == 1 || short_bits_ == word_.count ? word_.count : -1;
-    EventPtr owned = freshEvent();
+    EventPtr owned = newEvent("transfer", word_.start, std::max(end, word_.start));
     Event& e = *owned;
-    e.proto = "spi";
-    e.type = "transfer";
-    e.start = word_.start;
-    e.end = std::max(end, word_.start);
     const int n = word_.count;
     const int digits = (n + 3) / 4;
     ShortLine text;  // at most 64 bits: "MOSI 0x" + 16 digits, twice, and the short note

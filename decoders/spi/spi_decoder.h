@@ -14,12 +14,12 @@
 // glitch.
 
 #include "core/bit_word.h"
-#include "core/decoder.h"
+#include "core/block_decoding.h"
 #include "spi_info.h"
 
 namespace busdecode {
 
-class SpiDecoder : public Decoder {
+class SpiDecoder : public FastDecoder {
 public:
     explicit SpiDecoder(const Options& options);
 

@@ -18,26 +18,15 @@ std::vector<RoleSpec> spiRoleSpecs() {
 }
 
 std::vector<OptionSpec> spiOptionSpecs() {
-    using K = OptionSpec::Kind;
-    std::vector<OptionSpec> o(5);
-    o[0] = {"cpol", K::Int, "1", {}, 0, 1, "clock level when idle (0 or 1)"};
-    o[1] = {"cpha",
-            K::Int,
-            "1",
-            {},
-            0,
-            1,
-            "0: sample on the leading clock edge, 1: sample on the trailing edge"};
-    o[2] = {"bits", K::Int, "32", {}, 1, 64, "bits per word"};
-    o[3] = {"lsb_first", K::Bool, "0", {}, -1e300, 1e300, "0: MSB first, 1: LSB first"};
-    o[4] = {"cs_polarity",
-            K::Choice,
-            "active-low",
-            {"active-low", "active-high"},
-            -1e300,
-            1e300,
-            "level of cs while a transfer is selected"};
-    return o;
+    return {
+        intOption("cpol", "1", 0, 1, "clock level when idle (0 or 1)"),
+        intOption("cpha", "1", 0, 1,
+                  "0: sample on the leading clock edge, 1: sample on the trailing edge"),
+        intOption("bits", "32", 1, 64, "bits per word"),
+        boolOption("lsb_first", "0", "0: MSB first, 1: LSB first"),
+        choiceOption("cs_polarity", {"active-low", "active-high"},
+                     "level of cs while a transfer is selected"),
+    };
 }
 
 DecoderInfo spiInfo() {

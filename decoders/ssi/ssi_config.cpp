@@ -22,13 +22,10 @@ DecoderInfo makeInfo() {
         {"clk", true, {"clock", "sclk", "ma", "cl"}, "clock from the master (idle high)"},
         {"data", true, {"dta", "do", "sl", "slo", "d"}, "data from the encoder (idle high)"},
     };
-    OptionSpec status;
-    status.key = "status_bits";
-    status.kind = OptionSpec::Kind::String;
-    status.default_value = "";
-    status.help =
+    const OptionSpec status = textOption(
+        "status_bits", "",
         "names for bits above the position field, comma separated, lowest first (empty name "
-        "skips a bit); NAME@N names raw bit N, e.g. out_of_range@23,low_quality@22";
+        "skips a bit); NAME@N names raw bit N, e.g. out_of_range@23,low_quality@22");
     d.options = {
         intOption("bits", "25", 1, 64, "bits per word (the lead bit included)"),
         intOption("st_bits", "16", 0, 64, "single-turn field width (LSB aligned)"),

@@ -32,7 +32,7 @@ std::int64_t median(std::vector<std::int64_t> v) {
 
 SsiDecoder::SsiDecoder(const Options& o) : SsiDecoder(SsiConfig::fromOptions(o)) {}
 
-SsiDecoder::SsiDecoder(SsiConfig cfg) : cfg_(std::move(cfg)) {}
+SsiDecoder::SsiDecoder(SsiConfig cfg) : BlockDecoder("ssi"), cfg_(std::move(cfg)) {}
 
 void SsiDecoder::start(const DecoderContext& ctx) {
     Decoder::start(ctx);
@@ -121,38 +121,61 @@ void SsiDecoder::glitch(Tick, int) {
 }
 
 void SsiDecoder::close(bool capture_end) {
-    const bool rising = cfg_.sample_rising;
-    const std::vector<Tick>& S = rising ? b_.rises : b_.falls;  // sampling edges
     const double T = periodTicks();
     const Tick last = lastClock();
+    std::vector<std::uint8_t> data_glitch(b_.data.size(), 0);
+    const int glitches = countGlitches(T, data_glitch);
+    const Timing timing = measureTiming(T, data_glitch);
+    const SsiWord w = assembleWord(sampleBits(timing.delay), cfg_);
+    pending_ = newEvent("frame", b_.start, last);
+    fillFrame(*pending_, w, T, timing.measured, glitches);
+    if (timing.late) pending_->error("late_data");
+    if (timing.sample_late) pending_->error("sample_late");
+    const double clock_hz = T > 0 ? tb().sampleRateHz() / T : 0.0;
+    if (T > 0 && (clock_hz < cfg_.clock_min_hz || clock_hz > cfg_.clock_max_hz))
+        pending_->error("clock_range");
+    if (b_.not_ready) pending_->error("not_ready");
+    if (b_.overlong) pending_->error("overlong");
+    // The last clock edge of a complete word shifts out a separator 0 (without separators
+    // it starts the next repeat): only then must data be low and tm measurable.
+    pending_checks_tm_ = !w.short_frame && w.partial_bits == 0 && !b_.overlong && cfg_.ring_gap > 0;
+    prev_valid_ = !w.short_frame;
+    if (!w.short_frame) prev_raw_ = w.raw;
+    awaitTm(last, capture_end);
+}
 
+int SsiDecoder::countGlitches(double T, std::vector<std::uint8_t>& data_glitch) const {
     // Pulses far shorter than their kind are glitches (when no glitch_ns filter removed
     // them first): a clock phase under a quarter of the median phase of its level (clock
     // duty cycles are far from 50 % on some devices), a data pulse under a quarter period.
     // Glitch data edges carry no bit and say nothing about delay.
     int glitches = b_.filtered_glitches;
-    std::vector<std::uint8_t> data_glitch(b_.data.size(), 0);
-    if (T > 0) {
-        std::vector<std::int64_t> lows, highs;
-        for (std::size_t i = 0; i < b_.rises.size(); ++i) {
-            lows.push_back(b_.rises[i] - b_.falls[i]);
-            if (i + 1 < b_.falls.size()) highs.push_back(b_.falls[i + 1] - b_.rises[i]);
-        }
-        for (const auto* phases : {&lows, &highs}) {
-            if (phases->empty()) continue;
-            const double shortest = double(median(*phases)) / 4;
-            for (auto p : *phases)
-                if (double(p) < shortest) ++glitches;
-        }
-        const double shortest = T / 4;
-        for (std::size_t i = 1; i < b_.data.size(); ++i) {
-            if (double(b_.data[i].t - b_.data[i - 1].t) < shortest) {
-                if (!data_glitch[i - 1]) ++glitches;
-                data_glitch[i - 1] = data_glitch[i] = 1;
-            }
+    if (T <= 0) return glitches;
+    std::vector<std::int64_t> lows, highs;
+    for (std::size_t i = 0; i < b_.rises.size(); ++i) {
+        lows.push_back(b_.rises[i] - b_.falls[i]);
+        if (i + 1 < b_.falls.size()) highs.push_back(b_.falls[i + 1] - b_.rises[i]);
+    }
+    for (const auto* phases : {&lows, &highs}) {
+        if (phases->empty()) continue;
+        const double shortest = double(median(*phases)) / 4;
+        for (auto p : *phases)
+            if (double(p) < shortest) ++glitches;
+    }
+    const double shortest = T / 4;
+    for (std::size_t i = 1; i < b_.data.size(); ++i) {
+        if (double(b_.data[i].t - b_.data[i - 1].t) < shortest) {
+            if (!data_glitch[i - 1]) ++glitches;
+            data_glitch[i - 1] = data_glitch[i] = 1;
         }
     }
+    return glitches;
+}
 
+SsiDecoder::Timing SsiDecoder::measureTiming(double T,
+                                             const std::vector<std::uint8_t>& data_glitch) const {
+    const bool rising = cfg_.sample_rising;
+    const std::vector<Tick>& S = rising ? b_.rises : b_.falls;  // sampling edges
     // Data delay: each data edge measured from the latest rising edge (the encoder shifts
     // on rising edges; a bit launched by rising edge k is sampled by sampling edge k+1, the
     // first one after it, in both sampling modes).
@@ -170,8 +193,9 @@ void SsiDecoder::close(bool capture_end) {
         offsets.push_back(off);
         launch_of[i] = k;
     }
-    const std::int64_t measured = offsets.empty() ? 0 : median(offsets);
-    double delay = tb().fromNs(cfg_.delay_ns);
+    Timing out;
+    out.measured = offsets.empty() ? 0 : median(offsets);
+    out.delay = tb().fromNs(cfg_.delay_ns);
     if (cfg_.delay_auto) {
         // Sample in the middle of each bit's window [launch + delay, next launch + delay).
         double to_sample = 0;
@@ -179,22 +203,24 @@ void SsiDecoder::close(bool capture_end) {
         for (std::size_t k = 0; k + 1 < S.size() && k < L.size(); ++k, ++n)
             to_sample += double(S[k + 1] - L[k]);
         to_sample = n > 0 ? to_sample / n : (rising ? T : T / 2);
-        delay = double(measured) + T / 2 - to_sample;
+        out.delay = double(out.measured) + T / 2 - to_sample;
     }
-
     // Each bit must be sampled inside its window. A data edge at or after the sample
     // that should have seen it: the data came too late (`late_data`). A data edge at or
     // before the sample of the bit it ends: the sampling offset is too late
     // (`sample_late`). Either way a bit was misread.
-    bool late = false, sample_late = false;
     for (std::size_t i = 0; i < b_.data.size(); ++i) {
         if (launch_of[i] < 0) continue;
         const auto k = std::size_t(launch_of[i]);
         const double e = double(b_.data[i].t);
-        if (k + 1 < S.size() && e >= double(S[k + 1]) + delay) late = true;
-        if (k < S.size() && e <= double(S[k]) + delay) sample_late = true;
+        if (k + 1 < S.size() && e >= double(S[k + 1]) + out.delay) out.late = true;
+        if (k < S.size() && e <= double(S[k]) + out.delay) out.sample_late = true;
     }
+    return out;
+}
 
+std::vector<std::uint8_t> SsiDecoder::sampleBits(double delay) const {
+    const std::vector<Tick>& S = cfg_.sample_rising ? b_.rises : b_.falls;
     LineSampler sampler;
     sampler.reset(b_.data_at_start);
     for (std::size_t i = 0; i < S.size(); ++i)
@@ -214,16 +240,13 @@ void SsiDecoder::close(bool capture_end) {
         first = false;
         samples.push_back(bit);
     }
+    return samples;
+}
 
-    const SsiWord w = assembleWord(samples, cfg_);
+void SsiDecoder::fillFrame(Event& e, const SsiWord& w, double T, std::int64_t measured,
+                           int glitches) {
     const SsiFields f = w.short_frame ? SsiFields{} : splitFields(w.raw, cfg_);
-    pending_ = freshEvent();
-    Event& e = *pending_;
     e.fields.reserve(20 + cfg_.status.size());
-    e.proto = "ssi";
-    e.type = "frame";
-    e.start = b_.start;
-    e.end = last;
     e.set("raw", w.raw);
     e.set("bits", std::int64_t(w.bits));
     std::vector<std::int64_t> diff = w.diff_bits;
@@ -269,18 +292,15 @@ void SsiDecoder::close(bool capture_end) {
         }
     }
     e.set("glitches", std::int64_t(glitches));
-
     if (w.short_frame) e.error("short_frame");
     if (!match) e.error("repeat_mismatch");
     if (!w.separator_ok) e.error("ring_separator");
     if (glitches > 0) e.error("glitch");
-    if (late) e.error("late_data");
-    if (sample_late) e.error("sample_late");
-    if (T > 0 && (clock_hz < cfg_.clock_min_hz || clock_hz > cfg_.clock_max_hz))
-        e.error("clock_range");
-    if (b_.not_ready) e.error("not_ready");
-    if (b_.overlong) e.error("overlong");
+    e.summary = frameSummary(w, f, diff, T);
+}
 
+std::string SsiDecoder::frameSummary(const SsiWord& w, const SsiFields& f,
+                                     const std::vector<std::int64_t>& diff, double T) const {
     // Summary text (tm is added when known).
     std::string text;
     if (w.short_frame) {
@@ -296,19 +316,11 @@ void SsiDecoder::close(bool capture_end) {
         if (!diff.empty()) text += fmt::format(" diff_bits={}", fmt::join(diff, ","));
     }
     if (b_.reread) text += " reread";
-    if (T > 0) text += " clk=" + formatHz(clock_hz);
-    e.summary = std::move(text);
-    // The last clock edge of a complete word shifts out a separator 0 (without separators
-    // it starts the next repeat): only then must data be low and tm measurable.
-    pending_checks_tm_ = !w.short_frame && w.partial_bits == 0 && !b_.overlong && cfg_.ring_gap > 0;
+    if (T > 0) text += " clk=" + formatHz(tb().sampleRateHz() / T);
+    return text;
+}
 
-    if (!w.short_frame) {
-        prev_valid_ = true;
-        prev_raw_ = w.raw;
-    } else {
-        prev_valid_ = false;
-    }
-
+void SsiDecoder::awaitTm(Tick last, bool capture_end) {
     // tm: from the last clock edge to data returning high.
     for (const auto& d : b_.data) {
         if (d.t > last && d.level) {
@@ -367,12 +379,8 @@ void SsiDecoder::emitFrame(std::optional<Tick> tm_end, bool deadline_passed) {
 }
 
 void SsiDecoder::emitSummary(Tick end) {
-    EventPtr owned = freshEvent();
+    EventPtr owned = newEvent("summary", end, end);
     Event& e = *owned;
-    e.proto = "ssi";
-    e.type = "summary";
-    e.start = end;
-    e.end = end;
     e.set("frames", frames_);
     Value tmin = Null{}, tmed = Null{}, tmax = Null{};
     if (!tm_values_.empty()) {

@@ -10,12 +10,16 @@
 // capture ends.
 #include <cstdint>
 #include <optional>
+#include <string>
 #include <vector>
 
-#include "core/decoder.h"
+#include "core/block_decoding.h"
 #include "ssi_config.h"
 
 namespace busdecode {
+
+struct SsiWord;
+struct SsiFields;
 
 class SsiDecoder : public BlockDecoder<SsiDecoder> {
 public:
@@ -50,7 +54,23 @@ private:
 
     void startBurst(Tick t);
     void checkTime(Tick now);
+    // A burst is over: its frame made and emitted, or held until tm is known.
     void close(bool capture_end);
+    // close()'s steps.
+    struct Timing {
+        std::int64_t measured = 0;  // median data delay (ticks)
+        double delay = 0;           // sampling offset used (ticks)
+        bool late = false, sample_late = false;
+    };
+    // Glitches in the burst; marks the data edges that are.
+    int countGlitches(double T, std::vector<std::uint8_t>& data_glitch) const;
+    Timing measureTiming(double T, const std::vector<std::uint8_t>& data_glitch) const;
+    std::vector<std::uint8_t> sampleBits(double delay) const;
+    void fillFrame(Event& e, const SsiWord& w, double T, std::int64_t measured, int glitches);
+    std::string frameSummary(const SsiWord& w, const SsiFields& f,
+                             const std::vector<std::int64_t>& diff, double T) const;
+    // tm: the frame emitted now if data rose after the last clock, else held for it.
+    void awaitTm(Tick last, bool capture_end);
     void emitFrame(std::optional<Tick> tm_end, bool deadline_passed);
     double periodTicks() const;
     Tick lastClock() const;

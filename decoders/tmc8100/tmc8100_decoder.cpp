@@ -23,7 +23,8 @@ std::optional<std::uint64_t> wordOf(const Event& e, const char* key) {
 }  // namespace
 
 Tmc8100Decoder::Tmc8100Decoder(const Options& o)
-    : stack_("spi", o, {kSpiCs, kSpiSclk, kSpiMosi, kSpiMiso, -1},
+    : BlockDecoder("tmc8100"),
+      stack_("spi", o, {kSpiCs, kSpiSclk, kSpiMosi, kSpiMiso, -1},
              [this](Event&& e) { onTransfer(std::move(e)); }),
       mode_option_(o.text("mode")) {
     const std::string& enc = o.text("encoder");
@@ -60,11 +61,8 @@ void Tmc8100Decoder::edge(Tick t, int role, bool level) {
         }
         if (!someone_waits && firmware_ == Firmware::App && miso_bound_) {
             // The firmware raises SPI_DATA_AVAILABLE when it queues replies; nothing asked.
-            EventPtr owned = freshEvent();
+            EventPtr owned = newEvent("avail", t, t);
             Event& e = *owned;
-            e.proto = "tmc8100";
-            e.type = "avail";
-            e.start = e.end = t;
             e.set("level", std::int64_t(1));
             e.error("unexpected_avail");
             e.summary = "GPIO6 (SPI_DATA_AVAILABLE) rose with no command waiting for replies";
@@ -130,12 +128,8 @@ void Tmc8100Decoder::onTransfer(Event&& spi) {
         acc_bits_ = 0;
         acc_mosi_ = acc_miso_ = 0;
         // Not a datagram: report what was on MOSI without giving it a meaning.
-        EventPtr owned = freshEvent();
+        EventPtr owned = newEvent("command", spi.start, spi.end);
         Event& e = *owned;
-        e.proto = "tmc8100";
-        e.type = "command";
-        e.start = spi.start;
-        e.end = spi.end;
         e.set("code", mosi && bits >= 8 ? Value(std::int64_t((*mosi >> (bits - 8)) & 0xFF))
                                         : Value(Null{}));
         e.set("name", std::string("unknown"));
@@ -152,12 +146,8 @@ void Tmc8100Decoder::onTransfer(Event&& spi) {
 
 void Tmc8100Decoder::emitReply(ReplyKind kind, std::uint32_t word, const Event& spi,
                                const Waiting* w, std::vector<std::string> errors) {
-    EventPtr owned = freshEvent();
+    EventPtr owned = newEvent("reply", spi.start, spi.end);
     Event& e = *owned;
-    e.proto = "tmc8100";
-    e.type = "reply";
-    e.start = spi.start;
-    e.end = spi.end;
     e.set("tag", std::int64_t(word >> 24));
     e.set("value", std::int64_t(word & 0xFFFFFF));
     const std::string text = describeReply(kind, word, protocol_, e);
@@ -282,12 +272,8 @@ void Tmc8100Decoder::onMosi(std::uint32_t word, const Event& spi) {
 
     const bool boot = firmware_ == Firmware::Bootloader;
     Command c = boot ? bootloaderCommand(word) : appCommand(word, protocol_);
-    EventPtr owned = freshEvent();
+    EventPtr owned = newEvent("command", spi.start, spi.end);
     Event& e = *owned;
-    e.proto = "tmc8100";
-    e.type = "command";
-    e.start = spi.start;
-    e.end = spi.end;
     e.set("code", std::int64_t(code));
     e.set("name", c.name);
     e.set("word", std::uint64_t(word));
@@ -334,12 +320,9 @@ void Tmc8100Decoder::finishFront(bool incomplete) {
 
 void Tmc8100Decoder::complete(Waiting& w, bool incomplete) {
     if (w.cmd.name != "read_encoder") return;
-    EventPtr owned = freshEvent();
+    EventPtr owned =
+        newEvent("encoder_read", w.start, w.last_reply_end == kNoTick ? w.end : w.last_reply_end);
     Event& e = *owned;
-    e.proto = "tmc8100";
-    e.type = "encoder_read";
-    e.start = w.start;
-    e.end = w.last_reply_end == kNoTick ? w.end : w.last_reply_end;
     auto opt = [](const std::optional<std::uint32_t>& v) {
         return v ? Value(std::int64_t(*v)) : Value(Null{});
     };

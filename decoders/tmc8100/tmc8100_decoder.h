@@ -16,7 +16,7 @@
 #include <map>
 #include <optional>
 
-#include "core/decoder.h"
+#include "core/block_decoding.h"
 #include "core/stacked.h"
 #include "tmc8100_datagram.h"
 

@@ -30,7 +30,7 @@ void replyFields(Event& e) {
 
 }  // namespace
 
-TmclDecoder::TmclDecoder(const Options& options) : options_(options) {
+TmclDecoder::TmclDecoder(const Options& options) : BlockDecoder("tmcl"), options_(options) {
     if (options.has("gap_bytes")) gap_bytes_ = options.number("gap_bytes");
     if (options.has("host_address") && !options.isAuto("host_address"))
         host_address_ = int(options.integer("host_address"));
@@ -143,12 +143,8 @@ void TmclDecoder::flushShort(Stream stream) {
     auto& p = partial_[stream];
     if (p.empty()) return;
     const bool reply = stream == kModule || (stream == kBus && pending_.awaiting);
-    EventPtr owned = freshEvent();
+    EventPtr owned = newEvent(reply ? "reply" : "command", p.front().start, p.back().end);
     Event& e = *owned;
-    e.proto = "tmcl";
-    e.type = reply ? "reply" : "command";
-    e.start = p.front().start;
-    e.end = p.back().end;
     reply ? replyFields(e) : commandFields(e);
     std::vector<std::int64_t> bytes;
     for (const auto& b : p)
@@ -209,12 +205,8 @@ void TmclDecoder::onDatagram(Stream stream, const std::vector<ByteIn>& bytes) {
 
 void TmclDecoder::emitCommand(const Datagram& d, Tick start, Tick end, bool fault) {
     const Command c = parseCommand(d);
-    EventPtr owned = freshEvent();
+    EventPtr owned = newEvent("command", start, end);
     Event& e = *owned;
-    e.proto = "tmcl";
-    e.type = "command";
-    e.start = start;
-    e.end = end;
     e.set("address", std::int64_t(c.address));
     e.set("command", std::int64_t(c.command));
     e.set("mnemonic", mnemonicOf(c.command));
@@ -249,12 +241,8 @@ void TmclDecoder::pairWithCommand(Event& e, Tick start, Tick end) {
 
 void TmclDecoder::emitReply(const Datagram& d, Tick start, Tick end, bool fault) {
     const Reply r = parseReply(d);
-    EventPtr owned = freshEvent();
+    EventPtr owned = newEvent("reply", start, end);
     Event& e = *owned;
-    e.proto = "tmcl";
-    e.type = "reply";
-    e.start = start;
-    e.end = end;
     e.set("reply_address", std::int64_t(r.reply_address));
     e.set("module_address", std::int64_t(r.module_address));
     e.set("status", std::int64_t(r.status));
@@ -281,12 +269,8 @@ void TmclDecoder::emitReply(const Datagram& d, Tick start, Tick end, bool fault)
 }
 
 void TmclDecoder::emitVersionReply(const Datagram& d, Tick start, Tick end, bool fault) {
-    EventPtr owned = freshEvent();
+    EventPtr owned = newEvent("reply", start, end);
     Event& e = *owned;
-    e.proto = "tmcl";
-    e.type = "reply";
-    e.start = start;
-    e.end = end;
     replyFields(e);
     e.set("reply_address", std::int64_t(d[0]));
     e.set("status_text", std::string("version string"));

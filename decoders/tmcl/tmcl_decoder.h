@@ -12,7 +12,7 @@
 #include <memory>
 #include <vector>
 
-#include "core/decoder.h"
+#include "core/block_decoding.h"
 #include "core/stacked.h"
 #include "tmcl_datagram.h"
 

@@ -27,7 +27,7 @@ std::string printable(std::uint32_t v) {
 
 }  // namespace
 
-UartDecoder::UartDecoder(const Options& options) {
+UartDecoder::UartDecoder(const Options& options) : BlockDecoder("uart") {
     fmt_ = UartFormat::fromOptions(options);
     auto_baud_ = options.isAuto("baud");
     lines_[kRx].name = "rx";
@@ -66,11 +66,8 @@ void UartDecoder::decideBaud() {
     fmt_.baud = std::clamp(fmt_.baud, 1.0, 1e9);
     bit_ticks_ = tb().fromSeconds(1.0 / fmt_.baud);
     if (measured && !held_.empty()) {
-        EventPtr owned = freshEvent();
+        EventPtr owned = newEvent("baud", held_.front().t, held_.front().t);
         Event& e = *owned;
-        e.proto = "uart";
-        e.type = "baud";
-        e.start = e.end = held_.front().t;
         e.set("baud", fmt_.baud);
         e.set("measured_baud", *measured);
         e.summary = fmt::format("baud rate {:g} (measured {:.1f} from the shortest pulses)",
@@ -203,12 +200,8 @@ void UartDecoder::endFrame(Line& l, bool cut_short) {
     l.in_frame = false;
     ++l.generation;
     l.sampler.cancelAll();
-    EventPtr owned = freshEvent();
+    EventPtr owned = newEvent("byte", l.frame_start, frameEnd(l.frame_start));
     Event& e = *owned;
-    e.proto = "uart";
-    e.type = "byte";
-    e.start = l.frame_start;
-    e.end = frameEnd(l.frame_start);
     if (cut_short) {
         e.set("value", Null{});
         e.set("line", l.name);
@@ -240,12 +233,8 @@ void UartDecoder::endFrame(Line& l, bool cut_short) {
 
 void UartDecoder::emitBreak(Line& l, Tick end) {
     l.in_break = false;
-    EventPtr owned = freshEvent();
+    EventPtr owned = newEvent("break", l.break_start, end);
     Event& e = *owned;
-    e.proto = "uart";
-    e.type = "break";
-    e.start = l.break_start;
-    e.end = end;
     e.set("line", l.name);
     e.set("duration_ns", tb().toNs(end - l.break_start));
     e.summary = fmt::format("{} break ({} bit times)", l.name,

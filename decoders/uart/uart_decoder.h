@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "baud_estimator.h"
-#include "core/decoder.h"
+#include "core/block_decoding.h"
 #include "core/line_sampler.h"
 #include "uart_format.h"
 

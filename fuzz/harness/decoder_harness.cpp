@@ -13,7 +13,7 @@
 // The decoder is also fed the same edges directly three ways, through its general path,
 // through edge() and in blocks through edges(): all must give the same events
 // (checkBlocksMatchEdges). With the flags' top bit, a decoder that can be spliced
-// (Decoder::splices()) also decodes the edges written as a VCD file the same in order and
+// (a SpliceableDecoder) also decodes the edges written as a VCD file the same in order and
 // in pieces of a few dozen bytes, each piece decoded ahead and spliced in (checkPiecesMatchInOrder,
 // core/piece_speculation.h).
 #include <fmt/format.h>
@@ -26,10 +26,11 @@
 #include "byte_stream.h"
 #include "capture/capture_reader.h"
 #include "capture/capture_writer.h"
-#include "core/direct_feed.h"
+#include "support/feed/direct_feed.h"
 #include "core/registry.h"
 #include "core/scratch_dir.h"
 #include "core/session.h"
+#include "core/splicing.h"
 #include "core/waveform.h"
 #include "fuzz_harness.h"
 #include "reader_targets.h"
@@ -163,7 +164,7 @@ struct CheckingSink : OutputSink {
 
 // The decoder fed directly the edges a session would hand it (mapped lines only, each
 // a change of its line's level), three times: one at a time through its general path
-// (Decoder::edgeReference), one at a time through edge(), and through edges() in blocks
+// (FastDecoder::edgeReference), one at a time through edge(), and through edges() in blocks
 // of five and of a session's size. Every event, field for field, and the advice must be
 // the same. BiSS-C takes a frame's data in runs with the frame's state in locals
 // (BisscDecoder::dataRun), SPI 64 edges at a time as bit masks (SpiDecoder::edges): this
@@ -207,7 +208,7 @@ public:
 void checkPiecesMatchInOrder(const DecoderFactory& factory, const Waveform& w,
                              const DecoderRequest& req) {
     try {
-        if (!factory.create(Options::resolve(factory.info(), req.options))->splices()) return;
+        if (!splicingOf(*factory.create(Options::resolve(factory.info(), req.options)))) return;
     } catch (const InputError&) {
         return;  // refused up front, as decodeChecked() found
     }

@@ -9,6 +9,8 @@ if(NOT TARGET busdecode_fuzz_harness)
     ${_h}/rules_harness.cpp ${_h}/vcd_pieces_harness.cpp ${_h}/zip_builder.cpp
     ${_h}/formats_harness.cpp)
   target_include_directories(busdecode_fuzz_harness PUBLIC ${_h} ${CMAKE_SOURCE_DIR}/analyzer)
+  include(${CMAKE_SOURCE_DIR}/tests/support/feed/direct_feed.cmake)
+  target_link_libraries(busdecode_fuzz_harness PUBLIC busdecode_direct_feed)
   target_link_libraries(busdecode_fuzz_harness PUBLIC busdecode_core)
   foreach(_id spi bissc ssi tmc8100 uart tmcl)
     if(TARGET decoder_${_id})

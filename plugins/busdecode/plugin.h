@@ -26,6 +26,8 @@ public:
 // time: Qt then refuses it ("not a busdecode plugin") instead of it crashing. 2.0:
 // Decoder::freshEvent() returns an EventPtr, and EventSink has onOwnedEvent(). 3.0:
 // Decoder has edgeReference(), a virtual before advance() (the later ones moved). 4.0:
-// an Edge (Decoder::edges()) is one 8-byte word with packed fields (core/edge.h).
-#define BUSDECODE_PLUGIN_IID "org.busdecode.DecoderPlugin/4.0"
+// an Edge (Decoder::edges()) is one 8-byte word with packed fields (core/edge.h). 5.0:
+// Decoder is the small interface alone (edges(), edgeReference() and splicing moved to
+// the opt-in FastDecoder and SpliceableDecoder; newEvent() replaces freshEvent()).
+#define BUSDECODE_PLUGIN_IID "org.busdecode.DecoderPlugin/5.0"
 Q_DECLARE_INTERFACE(busdecode::DecoderPlugin, BUSDECODE_PLUGIN_IID)

@@ -15,8 +15,7 @@ class PulsePlugin : public QObject, public busdecode::DecoderPlugin {
 
 public:
     std::vector<std::shared_ptr<const busdecode::DecoderFactory>> factories() const override {
-        return {
-            std::make_shared<busdecode::SimpleFactory<pulse::PulseDecoder>>(pulse::pulseInfo())};
+        return {pulse::makePulseFactory()};
     }
 };
 

@@ -12,7 +12,7 @@
 #include "bissc_generator.h"
 #include "bissc_random_capture.h"
 #include "bissc_test_util.h"
-#include "core/direct_feed.h"
+#include "support/feed/direct_feed.h"
 
 namespace busdecode::test {
 namespace {
@@ -29,7 +29,7 @@ std::vector<std::string> decode(const Waveform& w, Feed feed, std::size_t block 
 }
 
 // `w` with its two lines swapped: SL on line 0, MA on line 1 (bound as {1, 0}), so that
-// a line is not its role and the runs look the role up (DecoderContext::lines_are_roles).
+// a line is not its role and the runs look the role up (FastPathHints::lines_are_roles).
 Waveform swapLines(Waveform w) {
     std::swap(w.names[0], w.names[1]);
     std::swap(w.initial[0], w.initial[1]);

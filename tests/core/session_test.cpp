@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "capture/capture_reader.h"
+#include "core/block_decoding.h"
 #include "core/event_window.h"
 #include "core/registry.h"
 #include "core/session.h"
@@ -16,8 +17,9 @@ using namespace busdecode;
 namespace {
 
 // Emits one event per rising edge on `in`, spanning from the previous falling edge;
-// optionally asks to be correlated with the other decoder's events.
-class RiseDecoder : public Decoder {
+// optionally asks to be correlated with the other decoder's events. A BlockDecoder, to
+// see the hints a fast decoder is given (FastPathHints::fields_wanted).
+class RiseDecoder : public BlockDecoder<RiseDecoder> {
 public:
     explicit RiseDecoder(const Options& o) : tag_(o.text("tag")), correlate_(o.flag("correlate")) {}
     void start(const DecoderContext& ctx) override {
@@ -104,12 +106,12 @@ public:
     explicit TraceDecoder(const Options&) {}
     void start(const DecoderContext& ctx) override {
         Decoder::start(ctx);
-        lines_are_roles.push_back(ctx.lines_are_roles);
+        lines_are_roles.push_back(hints().lines_are_roles);
     }
     void edge(Tick t, int role, bool level) override { trace.push_back({t, role, level}); }
     void finish(Tick) override {}
     static std::vector<Seen> trace;
-    static std::vector<bool> lines_are_roles;  // DecoderContext::lines_are_roles, per start()
+    static std::vector<bool> lines_are_roles;  // FastPathHints::lines_are_roles, per start()
 };
 std::vector<TraceDecoder::Seen> TraceDecoder::trace;
 std::vector<bool> TraceDecoder::lines_are_roles;
@@ -127,19 +129,16 @@ struct RegisterTrace {
     }
 } register_trace;
 
-// Fills the events it emits from freshEvent(), alternately with and without a field,
+// Fills the events it emits from newEvent(), alternately with and without a field,
 // an error and a summary: the session recycles output events, and nothing of an odd
 // event may reach the even one filled in its storage.
 class AlternateDecoder : public Decoder {
 public:
-    explicit AlternateDecoder(const Options&) {}
+    explicit AlternateDecoder(const Options&) : Decoder("alternate") {}
     void edge(Tick t, int, bool level) override {
         if (!level) return;
-        EventPtr owned = freshEvent();
+        EventPtr owned = newEvent("rise", t, t);
         Event& e = *owned;
-        e.proto = "alternate";
-        e.type = "rise";
-        e.start = e.end = t;
         if (++count_ % 2 == 1) {
             e.add("odd", std::int64_t(count_));
             e.error("odd");
@@ -304,7 +303,6 @@ TEST(Session, AStackedDecodersLowerOneAlwaysAddsFields) {
     LowerStack stack("rise", Options{}, {0}, [](Event&&) {});
     DecoderContext upper;
     upper.initial_levels = {1};
-    upper.fields_wanted = false;
     RiseDecoder::fields_wanted.clear();
     stack.start(upper);
     EXPECT_EQ(RiseDecoder::fields_wanted, std::vector<bool>{true});

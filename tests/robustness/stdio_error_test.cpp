@@ -30,6 +30,15 @@ TEST(StdioError, InputErrorWithStderrFullIsExit2) {
               2);
 }
 
+TEST(StdioError, HintOnFullOrClosedStderrIsExit2) {
+    // With --format jsonl the decoder's advice goes to stderr: lost, it is no success.
+    const std::string capture = shellQuote(sourceDir() + "/captures/bissc_errors.vcd");
+    const std::string run = decode() + " " + capture + " --proto bissc --format jsonl >/dev/null";
+    ASSERT_EQ(runCommand(run).status, 0);
+    EXPECT_EQ(runCommand(run + " 2>/dev/full").status, 2);
+    EXPECT_EQ(runCommand(run + " 2>&-").status, 2);
+}
+
 TEST(StdioError, FullStdoutIsExit2) {
     const std::string capture = shellQuote(spiCapture("small.vcd", 20, 10'000));
     for (const std::string format : {"text", "jsonl"}) {
@@ -42,9 +51,11 @@ TEST(StdioError, FullStdoutIsExit2) {
                                    shellQuote(spiRules()) + " >/dev/full");
     EXPECT_EQ(v.status, 2);
     EXPECT_EQ(v.err, "decode verify: standard output: cannot write: No space left on device\n");
-    const RunResult l = runCommand(decode() + " --list >/dev/full");
-    EXPECT_EQ(l.status, 2);
-    EXPECT_EQ(l.err, "decode: standard output: cannot write: No space left on device\n");
+    for (const std::string option : {"--list", "--help", "--version"}) {
+        const RunResult l = runCommand(decode() + " " + option + " >/dev/full");
+        EXPECT_EQ(l.status, 2) << option;
+        EXPECT_EQ(l.err, "decode: standard output: cannot write: No space left on device\n");
+    }
 }
 
 TEST(StdioError, ClosedStdoutIsExit2) {
@@ -55,8 +66,8 @@ TEST(StdioError, ClosedStdoutIsExit2) {
 }
 
 TEST(StdioError, BrokenPipeWithSigpipeIgnoredIsExit2) {
-    // More output than the pipe and stdout's buffer hold, into a reader that leaves early.
-    const std::string capture = shellQuote(spiCapture("long.vcd", 40000, 4000));
+    // More output than the pipe holds, into a reader that leaves early.
+    const std::string capture = shellQuote(spiCapture("long.vcd", 3000, 4000));
     const std::string status = shellQuote(tempDir() + "/pipe.status");
     const RunResult r =
         runCommand("trap '' PIPE; { " + decode() + " " + capture + " --proto spi; echo $? >" +

@@ -12,7 +12,8 @@
 #include <string>
 #include <vector>
 
-#include "core/direct_feed.h"
+#include "core/block_decoding.h"
+#include "support/feed/direct_feed.h"
 #include "core/registry.h"
 #include "sinks/event_format.h"
 #include "spi_generator.h"
@@ -209,7 +210,8 @@ TEST(SpiBlocks, EdgesNoSessionSendsDecodeAsEdgeByEdge) {
         for (std::size_t i = 0; i < edges.size();) {
             const std::size_t end = std::min(
                 {edges.size(), i + 1 + std::size_t(pick(400)), i < half ? half : edges.size()});
-            b->edges(edges.data() + i, edges.data() + end, (i < half ? roles_a : roles_b).data());
+            fastPathOf(*b)->edges(edges.data() + i, edges.data() + end,
+                                  (i < half ? roles_a : roles_b).data());
             i = end;
         }
         a->finish(t + 100);

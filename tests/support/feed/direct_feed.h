@@ -1,16 +1,16 @@
 #pragma once
 // One decoder fed a capture directly, without a session (no read-ahead, no glitch
 // filter, no other decoders), in one of the ways a decoder can take edges: through its
-// general path (Decoder::edgeReference), one at a time through edge(), or in blocks
-// through edges(). A decoder with fast paths of its own must decode the same way
+// general path (FastDecoder::edgeReference), one at a time through edge(), or in blocks
+// through FastDecoder::edges(). A decoder with fast paths of its own must decode the same way
 // whichever it is given; its tests and the fuzz harness compare the three.
 #include <cstddef>
 #include <string>
 #include <vector>
 
-#include "decoder.h"
-#include "options.h"
-#include "waveform.h"
+#include "core/decoder.h"
+#include "core/options.h"
+#include "core/waveform.h"
 
 namespace busdecode {
 

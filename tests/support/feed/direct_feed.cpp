@@ -1,9 +1,10 @@
-#include "direct_feed.h"
+#include "support/feed/direct_feed.h"
 
 #include <algorithm>
 #include <cstdint>
 #include <memory>
 
+#include "core/block_decoding.h"
 #include "sinks/event_format.h"
 
 namespace busdecode {
@@ -43,14 +44,18 @@ std::vector<std::string> decodeDirectly(const DecoderFactory& factory, const Opt
     ctx.timebase = w.timebase;
     ctx.sink = &sink;
     ctx.capture_start = w.start;
-    ctx.lines_are_roles = linesAreRoles(role_of_line);
     for (const int line : line_of_role)
         ctx.initial_levels.push_back(line < 0 ? -1 : w.initial[std::size_t(line)]);
+    FastDecoder* fast = fastPathOf(*decoder);
+    if (fast) fast->setHints({true, linesAreRoles(role_of_line)});
     decoder->start(ctx);
     switch (feed) {
         case Feed::Reference:
             for (const Edge& e : edges)
-                decoder->edgeReference(e.t, role_of_line[e.line], e.level != 0);
+                if (fast)
+                    fast->edgeReference(e.t, role_of_line[e.line], e.level != 0);
+                else
+                    decoder->edge(e.t, role_of_line[e.line], e.level != 0);
             break;
         case Feed::OneByOne:
             for (const Edge& e : edges)
@@ -59,8 +64,8 @@ std::vector<std::string> decodeDirectly(const DecoderFactory& factory, const Opt
         case Feed::Blocks:
             block = std::max<std::size_t>(block, 1);
             for (std::size_t i = 0; i < edges.size(); i += block)
-                decoder->edges(edges.data() + i, edges.data() + std::min(i + block, edges.size()),
-                               role_of_line.data());
+                feedEdges(*decoder, fast, edges.data() + i,
+                          edges.data() + std::min(i + block, edges.size()), role_of_line.data());
             break;
     }
     decoder->finish(w.end);

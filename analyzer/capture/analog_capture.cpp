@@ -1,0 +1,357 @@
+#include "analog_capture.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include <fmt/format.h>
+
+#include "analog_lines.h"
+#include "core/options.h"
+#include "differential_pairs.h"
+#include "signal_quality.h"
+
+namespace busdecode {
+
+namespace {
+
+// Rows held back at the start to find each line's levels and the sample period.
+constexpr std::size_t kPrefixRows = 1 << 18;
+
+std::string volts(double v) {
+    return fmt::format("{:.4g} V", v);
+}
+
+class AnalogReader : public CaptureReader {
+public:
+    AnalogReader(std::unique_ptr<SampleSource> src, const OpenOptions& opts)
+        : src_(std::move(src)), opts_(opts) {
+        channels_ = src_->channels();
+        for (const auto& c : channels_)
+            signals_.push_back({c.name, c.full_name, 1});
+        addPairs();
+        checkThresholdNames();
+        row_.resize(src_->slots() + pairs_.size());
+        readPrefix();
+        chooseTimebase();
+    }
+
+    const std::vector<SignalInfo>& signals() const override { return signals_; }
+    Timebase timebase() const override { return tb_; }
+    std::string formatName() const override { return src_->formatName(); }
+
+    void select(const std::vector<LineRef>& lines) override {
+        checkSelection(lines);
+        lines_.clear();
+        for (const auto& ref : lines) {
+            if (ref.signal < 0 || ref.signal >= int(signals_.size()))
+                throw std::out_of_range("AnalogReader::select");
+            const AnalogChannel& c = channels_[std::size_t(ref.signal)];
+            Line l;
+            l.channel = std::size_t(ref.signal);
+            l.slot = c.slot;
+            l.bit = c.bit;
+            if (l.slot >= src_->slots()) {
+                l.pair = pairs_[l.slot - src_->slots()];
+                l.watch = std::make_unique<PairWatch>(graceTicks());
+            }
+            lines_.push_back(std::move(l));
+        }
+    }
+
+    std::vector<std::uint8_t> initialLevels() override {
+        if (!started_) start();
+        std::vector<std::uint8_t> out;
+        for (const auto& l : lines_)
+            out.push_back(l.level);
+        return out;
+    }
+    Tick startTick() const override { return start_tick_; }
+    Tick endTick() const override { return end_tick_; }
+    std::uint64_t bytesRead() const override { return src_->bytesRead(); }
+    std::uint64_t bytesTotal() const override { return src_->bytesTotal(); }
+    bool changesOnly() const override { return true; }
+
+    bool next(EdgeBlock& block) override {
+        block.clear();
+        if (!started_) start();
+        if (done_) return false;
+        while (block.edges.size() + order_.held() + lines_.size() < kEdgeBlockSize) {
+            double t;
+            if (!nextSample(t)) {
+                done_ = true;
+                for (auto& l : lines_)
+                    if (l.watch) l.watch->finish(end_tick_);
+                order_.release(kMaxEdgeTick, block.edges);
+                block.known_until = end_tick_;
+                return !block.edges.empty();
+            }
+            takeSample(t, block.edges);
+        }
+        block.known_until = bound_;
+        return true;
+    }
+
+    std::vector<std::string> notes() const override;
+
+private:
+    // A differential pair: its line is the difference of two channels' voltages.
+    struct Pair {
+        std::size_t slot[2] = {0, 0};
+    };
+    struct Line {
+        std::size_t channel = 0, slot = 0;
+        int bit = -1;
+        // A pair's wires, each with a trigger of its own, for its PairWatch.
+        Pair pair;
+        std::unique_ptr<PairWatch> watch;
+        SchmittLine wire[2];
+        SignalQuality quality;
+        SchmittLine trigger;
+        SchmittSettings settings;
+        std::pair<double, double> levels;
+        std::uint8_t level = 0;
+        Tick last = kMinEdgeTick;
+        std::uint64_t edges = 0;
+    };
+
+    // OpenOptions::pairs whose two wires are analog channels of this capture.
+    void addPairs() {
+        for (const auto& text : opts_.pairs) {
+            std::string p, n;
+            if (!splitPair(text, p, n) || findSignal(signals_, text) >= 0) continue;
+            const int wp = findSignal(signals_, p), wn = findSignal(signals_, n);
+            if (wp < 0 || wn < 0 || channels_[std::size_t(wp)].bit >= 0 ||
+                channels_[std::size_t(wn)].bit >= 0)
+                continue;
+            pairs_.push_back({{channels_[std::size_t(wp)].slot, channels_[std::size_t(wn)].slot}});
+            channels_.push_back({text, text, src_->slots() + pairs_.size() - 1, -1});
+            signals_.push_back({text, text, 1});
+        }
+    }
+    void computePairs() {
+        const std::size_t base = src_->slots();
+        for (std::size_t k = 0; k < pairs_.size(); ++k)
+            row_[base + k] = row_[pairs_[k].slot[0]] - row_[pairs_[k].slot[1]];
+    }
+    float prefixValue(std::size_t row, std::size_t slot) const {
+        const std::size_t n = src_->slots();
+        if (slot < n) return prefix_v_[row * n + slot];
+        const Pair& p = pairs_[slot - n];
+        return prefix_v_[row * n + p.slot[0]] - prefix_v_[row * n + p.slot[1]];
+    }
+    // Equal wire levels for up to three samples (or 100 ns) are skew, not a fault.
+    Tick graceTicks() const {
+        return Tick(std::max(3 * period_ * ticks_per_s_, 1e-7 * ticks_per_s_)) + 1;
+    }
+
+    void checkThresholdNames() const {
+        for (const auto& [name, v] : opts_.thresholds)
+            if (!name.empty() && std::none_of(signals_.begin(), signals_.end(), [&](auto& s) {
+                    return s.name == name || s.full_name == name;
+                }))
+                throw InputError(fmt::format("--threshold {}={}: {} has no signal '{}'", name, v,
+                                             src_->fileName(), name));
+    }
+
+    bool nextRow(double& t) {
+        if (!src_->next(t, row_.data())) return false;
+        computePairs();
+        if (have_time_ && t < last_t_)
+            src_->fail(fmt::format("time going backwards ({} s after {} s)", t, last_t_));
+        have_time_ = true;
+        last_t_ = t;
+        return true;
+    }
+
+    void readPrefix() {
+        double t;
+        while (prefix_t_.size() < kPrefixRows && nextRow(t)) {
+            prefix_t_.push_back(t);
+            prefix_v_.insert(prefix_v_.end(), row_.begin(),
+                             row_.begin() + std::ptrdiff_t(src_->slots()));
+        }
+    }
+
+    void chooseTimebase() {
+        double period = src_->period();
+        if (!(period > 0) && prefix_t_.size() > 1)
+            period = (prefix_t_.back() - prefix_t_.front()) / double(prefix_t_.size() - 1);
+        int r = 9;
+        while (r < 12 && period > 0 && period / 100 < std::pow(10.0, -r))
+            ++r;
+        tb_ = Timebase{1, std::int64_t(std::llround(std::pow(10.0, r)))};
+        ticks_per_s_ = double(tb_.den);
+        period_ = period > 0 ? period : 0;
+    }
+
+    void start();
+    SchmittSettings settingsFor(const Line& l, LevelEstimator& est) const;
+
+    // The prefix first, then the rest.
+    bool nextSample(double& t) {
+        if (prefix_at_ < prefix_t_.size()) {
+            t = prefix_t_[prefix_at_];
+            const std::size_t n = src_->slots();
+            std::memcpy(row_.data(), &prefix_v_[prefix_at_ * n], n * sizeof(float));
+            computePairs();
+            if (++prefix_at_ == prefix_t_.size()) {
+                prefix_t_ = {};
+                prefix_v_ = {};
+            }
+            return true;
+        }
+        return nextRow(t);
+    }
+
+    Tick toTick(double t) const {
+        const double ticks = std::nearbyint(t);
+        if (!(ticks >= double(kMinEdgeTick) && ticks <= double(kMaxEdgeTick)))
+            src_->fail("time out of range");
+        return Tick(ticks);
+    }
+
+    void takeSample(double t_s, std::vector<Edge>& out) {
+        for (auto& l : lines_)
+            if (l.bit < 0) l.quality.feed(t_s, row_[l.slot]);
+        const double t = t_s * ticks_per_s_;
+        end_tick_ = toTick(t);
+        double bound = t;
+        for (std::size_t i = 0; i < lines_.size(); ++i) {
+            Line& l = lines_[i];
+            double et = t;
+            bool edge;
+            if (l.bit >= 0) {
+                const std::uint8_t level = (unsigned(row_[l.slot]) >> l.bit) & 1u;
+                edge = level != l.level;
+                l.level = level;
+            } else {
+                edge = l.trigger.feed(t, row_[l.slot], et);
+                l.level = l.trigger.level();
+                bound = std::min(bound, l.trigger.earliestNext());
+                if (l.watch) watchWires(l, t);
+            }
+            if (edge) {
+                l.last = std::max({l.last, start_tick_, toTick(et)});
+                ++l.edges;
+                order_.push(l.last, std::uint32_t(i), l.level);
+            }
+        }
+        bound_ = std::max(Tick(std::floor(bound)), start_tick_);
+        order_.release(bound_, out);
+    }
+
+    void watchWires(Line& l, double t) {
+        for (int w = 0; w < 2; ++w) {
+            double et;
+            if (l.wire[w].feed(t, row_[l.pair.slot[w]], et))
+                l.watch->edge(toTick(et), w, l.wire[w].level());
+        }
+    }
+
+    std::unique_ptr<SampleSource> src_;
+    std::vector<AnalogChannel> channels_;
+    std::vector<Pair> pairs_;
+    double period_ = 0;
+    OpenOptions opts_;
+    std::vector<SignalInfo> signals_;
+    std::vector<float> row_;
+    std::vector<double> prefix_t_;
+    std::vector<float> prefix_v_;
+    std::size_t prefix_at_ = 0;
+    std::vector<Line> lines_;
+    EdgeOrderer order_;
+    Timebase tb_;
+    double ticks_per_s_ = 1e9;
+    double last_t_ = 0;
+    bool have_time_ = false, started_ = false, done_ = false;
+    Tick start_tick_ = 0, end_tick_ = 0, bound_ = 0;
+};
+
+SchmittSettings AnalogReader::settingsFor(const Line& l, LevelEstimator& est) const {
+    for (std::size_t r = 0; r < prefix_t_.size(); ++r)
+        est.add(prefixValue(r, l.slot));
+    SchmittSettings s = est.settings();
+    const SignalInfo& sig = signals_[l.channel];
+    bool given = false;
+    for (const auto& [name, v] : opts_.thresholds)
+        if (name.empty() || name == sig.name || name == sig.full_name) {
+            s.threshold = v;
+            given = true;
+        }
+    if (given) {
+        s.from_data = false;
+        if (s.flat) s.hysteresis = 0;
+        s.flat = false;
+    }
+    if (opts_.hysteresis >= 0) s.hysteresis = opts_.hysteresis;
+    return s;
+}
+
+void AnalogReader::start() {
+    started_ = true;
+    for (auto& l : lines_) {
+        if (l.bit >= 0) continue;
+        LevelEstimator est;
+        l.settings = settingsFor(l, est);
+        l.levels = est.levels();
+        l.trigger.configure(l.settings);
+        l.quality.configure(l.levels.first, l.levels.second);
+        for (int w = 0; l.watch && w < 2; ++w) {
+            LevelEstimator wire;
+            for (std::size_t r = 0; r < prefix_t_.size(); ++r)
+                wire.add(prefixValue(r, l.pair.slot[w]));
+            l.wire[w].configure(wire.settings());
+        }
+    }
+    double t;
+    if (!nextSample(t)) {
+        done_ = true;
+        return;
+    }
+    const double ticks = t * ticks_per_s_;
+    start_tick_ = end_tick_ = bound_ = toTick(ticks);
+    for (auto& l : lines_) {
+        l.level = l.bit >= 0 ? (unsigned(row_[l.slot]) >> l.bit) & 1u
+                             : l.trigger.start(ticks, row_[l.slot]);
+        if (l.watch)
+            l.watch->start(start_tick_, l.wire[0].start(ticks, row_[l.pair.slot[0]]),
+                           l.wire[1].start(ticks, row_[l.pair.slot[1]]));
+    }
+}
+
+std::vector<std::string> AnalogReader::notes() const {
+    std::vector<std::string> out;
+    for (const auto& l : lines_) {
+        if (l.bit >= 0) continue;
+        const std::string& name = signals_[l.channel].name;
+        const SchmittSettings& s = l.settings;
+        std::string how = s.flat        ? "one level only in its first samples: a guess"
+                          : s.from_data ? fmt::format("from the data: levels {} and {}",
+                                                      volts(l.levels.first), volts(l.levels.second))
+                                        : "as given";
+        out.push_back(fmt::format("{}: threshold {}, hysteresis {} ({})", name, volts(s.threshold),
+                                  volts(s.hysteresis), how));
+        if (!s.flat)
+            out.push_back(
+                fmt::format("{} signal: {}", name, l.quality.summary(l.trigger.reversals())));
+        if (l.edges == 0)
+            out.push_back(fmt::format(
+                "{} never crossed its threshold {} (its range {} to {}): give --threshold {}=VOLTS",
+                name, volts(s.threshold), volts(l.trigger.minSeen()), volts(l.trigger.maxSeen()),
+                name));
+        if (l.watch)
+            for (auto& n : pairFaultNotes(name, *l.watch, tb_))
+                out.push_back(std::move(n));
+    }
+    return out;
+}
+
+}  // namespace
+
+std::unique_ptr<CaptureReader> analogReader(std::unique_ptr<SampleSource> src,
+                                            const OpenOptions& opts) {
+    return std::make_unique<AnalogReader>(std::move(src), opts);
+}
+
+}  // namespace busdecode

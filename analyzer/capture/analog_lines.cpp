@@ -1,0 +1,117 @@
+#include "analog_lines.h"
+
+#include <algorithm>
+#include <array>
+#include <charconv>
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "core/options.h"
+
+namespace busdecode {
+
+namespace {
+
+constexpr int kBins = 64;
+
+struct Histogram {
+    double lo = 0, hi = 0, width = 0;
+    std::array<std::uint32_t, kBins> count{};
+    double centre(int b) const { return lo + (b + 0.5) * width; }
+};
+
+Histogram histogramOf(const std::vector<float>& values) {
+    Histogram h;
+    const auto [mn, mx] = std::minmax_element(values.begin(), values.end());
+    h.lo = *mn;
+    h.hi = *mx;
+    h.width = (h.hi - h.lo) / kBins;
+    if (!(h.width > 0)) return h;
+    for (const float v : values)
+        ++h.count[std::min(kBins - 1, int((v - h.lo) / h.width))];
+    return h;
+}
+
+// The fullest bin in [from, to).
+int modeIn(const Histogram& h, int from, int to) {
+    int best = from;
+    for (int b = from; b < to; ++b)
+        if (h.count[b] > h.count[best]) best = b;
+    return best;
+}
+
+// The two main levels: the fullest bin, and the fullest an eighth of the range or more
+// away from it (a third level, such as an open wire's, then does not hide the valley).
+std::pair<int, int> twoModes(const Histogram& h) {
+    const int first = modeIn(h, 0, kBins);
+    const int gap = kBins / 8;
+    int second = -1;
+    for (int b = 0; b < kBins; ++b)
+        if (std::abs(b - first) >= gap && (second < 0 || h.count[b] > h.count[second])) second = b;
+    return {std::min(first, second), std::max(first, second)};
+}
+
+}  // namespace
+
+std::pair<double, double> LevelEstimator::levels() const {
+    if (values_.empty()) return {0, 0};
+    const Histogram h = histogramOf(values_);
+    if (!(h.width > 0)) return {h.lo, h.lo};
+    const auto [low, high] = twoModes(h);
+    return {h.centre(low), h.centre(high)};
+}
+
+SchmittSettings LevelEstimator::settings() const {
+    SchmittSettings s;
+    s.from_data = true;
+    if (values_.empty()) return s;
+    const Histogram h = histogramOf(values_);
+    const auto [low, high] = h.width > 0 ? twoModes(h) : std::pair<int, int>{0, 0};
+    // Two levels show as two peaks with a valley between them; noise around one level
+    // fills the bins between.
+    std::uint32_t valley = ~0u;
+    for (int b = low + 1; b < high; ++b)
+        valley = std::min(valley, h.count[b]);
+    const bool two_levels =
+        high - low >= kBins / 8 && valley * 5 < h.count[low] && valley * 5 < h.count[high];
+    if (!two_levels) {
+        s.flat = true;
+        s.threshold = (h.lo + h.hi) / 2;
+        s.hysteresis = std::max((h.hi - h.lo) * 1.5, 1e-9);
+        return s;
+    }
+    s.threshold = (h.centre(low) + h.centre(high)) / 2;
+    s.hysteresis = (h.centre(high) - h.centre(low)) / 10;
+    return s;
+}
+
+void EdgeOrderer::push(Tick t, std::uint32_t line, std::uint8_t level) {
+    const Edge e(t, line, level);
+    auto it = held_.end();
+    while (it != held_.begin() && (it - 1)->t > t)
+        --it;
+    held_.insert(it, e);
+}
+
+void EdgeOrderer::release(Tick bound, std::vector<Edge>& out) {
+    std::size_t n = 0;
+    while (n < held_.size() && held_[n].t <= bound)
+        out.push_back(held_[n++]);
+    held_.erase(held_.begin(), held_.begin() + std::ptrdiff_t(n));
+}
+
+std::pair<std::string, double> parseThresholdOption(const std::string& text) {
+    const auto eq = text.rfind('=');
+    const std::string name = eq == std::string::npos ? "" : text.substr(0, eq);
+    const std::string num = eq == std::string::npos ? text : text.substr(eq + 1);
+    double v = 0;
+    const auto [p, ec] = std::from_chars(num.data(), num.data() + num.size(), v);
+    if (num.empty() || ec != std::errc() || p != num.data() + num.size() || !std::isfinite(v) ||
+        (eq != std::string::npos && name.empty()))
+        throw InputError(fmt::format(
+            "--threshold {}: expected VOLTS or SIGNAL=VOLTS (e.g. 1.5 or CLK=1.5)", text));
+    return {name, v};
+}
+
+}  // namespace busdecode

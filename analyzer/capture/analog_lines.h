@@ -1,0 +1,158 @@
+#pragma once
+// Analog samples to edges, for any reader of sampled voltages (scope CSVs, sigrok analog
+// channels): a Schmitt trigger per line whose edges are timed where the signal crosses
+// the threshold, interpolated between the two samples around the crossing, so edges
+// come out finer than the sample grid. Thresholds are given or found from a bounded
+// prefix of the samples (the two main levels of the line); memory stays constant.
+#include <cmath>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "core/edge.h"
+
+namespace busdecode {
+
+struct SchmittSettings {
+    double threshold = 0;   // volts: the crossing that times an edge
+    double hysteresis = 0;  // volts: the band [threshold - h/2, threshold + h/2] is ignored
+    bool from_data = false;
+    bool flat = false;  // from data that showed one level only: a guess
+};
+
+// The two main levels of a line from a histogram of its first samples.
+class LevelEstimator {
+public:
+    void add(double v) { values_.push_back(float(v)); }
+    std::size_t size() const { return values_.size(); }
+    // Threshold at the midpoint of the two levels, hysteresis a tenth of their swing. A
+    // prefix with one level only gives a threshold in the middle of its range and a band
+    // wider than that range (flat = true), so its noise never toggles the line.
+    SchmittSettings settings() const;
+    std::pair<double, double> levels() const;  // (low, high) found
+    void clear() { values_ = {}; }
+
+private:
+    std::vector<float> values_;
+};
+
+// One line's trigger. feed() takes samples in time order (time in ticks, fractional)
+// and returns true with `edge_t` when the line changes level. An edge is timed by a
+// straight line fitted to the samples within a window around the threshold (a quarter
+// of the swing either side: 2.5 hysteresis bands), so noise on a slow edge averages out;
+// the edge is handed out once the signal leaves that window, and a return across the
+// band inside it is noise, not two edges.
+class SchmittLine {
+public:
+    void configure(const SchmittSettings& s) {
+        high_ = s.threshold + s.hysteresis / 2;
+        low_ = s.threshold - s.hysteresis / 2;
+        thr_ = s.threshold;
+        win_ = 2.5 * s.hysteresis;
+    }
+    // The level before the first sample: above the threshold or not.
+    std::uint8_t start(double t, double v) {
+        level_ = v > thr_ ? 1 : 0;
+        prev_t_ = t;
+        prev_v_ = v;
+        armed_ = pending_ = false;
+        seen_min_ = seen_max_ = v;
+        fit_ = {};
+        return level_;
+    }
+    bool feed(double t, double v, double& edge_t) {
+        seen_min_ = v < seen_min_ ? v : seen_min_;
+        seen_max_ = v > seen_max_ ? v : seen_max_;
+        // The last crossing of the threshold towards the other level: the edge's time
+        // when too few samples lie in the window to fit a line.
+        const bool crossed = level_ ? (prev_v_ >= thr_ && v < thr_) : (prev_v_ <= thr_ && v > thr_);
+        if (crossed && !pending_) {
+            cross_t_ = prev_t_ + (t - prev_t_) * (thr_ - prev_v_) / (v - prev_v_);
+            armed_ = true;
+        }
+        prev_t_ = t;
+        prev_v_ = v;
+        if (level_ ? v < low_ : v > high_) {
+            level_ ^= 1;
+            pending_ = !pending_;  // a second crossing inside the window undoes the first
+            if (!pending_) ++reversals_;
+            if (pending_) fallback_t_ = armed_ ? cross_t_ : t;
+            armed_ = false;
+        }
+        const bool inside = std::abs(v - thr_) <= win_;
+        if (inside) fit_.add(t, v);
+        if (!pending_ || (inside && fit_.n < kMaxFit)) {
+            if (!inside) fit_ = {};
+            return false;
+        }
+        edge_t = fit_.crossing(thr_, fallback_t_);
+        pending_ = false;
+        fit_ = {};
+        return true;
+    }
+    // No edge of this line can come before this time any more.
+    double earliestNext() const {
+        if (pending_) return fit_.n ? std::min(fit_.t0, fallback_t_) : fallback_t_;
+        if (fit_.n) return std::min(fit_.t0, armed_ ? cross_t_ : prev_t_);
+        return armed_ ? cross_t_ : prev_t_;
+    }
+    std::uint8_t level() const { return level_; }
+    // Returns across the band while inside the window (noise or a runt pulse).
+    std::uint64_t reversals() const { return reversals_; }
+    double minSeen() const { return seen_min_; }
+    double maxSeen() const { return seen_max_; }
+
+private:
+    static constexpr int kMaxFit = 256;
+    // Least squares t = a + b v over the window's samples (t from the first of them).
+    struct Fit {
+        int n = 0;
+        double t0 = 0, st = 0, sv = 0, svv = 0, svt = 0, last = 0;
+        void add(double t, double v) {
+            if (n == 0) t0 = t;
+            const double x = t - t0;
+            ++n;
+            st += x;
+            sv += v;
+            svv += v * v;
+            svt += v * x;
+            last = t;
+        }
+        double crossing(double thr, double fallback) const {
+            if (n < 3) return fallback;
+            const double var = svv - sv * sv / n;
+            if (!(var > 0)) return fallback;
+            const double b = (svt - sv * st / n) / var;
+            const double t = t0 + st / n + b * (thr - sv / n);
+            return t < t0 ? t0 : t > last ? last : t;
+        }
+    };
+    double thr_ = 0, high_ = 0, low_ = 0, win_ = 0;
+    double prev_t_ = 0, prev_v_ = 0, cross_t_ = 0, fallback_t_ = 0;
+    double seen_min_ = 0, seen_max_ = 0;
+    Fit fit_;
+    bool armed_ = false, pending_ = false;
+    std::uint8_t level_ = 0;
+    std::uint64_t reversals_ = 0;
+};
+
+// Edges of several lines put back in time order: a slow edge is timed at its threshold
+// crossing, which may lie before an edge another line has already given.
+class EdgeOrderer {
+public:
+    void push(Tick t, std::uint32_t line, std::uint8_t level);
+    // Moves every held edge at or before `bound` into `out`, in time order.
+    void release(Tick bound, std::vector<Edge>& out);
+    std::size_t held() const { return held_.size(); }
+
+private:
+    std::vector<Edge> held_;  // sorted by time; a few at most
+};
+
+// "CH1=1.5" or "1.5" (--threshold) -> (signal, volts); signal empty for all lines.
+// Throws InputError naming the option.
+std::pair<std::string, double> parseThresholdOption(const std::string& text);
+
+}  // namespace busdecode

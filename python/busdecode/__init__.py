@@ -1,0 +1,308 @@
+"""busdecode: decode logic-analyser captures of encoder and motion-control buses.
+
+The same decoders, plugins and checks as the `decode` command, from Python:
+
+    import busdecode
+    for ev in busdecode.decode("capture.vcd", proto="bissc"):
+        print(ev["start_ns"], ev["position"], ev["errors"])
+
+    frames = busdecode.read("capture.vcd", proto="bissc")["bissc/frame"]  # a DataFrame
+
+    result = busdecode.verify(["a.vcd", "b.vcd"], rules="rules.toml")
+    assert result.passed, result.summary
+
+Events are dicts with exactly the keys and values of `decode --format jsonl`: proto,
+type, start_ns, end_ns, the decoder's fields in order, errors. Bad input raises
+InputError and a wrong call UsageError, whose text is the line `decode` prints after
+"decode: ".
+"""
+
+from __future__ import annotations
+
+import os
+from dataclasses import dataclass, field
+from typing import Any, Dict, Iterable, Iterator, List, Mapping, Optional, Sequence, Union
+
+from . import _busdecode
+from ._busdecode import Error, InputError, UsageError
+
+__all__ = [
+    "Error",
+    "InputError",
+    "UsageError",
+    "decoders",
+    "decode",
+    "follow",
+    "read",
+    "verify",
+    "subscribe",
+    "RuleResult",
+    "CaptureResult",
+    "VerifyResult",
+]
+
+Protos = Union[str, Sequence[str]]
+Assignments = Optional[Mapping[str, Any]]
+PathLike = Union[str, "os.PathLike[str]"]
+
+
+def _text(value: Any) -> str:
+    """An option value as the command line writes it (True -> "1")."""
+    if isinstance(value, bool):
+        return "1" if value else "0"
+    return str(value)
+
+
+def _assignments(what: str, given: Assignments) -> List[str]:
+    if given is None:
+        return []
+    if not isinstance(given, Mapping):
+        raise UsageError(f"{what}: expected a dict of KEY: VALUE, not {type(given).__name__}")
+    return [f"{key}={_text(value)}" for key, value in given.items()]
+
+
+def _protos(proto: Protos) -> List[str]:
+    if isinstance(proto, str):
+        return [proto]
+    if proto is None:
+        return []
+    return [str(p) for p in proto]
+
+
+def _capture_args(path: PathLike, proto: Protos, map: Assignments, opts: Assignments,
+                  rate: Optional[float], threads: int) -> "_busdecode.CaptureArgs":
+    args = _busdecode.CaptureArgs()
+    args.path = os.fspath(path)
+    args.protos = _protos(proto)
+    args.maps = _assignments("map", map)
+    args.opts = _assignments("opts", opts)
+    args.rate = None if rate is None else float(rate)
+    args.threads = int(threads)
+    return args
+
+
+def decoders() -> List[Dict[str, Any]]:
+    """Every decoder there is, as `decode --list` shows them.
+
+    Each is a dict: id, name, description, roles (name, required, aliases, help),
+    options (key, kind, default, choices, min, max, auto, help), events (type, help,
+    fields) and need_one_of (optional roles of which one must be bound). Every decoder
+    also takes the option glitch_ns (ignore pulses shorter than this, in ns).
+    """
+    return _busdecode.decoders()
+
+
+def decode(path: PathLike, proto: Protos, map: Assignments = None, opts: Assignments = None,
+           rate: Optional[float] = None, threads: int = 2,
+           realtime: bool = False) -> "_busdecode.Events":
+    """Decodes a capture; returns an iterator of events, each a dict.
+
+    path: a VCD, CSV or sigrok .sr capture ("-" reads standard input).
+    proto: the decoder id ("bissc", "ssi", "spi", "tmc8100", "tmcl", "uart"), or a list
+        of them to decode several buses in one pass (see decoders()).
+    map: roles bound to capture signals, {"clk": "MA", "data": "SL"}; with several
+        decoders a key may be scoped, {"ssi.clk": "D0"}. Unbound roles are bound by
+        signal name.
+    opts: decoder options, {"bits": 26, "crc": "auto"}, scoped the same way
+        ({"ssi.gray": True}).
+    rate: sample rate in Hz for a CSV without a time column.
+    threads: 2 reads ahead on a second thread, 1 reads and decodes on one.
+    realtime: hands events out no faster than the capture's own time runs.
+
+    The dicts have exactly the keys and values of `decode --format jsonl` (ints for
+    integers, None for nulls, a list of error strings). The capture is decoded on a
+    thread of its own into a small bounded queue while you iterate, so memory stays
+    constant however long the capture. The iterator's `facts` property describes the
+    capture (file, format, bindings; edges and the decoders' advice once it ended);
+    close() (or leaving a `with` block) stops decoding early.
+
+    Raises UsageError (unknown decoder, option or role; bad value) or InputError (the
+    capture cannot be read, a role cannot be bound) at once; an input error found
+    further into the capture is raised by the iteration, after the events before it.
+
+    >>> for ev in busdecode.decode("enc.vcd", proto="bissc", opts={"bits": 26}):
+    ...     if ev["errors"]:
+    ...         print(ev["start_ns"], ev["errors"])
+    """
+    return _busdecode.decode_events(_capture_args(path, proto, map, opts, rate, threads),
+                                    False, bool(realtime))
+
+
+def follow(path_or_stream: Union[PathLike, Any], proto: Protos, map: Assignments = None,
+           opts: Assignments = None, rate: Optional[float] = None,
+           threads: int = 2) -> "_busdecode.Events":
+    """Follows a live capture (`decode --follow`): an iterator of event dicts.
+
+    path_or_stream: a file that is still being written (the iterator waits for more of
+    it, and ends only when closed), "-" for standard input, or an open pipe or file
+    object (anything with fileno(); the iterator ends when the writer closes it).
+    Each event comes out as soon as it is decoded. Otherwise as decode(); stop with
+    close(), a `with` block, or Ctrl-C.
+    """
+    if hasattr(path_or_stream, "fileno"):
+        path = f"/dev/fd/{path_or_stream.fileno()}"
+    else:
+        path = os.fspath(path_or_stream)
+    return _busdecode.decode_events(_capture_args(path, proto, map, opts, rate, threads),
+                                    True, False)
+
+
+def _pandas_array(pd: Any, kind: str, values: Any, mask: Any) -> Any:
+    if kind in ("Int64", "UInt64"):
+        return pd.arrays.IntegerArray(values, mask, copy=False)
+    if kind == "boolean":
+        return pd.arrays.BooleanArray(values, mask, copy=False)
+    if kind == "object":
+        import numpy as np
+
+        out = np.empty(len(values), dtype=object)
+        out[:] = values
+        return out
+    return values
+
+
+def read(path: PathLike, proto: Protos, map: Assignments = None, opts: Assignments = None,
+         rate: Optional[float] = None, threads: int = 2) -> Dict[str, Any]:
+    """Decodes a whole capture into pandas DataFrames, one per "proto/type".
+
+    Arguments as decode(). Returns {"bissc/frame": DataFrame, "bissc/register": ...}
+    in the order the kinds first occur. Each DataFrame has one row per event and the
+    columns start_ns, end_ns (int64), the decoder's fields in their jsonl order, and
+    errors (a list of strings per row). Integer fields are nullable integers (Int64;
+    UInt64 beyond int64), flags nullable booleans, other numbers float64 (NaN for
+    null), text and lists objects. The columns are built in C++ as flat buffers while
+    decoding, not as a Python object per field. A field an event lacks is null in its
+    row.
+
+    Without pandas, returns {"proto/type": [event dict, ...]} instead.
+    """
+    args = _capture_args(path, proto, map, opts, rate, threads)
+    try:
+        import pandas as pd
+    except ImportError:
+        tables: Dict[str, List[Dict[str, Any]]] = {}
+        for ev in _busdecode.decode_events(args, False, False):
+            tables.setdefault(f"{ev['proto']}/{ev['type']}", []).append(ev)
+        return tables
+    frames = {}
+    for name, columns in _busdecode.read_columns(args).items():
+        data = {key: _pandas_array(pd, kind, values, mask) for key, kind, values, mask in columns}
+        frames[name] = pd.DataFrame(data, copy=False)
+    return frames
+
+
+@dataclass(frozen=True)
+class RuleResult:
+    """One rule checked on one capture."""
+
+    name: str  # "bissc.max_crc_errors": the rules table and the rule
+    proto: str
+    rule: str
+    passed: bool
+    message: str  # what was seen, and where the first offence was
+    first_ns: Optional[float]  # time of the first offending event
+    offending: int  # how many events broke the rule
+
+
+@dataclass(frozen=True)
+class CaptureResult:
+    """The verdict on one capture: passed, the rules it failed, or why it is unreadable."""
+
+    capture: str
+    passed: bool
+    error: Optional[str]  # the input error that made it unreadable, else None
+    rules: List[RuleResult]
+    events: str  # "bissc 1000 frames"
+    seconds: float
+    hints: List[str]
+    summary: str  # the line `decode verify` prints: "PASS cap.vcd  (...)"
+
+    @property
+    def failed(self) -> List[RuleResult]:
+        """The rules this capture broke."""
+        return [r for r in self.rules if not r.passed]
+
+
+@dataclass(frozen=True)
+class VerifyResult:
+    """Every capture's verdict; passed only if all passed (none unreadable)."""
+
+    captures: List[CaptureResult]
+    totals: str  # "3 captures: 2 passed, 1 failed, 0 unreadable; ..."
+    passed: bool = field(init=False)
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "passed", all(c.passed for c in self.captures))
+
+    @property
+    def summary(self) -> str:
+        """What `decode verify` prints: a line per capture, then the totals."""
+        return "\n".join([c.summary for c in self.captures] + [self.totals])
+
+    @property
+    def failed(self) -> List[CaptureResult]:
+        """The captures that failed or could not be read."""
+        return [c for c in self.captures if not c.passed]
+
+    def __iter__(self) -> Iterator[CaptureResult]:
+        return iter(self.captures)
+
+    def __len__(self) -> int:
+        return len(self.captures)
+
+    def __getitem__(self, i: int) -> CaptureResult:
+        return self.captures[i]
+
+
+def verify(paths: Union[PathLike, Iterable[PathLike]], rules: PathLike, proto: Protos = (),
+           map: Assignments = None, opts: Assignments = None, rate: Optional[float] = None,
+           jobs: int = 0, threads: int = 2) -> VerifyResult:
+    """Checks captures against a rules file, as `decode verify` does.
+
+    paths: one capture or several; rules: the TOML rules file (see the README, "Rules
+    for verify"); proto, map, opts, rate: on top of the rules' [decode] table, as on the
+    command line; jobs: captures checked at once (0: one per core).
+
+    Returns a VerifyResult: .passed, .summary (the lines `decode verify` prints),
+    .captures (a CaptureResult each, with .failed rules), so that in pytest
+
+        result = busdecode.verify(captures, rules="rules.toml")
+        assert result.passed, result.summary
+
+    An unreadable capture is a failed CaptureResult with its .error; a bad rules file,
+    decoder or option raises InputError.
+    """
+    if isinstance(paths, (str, os.PathLike)):
+        paths = [paths]
+    captures = [os.fspath(p) for p in paths]
+    verdicts, totals = _busdecode.verify_captures(
+        captures, os.fspath(rules), _protos(proto), _assignments("map", map),
+        _assignments("opts", opts), None if rate is None else float(rate), int(jobs),
+        int(threads))
+    results = []
+    for v in verdicts:
+        v["rules"] = [RuleResult(**r) for r in v["rules"]]
+        results.append(CaptureResult(**v))
+    return VerifyResult(results, totals)
+
+
+def subscribe(url: Optional[str] = None, channels: Union[None, str, Sequence[str]] = None,
+              timeout: Optional[float] = None,
+              until_end: bool = False) -> "_busdecode.Subscription":
+    """The live feed of a `decode --lcm` run: an iterator of event dicts.
+
+    url: the LCM URL the decoder publishes on (None: LCM's default,
+        udpm://239.255.76.67:7667?ttl=0).
+    channels: the event channels wanted, names or regular expressions
+        ("DECODE_BISSC_FRAME", "DECODE_SSI_.*"); None: every event.
+    timeout: end the iteration after this many seconds without a message (None: never).
+    until_end: end it when the publisher says its capture ended (DECODE_STATUS "end").
+
+    Every event arrives as its annotation message (DECODE_EVENTS), decoded with the
+    project's own LCM type; the dicts equal decode()'s for the same events. UDP
+    multicast needs a route: on a machine without a network,
+    `ip link set lo multicast on; ip route add 224.0.0.0/4 dev lo`.
+    """
+    if isinstance(channels, str):
+        channels = [channels]
+    return _busdecode.subscribe_feed(url or "", list(channels or []), timeout, bool(until_end))

@@ -1,0 +1,49 @@
+"""Type stubs of the compiled half of busdecode (use the functions of the package)."""
+
+from typing import Any, Dict, Iterator, List, Optional, Tuple
+
+Event = Dict[str, Any]
+
+class Error(Exception):
+    """Base of busdecode's errors: str(e) is the line `decode` prints."""
+
+class InputError(Error):
+    """Bad input: an unreadable capture or rules file, an unbound role."""
+
+class UsageError(Error):
+    """A wrong call: unknown decoder, option, role or argument value."""
+
+class CaptureArgs:
+    path: str
+    protos: List[str]
+    maps: List[str]
+    opts: List[str]
+    rate: Optional[float]
+    threads: int
+    def __init__(self) -> None: ...
+
+class Events(Iterator[Event]):
+    """Events of one capture as they are decoded."""
+
+    def __iter__(self) -> "Events": ...
+    def __next__(self) -> Event: ...
+    def close(self) -> None: ...
+    def __enter__(self) -> "Events": ...
+    def __exit__(self, *args: Any) -> None: ...
+    @property
+    def facts(self) -> Dict[str, Any]: ...
+
+class Subscription(Iterator[Event]):
+    """Events received from a decode --lcm feed."""
+
+    def __iter__(self) -> "Subscription": ...
+    def __next__(self) -> Event: ...
+
+def decoders() -> List[Dict[str, Any]]: ...
+def decode_events(args: CaptureArgs, follow: bool, realtime: bool) -> Events: ...
+def read_columns(args: CaptureArgs) -> Dict[str, List[Tuple[str, str, Any, Any]]]: ...
+def verify_captures(captures: List[str], rules: str, protos: List[str], maps: List[str],
+                    opts: List[str], rate: Optional[float], jobs: int,
+                    threads: int) -> Tuple[List[Dict[str, Any]], str]: ...
+def subscribe_feed(url: str, channels: List[str], timeout: Optional[float],
+                   until_end: bool) -> Subscription: ...

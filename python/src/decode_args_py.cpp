@@ -1,0 +1,26 @@
+#include "decode_args_py.h"
+
+#include <fmt/format.h>
+
+#include "bindings.h"
+
+namespace busdecode::py {
+
+DecodeJob jobFor(const CaptureArgs& a, bool follow) {
+    if (a.rate && !(*a.rate > 0))
+        throw UsageError(fmt::format("--rate {}: expected a positive number of Hz", *a.rate));
+    if (a.threads != 1 && a.threads != 2)
+        throw UsageError(fmt::format(
+            "--threads {}: expected 1 (read and decode on one thread) or 2 (read ahead on a "
+            "second)",
+            a.threads));
+    DecodeJob job;
+    job.path = a.path;
+    job.requests = requestsFor(a.protos, a.maps, a.opts);
+    job.open.rate_hz = a.rate.value_or(0);
+    job.open.follow = follow;
+    job.open.read_ahead = a.threads > 1;
+    return job;
+}
+
+}  // namespace busdecode::py

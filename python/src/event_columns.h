@@ -1,0 +1,71 @@
+#pragma once
+// read(): a capture's events as columns, one table per proto/type, built while they
+// stream by (an OutputSink on the decoding thread, no Python): numbers in flat 64-bit
+// lanes with a null mask, so that the DataFrame's columns are made from buffers and not
+// from a Python object per field.
+#include <cstdint>
+#include <map>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include "core/session.h"
+
+namespace busdecode::py {
+
+// One field of one table. Numbers stay in `lanes` as long as every value fits one kind,
+// strings as codes into the column's distinct strings; anything else (lists, a mix of
+// kinds) makes it a column of Values.
+struct Column {
+    enum class Kind { Empty, Bool, Int, UInt, Real, Text, Object };
+    std::string key;
+    Kind kind = Kind::Empty;
+    std::vector<std::uint64_t> lanes;  // int64 / uint64 / double bits / 0-1, per row
+    std::vector<std::uint8_t> nulls;   // 1 where the row has no value
+    std::vector<Value> objects;        // Kind::Object: every row
+    std::vector<std::string> texts;    // Kind::Text: the distinct strings, by code
+    bool negative = false;             // an int64 below 0 was seen
+
+    std::size_t rows() const { return kind == Kind::Object ? objects.size() : nulls.size(); }
+    void append(const Value& v);
+    void appendNull();
+    void dropLast();
+
+private:
+    void appendNumber(Kind k, std::uint64_t bits);
+    void appendText(const std::string& s);
+    std::unordered_map<std::string, std::uint64_t> text_codes_;
+    void toReal();
+    void toObjects();
+};
+
+struct Table {
+    std::string proto, type;
+    std::vector<std::int64_t> start_ns, end_ns;
+    std::vector<Column> columns;  // in the order the fields first appeared
+    // Each row's errors as an index into the distinct error lists seen (0: none).
+    std::vector<std::uint32_t> errors;
+    std::vector<std::vector<std::string>> error_sets{{}};
+
+    void add(const Event& e, std::int64_t start, std::int64_t end);
+
+private:
+    std::size_t columnFor(const std::string& key, std::size_t position);
+    std::uint32_t errorSet(const std::vector<std::string>& errors);
+    std::unordered_map<std::string, std::size_t> index_;
+    std::vector<std::size_t> last_order_;  // column of each field position last time
+    std::map<std::vector<std::string>, std::uint32_t> error_index_;
+};
+
+class TableSink : public OutputSink {
+public:
+    void onEvent(const Event& e, const CaptureFacts& facts) override;
+    // Tables by "proto/type", in the order their first events came.
+    std::vector<Table> tables;
+
+private:
+    std::unordered_map<std::string, std::size_t> index_;
+    Table* last_ = nullptr;
+};
+
+}  // namespace busdecode::py

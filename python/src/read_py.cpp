@@ -1,0 +1,125 @@
+// read(): decodes a whole capture into columns (event_columns.h) with the GIL released,
+// then hands each column to Python as one buffer (numpy arrays over the C++ vectors,
+// no copy) plus its null mask; busdecode/__init__.py makes the DataFrames.
+#include <pybind11/numpy.h>
+#include <pybind11/stl.h>
+
+#include <bit>
+#include <cmath>
+
+#include "app/decode_args.h"
+#include "bindings.h"
+#include "decode_args_py.h"
+#include "event_columns.h"
+#include "event_dict.h"
+
+namespace busdecode::py {
+
+namespace {
+
+// A 1-D array viewing `v`, which it then owns.
+template <class T>
+pyb::array ownedArray(std::vector<T>&& v, const char* dtype) {
+    auto* owner = new std::vector<T>(std::move(v));
+    pyb::capsule free_it(owner, [](void* p) { delete static_cast<std::vector<T>*>(p); });
+    static const T none{};
+    const T* data = owner->empty() ? &none : owner->data();
+    return pyb::array(pyb::dtype(dtype), {owner->size()}, {sizeof(T)}, data, free_it);
+}
+
+pyb::list objectColumn(const std::vector<Value>& values) {
+    pyb::list out(values.size());
+    for (std::size_t i = 0; i < values.size(); ++i)
+        out[i] = valueToPython(values[i]);
+    return out;
+}
+
+// (key, kind, values, mask): kind names the pandas array to make.
+pyb::tuple columnToPython(Column& c) {
+    using K = Column::Kind;
+    switch (c.kind) {
+        case K::Int:
+        case K::UInt:
+            return pyb::make_tuple(
+                c.key, c.kind == K::Int ? "Int64" : "UInt64",
+                ownedArray(std::move(c.lanes), c.kind == K::Int ? "int64" : "uint64"),
+                ownedArray(std::move(c.nulls), "bool"));
+        case K::Bool: {
+            std::vector<std::uint8_t> bits(c.lanes.begin(), c.lanes.end());
+            c.lanes = {};
+            return pyb::make_tuple(c.key, "boolean", ownedArray(std::move(bits), "bool"),
+                                   ownedArray(std::move(c.nulls), "bool"));
+        }
+        case K::Real:
+            for (std::size_t i = 0; i < c.nulls.size(); ++i)
+                if (c.nulls[i]) c.lanes[i] = std::bit_cast<std::uint64_t>(std::nan(""));
+            c.nulls = {};
+            return pyb::make_tuple(c.key, "float64", ownedArray(std::move(c.lanes), "float64"),
+                                   pyb::none());
+        case K::Text: {
+            std::vector<pyb::object> texts;
+            for (const auto& t : c.texts)
+                texts.push_back(pyb::str(t));
+            pyb::list out(c.lanes.size());
+            for (std::size_t i = 0; i < c.lanes.size(); ++i)
+                out[i] = c.nulls[i] ? pyb::none() : texts[c.lanes[i]];
+            return pyb::make_tuple(c.key, "object", out, pyb::none());
+        }
+        case K::Empty:
+            return pyb::make_tuple(c.key, "object",
+                                   objectColumn(std::vector<Value>(c.nulls.size())), pyb::none());
+        case K::Object:
+            break;
+    }
+    return pyb::make_tuple(c.key, "object", objectColumn(c.objects), pyb::none());
+}
+
+// Each row's errors as a list of its own (a fresh list: rows may be changed apart).
+pyb::list errorColumn(const Table& t) {
+    std::vector<std::vector<pyb::str>> sets;
+    for (const auto& set : t.error_sets)
+        sets.emplace_back(set.begin(), set.end());
+    pyb::list out(t.errors.size());
+    for (std::size_t i = 0; i < t.errors.size(); ++i) {
+        const auto& set = sets[t.errors[i]];
+        pyb::list row(set.size());
+        for (std::size_t j = 0; j < set.size(); ++j)
+            row[j] = set[j];
+        out[i] = std::move(row);
+    }
+    return out;
+}
+
+pyb::dict tablesToPython(std::vector<Table>& tables) {
+    pyb::dict out;
+    for (auto& t : tables) {
+        pyb::list columns;
+        columns.append(pyb::make_tuple("start_ns", "int64",
+                                       ownedArray(std::move(t.start_ns), "int64"), pyb::none()));
+        columns.append(pyb::make_tuple("end_ns", "int64", ownedArray(std::move(t.end_ns), "int64"),
+                                       pyb::none()));
+        for (auto& c : t.columns)
+            columns.append(columnToPython(c));
+        columns.append(pyb::make_tuple("errors", "object", errorColumn(t), pyb::none()));
+        out[pyb::str(t.proto + "/" + t.type)] = columns;
+    }
+    return out;
+}
+
+pyb::dict readColumns(const CaptureArgs& a) {
+    const DecodeJob job = jobFor(a, false);
+    TableSink sink;
+    {
+        pyb::gil_scoped_release nogil;
+        decodeCapture(job.path, job.requests, job.open, {&sink});
+    }
+    return tablesToPython(sink.tables);
+}
+
+}  // namespace
+
+void bindRead(pyb::module_& m) {
+    m.def("read_columns", &readColumns, pyb::arg("args"));
+}
+
+}  // namespace busdecode::py

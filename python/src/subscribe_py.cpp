@@ -1,0 +1,105 @@
+// subscribe(): the LCM feed of a `decode --lcm` run as event dicts. Each event's
+// annotation (DECODE_EVENTS, event_annotation_t, decoded here with the project's own
+// generated type) carries the event's jsonl object, which becomes the dict: exactly
+// what decode() gives for the same event.
+#include <pybind11/stl.h>
+
+#include <chrono>
+#include <deque>
+#include <lcm/lcm-cpp.hpp>
+#include <memory>
+#include <optional>
+#include <regex>
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include "bindings.h"
+#include "busdecode_lcm/decode_status_t.hpp"
+#include "busdecode_lcm/event_annotation_t.hpp"
+#include "core/options.h"
+#include "lcm/lcm_channels.h"
+#include "lcm/lcm_publisher.h"
+
+namespace busdecode::py {
+
+namespace {
+
+constexpr int kPollMs = 100;
+
+class Subscription {
+public:
+    Subscription(const std::string& url, const std::vector<std::string>& channels,
+                 std::optional<double> timeout_s, bool until_end)
+        : lc_(openLcm(url)),
+          timeout_s_(timeout_s),
+          loads_(pyb::module_::import("json").attr("loads")) {
+        if (!channels.empty()) {
+            try {
+                wanted_ = std::regex(fmt::format("({})", fmt::join(channels, ")|(")));
+            } catch (const std::regex_error& e) {
+                throw UsageError(fmt::format("channels {}: not a regular expression ({})",
+                                             fmt::join(channels, ", "), e.what()));
+            }
+        }
+        lc_->subscribe(kLcmEventsChannel, &Subscription::onEvent, this);
+        if (until_end) lc_->subscribe(kLcmStatusChannel, &Subscription::onStatus, this);
+        last_ = std::chrono::steady_clock::now();
+    }
+
+    pyb::object next() {
+        while (pending_.empty()) {
+            if (ended_ || timedOut()) throw pyb::stop_iteration();
+            {
+                pyb::gil_scoped_release nogil;  // the handlers touch no Python
+                lc_->handleTimeout(kPollMs);
+            }
+            if (PyErr_CheckSignals() != 0) throw pyb::error_already_set();
+        }
+        std::string json = std::move(pending_.front());
+        pending_.pop_front();
+        return loads_(json);
+    }
+
+private:
+    bool timedOut() const {
+        if (!timeout_s_) return false;
+        const std::chrono::duration<double> idle = std::chrono::steady_clock::now() - last_;
+        return idle.count() >= *timeout_s_;
+    }
+    void onEvent(const lcm::ReceiveBuffer*, const std::string&,
+                 const busdecode_lcm::event_annotation_t* m) {
+        last_ = std::chrono::steady_clock::now();
+        if (!wanted_ || std::regex_match(m->channel, *wanted_)) pending_.push_back(m->json);
+    }
+    void onStatus(const lcm::ReceiveBuffer*, const std::string&,
+                  const busdecode_lcm::decode_status_t* m) {
+        last_ = std::chrono::steady_clock::now();
+        if (m->state == "end") ended_ = true;
+    }
+
+    std::shared_ptr<lcm::LCM> lc_;
+    std::optional<double> timeout_s_;
+    pyb::object loads_;
+    std::optional<std::regex> wanted_;
+    std::deque<std::string> pending_;
+    std::chrono::steady_clock::time_point last_;
+    bool ended_ = false;
+};
+
+}  // namespace
+
+void bindSubscribe(pyb::module_& m) {
+    pyb::class_<Subscription>(m, "Subscription", "Events received from a decode --lcm feed.")
+        .def("__iter__", [](Subscription& s) -> Subscription& { return s; })
+        .def("__next__", &Subscription::next);
+    m.def(
+        "subscribe_feed",
+        [](const std::string& url, const std::vector<std::string>& channels,
+           std::optional<double> timeout_s, bool until_end) {
+            return std::make_unique<Subscription>(url, channels, timeout_s, until_end);
+        },
+        pyb::arg("url"), pyb::arg("channels"), pyb::arg("timeout"), pyb::arg("until_end"));
+}
+
+}  // namespace busdecode::py

@@ -1,0 +1,142 @@
+"""decode(), read() and decoders() against the CLI on every decoder's captures."""
+
+import itertools
+import math
+import tracemalloc
+
+import pandas as pd
+import pytest
+
+import busdecode
+from conftest import CAPTURES, cli_events, run_cli, BIN
+
+
+def test_decode_fields_equal_the_cli_jsonl(case):
+    capture, protos, opts = case
+    events = list(busdecode.decode(CAPTURES / capture, proto=protos, opts=opts))
+    expected = cli_events(capture, protos, opts)
+    assert events, "no events: the case proves nothing"
+    assert events == expected
+    for got, want in zip(events, expected):  # same keys in the same order, same types
+        assert list(got) == list(want)
+        assert [type(v) for v in got.values()] == [type(v) for v in want.values()]
+
+
+def test_decode_threads_1_gives_the_same_events():
+    path = CAPTURES / "tmc8100_ssi_dialogue.vcd"
+    two = list(busdecode.decode(path, proto=["tmc8100", "ssi"]))
+    one = list(busdecode.decode(path, proto=["tmc8100", "ssi"], threads=1))
+    assert one == two
+
+
+def test_decode_facts_and_advice_match_the_cli_hints():
+    capture = "bissc_errors.vcd"
+    it = busdecode.decode(CAPTURES / capture, proto="bissc")
+    assert it.facts["format"] == "vcd"
+    assert {b["role"] for b in it.facts["bindings"]} == {"ma", "sl"}
+    list(it)
+    rc, _, err = run_cli([str(BIN / "decode"), str(CAPTURES / capture), "--proto", "bissc",
+                          "--format", "jsonl"])
+    hints = [f"decode: {CAPTURES / capture}: hint: {a}" for a in it.facts["advice"]]
+    assert hints and err.splitlines() == hints
+    assert it.facts["edges"] > 0
+
+
+def test_decode_scoped_map_and_options():
+    # The roles bound by name explicitly, and an option scoped to one of two decoders.
+    events = list(busdecode.decode(CAPTURES / "tmc8100_ssi_dialogue.vcd", proto=["tmc8100", "ssi"],
+                                   opts={"ssi.bits": 25}))
+    assert events == cli_events("tmc8100_ssi_dialogue.vcd", ["tmc8100", "ssi"], {"ssi.bits": 25})
+
+
+def test_decode_stops_early_and_closes():
+    it = busdecode.decode(CAPTURES / "bissc_1mhz_26bit.vcd", proto="bissc")
+    first = list(itertools.islice(it, 2))
+    assert len(first) == 2
+    it.close()
+    assert list(it) == []
+    with busdecode.decode(CAPTURES / "bissc_1mhz_26bit.vcd", proto="bissc") as it2:
+        assert next(it2)["type"] == "frame"
+
+
+def test_decode_memory_stays_bounded_while_iterating():
+    # Python-side memory while iterating one event at a time: the queue is bounded, so
+    # what is held does not grow with the number of events consumed.
+    path = CAPTURES / "tmc8100_ssi_dialogue.vcd"
+    tracemalloc.start()
+    it = busdecode.decode(path, proto=["tmc8100", "ssi"])
+    n = 0
+    for _ in it:
+        n += 1
+    current, _peak = tracemalloc.get_traced_memory()
+    tracemalloc.stop()
+    assert n > 50 and current < 200_000
+
+
+def _row_dicts(df):
+    rows = []
+    for rec in df.to_dict("records"):
+        rows.append({k: (None if v is pd.NA or (isinstance(v, float) and math.isnan(v)) else v)
+                     for k, v in rec.items()})
+    return rows
+
+
+def test_read_tables_hold_the_cli_events(case):
+    capture, protos, opts = case
+    frames = busdecode.read(CAPTURES / capture, proto=protos, opts=opts)
+    expected = cli_events(capture, protos, opts)
+    by_table = {}
+    for ev in expected:
+        by_table.setdefault(f"{ev['proto']}/{ev['type']}", []).append(ev)
+    assert list(frames) == list(by_table)
+    for name, df in frames.items():
+        assert df["start_ns"].dtype == "int64" and df["end_ns"].dtype == "int64"
+        rows = _row_dicts(df)
+        want = by_table[name]
+        assert len(rows) == len(want)
+        for got, ev in zip(rows, want):
+            proto, typ = name.split("/")
+            full = {"proto": proto, "type": typ, **got}
+            # A row holds every column of its table; a field this event lacks is null.
+            assert {k: v for k, v in full.items() if k in ev} == ev
+            assert all(full[k] is None for k in full if k not in ev)
+
+
+def test_read_column_types():
+    frames = busdecode.read(CAPTURES / "bissc_1mhz_26bit.vcd", proto="bissc")
+    df = frames["bissc/frame"]
+    assert str(df["position"].dtype) == "Int64"
+    assert str(df["crc_ok"].dtype) == "boolean"
+    assert df["clock_hz"].dtype == "float64"
+    assert df["errors"].map(type).eq(list).all()
+    reg = frames["bissc/register"]
+    assert reg["echo"].isna().any() and str(reg["echo"].dtype) == "Int64"
+    # Each row's error list is its own.
+    errs = busdecode.read(CAPTURES / "bissc_errors.vcd", proto="bissc")["bissc/frame"]["errors"]
+    faulty = [e for e in errs if e]
+    assert faulty
+    faulty[0].append("mine")
+    assert sum("mine" in e for e in errs) == 1
+
+
+def test_decoders_list_what_decode_list_shows():
+    listed = busdecode.decoders()
+    rc, out, _ = run_cli([str(BIN / "decode"), "--list"])
+    assert rc == 0
+    ids = [d["id"] for d in listed]
+    assert ids == ["bissc", "spi", "ssi", "tmc8100", "tmcl", "uart"]
+    for d in listed:
+        assert f"{d['id']}  {d['name']}" in out
+        for o in d["options"]:
+            assert f"    {o['key']:<14} {o['kind']:<7} default {o['default'] or '-':<8}" in out
+        for r in d["roles"]:
+            assert f"    {r['name']:<10} {'required' if r['required'] else 'optional':<9}" in out
+    bissc = listed[0]
+    assert {"ma", "sl"} <= {r["name"] for r in bissc["roles"]}
+    assert "frame" in {e["type"] for e in bissc["events"]}
+
+
+def test_help_is_useful():
+    doc = busdecode.decode.__doc__
+    for word in ("proto", "map", "opts", "rate", "jsonl", "InputError", "constant"):
+        assert word in doc

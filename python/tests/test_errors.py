@@ -1,0 +1,65 @@
+"""Errors raise InputError / UsageError with the line `decode` prints after "decode: "."""
+
+import pytest
+
+import busdecode
+from conftest import BIN, CAPTURES, run_cli
+
+GOOD = CAPTURES / "bissc_1mhz_26bit.vcd"
+
+
+def cli_error(args):
+    rc, _, err = run_cli([str(BIN / "decode")] + [str(a) for a in args])
+    assert rc == 2
+    lines = err.splitlines()
+    assert len(lines) == 1 and lines[0].startswith("decode: ")
+    return lines[0][len("decode: "):]
+
+
+@pytest.mark.parametrize("kind, call, cli", [
+    (busdecode.InputError, dict(path=CAPTURES / "nothere.vcd", proto="bissc"),
+     [CAPTURES / "nothere.vcd", "--proto", "bissc"]),
+    (busdecode.UsageError, dict(path=GOOD, proto="nosuch"), [GOOD, "--proto", "nosuch"]),
+    (busdecode.UsageError, dict(path=GOOD, proto="bissc", opts={"bits": 999}),
+     [GOOD, "--proto", "bissc", "--opt", "bits=999"]),
+    (busdecode.UsageError, dict(path=GOOD, proto="bissc", opts={"nokey": 1}),
+     [GOOD, "--proto", "bissc", "--opt", "nokey=1"]),
+    (busdecode.InputError, dict(path=GOOD, proto="bissc", map={"ma": "NOPE"}),
+     [GOOD, "--proto", "bissc", "--map", "ma=NOPE"]),
+    (busdecode.UsageError, dict(path=GOOD, proto="bissc", rate=-5),
+     [GOOD, "--proto", "bissc", "--rate", "-5"]),
+    (busdecode.InputError, dict(path=GOOD, proto=[]), [GOOD]),
+    (busdecode.InputError, dict(path=CAPTURES, proto="bissc"), [CAPTURES, "--proto", "bissc"]),
+], ids=["missing file", "unknown decoder", "option range", "unknown option", "unbound role",
+        "bad rate", "no decoder", "directory"])
+def test_error_text_is_the_clis(kind, call, cli):
+    with pytest.raises(kind) as raised:
+        busdecode.decode(**call)
+    assert str(raised.value) == cli_error(cli)
+    with pytest.raises(kind) as raised_by_read:
+        busdecode.read(**call)
+    assert str(raised_by_read.value) == str(raised.value)
+    assert isinstance(raised.value, busdecode.Error)
+
+
+def test_an_error_deep_in_the_capture_is_raised_by_the_iteration(tmp_path):
+    text = GOOD.read_text()
+    cut = tmp_path / "cut.vcd"
+    cut.write_text(text[: len(text) * 2 // 3].rsplit("\n#", 1)[0] + "\n#zz\n")
+    rc, out, err = run_cli([str(BIN / "decode"), str(cut), "--proto", "bissc", "--format", "jsonl"])
+    assert rc == 2
+    got = []
+    with pytest.raises(busdecode.InputError) as raised:
+        for ev in busdecode.decode(cut, proto="bissc"):
+            got.append(ev)
+    assert len(got) == out.count("\n")
+    assert "decode: " + str(raised.value) == err.strip()
+
+
+def test_bad_arguments_are_usage_errors():
+    with pytest.raises(busdecode.UsageError):
+        busdecode.decode(GOOD, proto="bissc", threads=3)
+    with pytest.raises(busdecode.UsageError):
+        busdecode.decode(GOOD, proto="bissc", opts=["bits=26"])
+    with pytest.raises(busdecode.UsageError):
+        busdecode.verify(GOOD, rules=CAPTURES / "rules_bissc.toml", jobs=-1)

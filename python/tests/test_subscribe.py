@@ -1,0 +1,35 @@
+"""subscribe() against a real `decode --lcm udpm://...` publisher on loopback."""
+
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+import busdecode
+from conftest import BIN, CAPTURES, cli_events
+
+
+def test_the_feed_gives_the_events_decode_gives():
+    capture, protos = "tmc8100_ssi_dialogue.vcd", ["tmc8100", "ssi"]
+    r = subprocess.run([sys.executable, str(Path(__file__).with_name("lcm_feed.py")),
+                        str(BIN / "decode"), str(CAPTURES / capture), "DECODE_SSI_.*"] + protos,
+                       capture_output=True, text=True, timeout=120)
+    assert r.returncode == 0, r.stderr
+    got = json.loads(r.stdout)
+    expected = cli_events(capture, protos)
+    assert got["all"] == expected
+    assert got["some"] == [e for e in expected if e["proto"] == "ssi"]
+    assert got["some"]
+
+
+def test_a_bad_url_raises_the_clis_error():
+    with pytest.raises(busdecode.InputError) as raised:
+        busdecode.subscribe("nosuch://x")
+    assert str(raised.value).startswith("--lcm: cannot open LCM URL 'nosuch://x'")
+
+
+def test_a_bad_channel_pattern_is_a_usage_error():
+    with pytest.raises(busdecode.UsageError):
+        busdecode.subscribe("memq://", channels="DECODE_(")
