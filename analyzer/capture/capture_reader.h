@@ -47,9 +47,6 @@ public:
     // Bytes consumed so far and total (0 if unknown), for progress and throughput.
     virtual std::uint64_t bytesRead() const { return 0; }
     virtual std::uint64_t bytesTotal() const { return 0; }
-    // What the file says about its traffic beyond its signals (DSView: the protocol
-    // decoders set up in it), one line each, for `decode --formats FILE`.
-    virtual std::vector<std::string> notes() const { return {}; }
     // True if every edge changes its line's level (the reader drops repeated values
     // itself): the session then skips its own check.
     virtual bool changesOnly() const { return false; }
@@ -57,7 +54,8 @@ public:
     // to be wrapped in prefetchReader()).
     virtual bool readsAhead() const { return false; }
     // What the reader chose or found that the user should see in the summary (thresholds
-    // of analog lines, lines that never crossed them); valid after next() = false.
+    // of analog lines, lines that never crossed them; a DSView session's decoder settings,
+    // also shown by `decode --formats FILE`); valid after next() = false.
     virtual std::vector<std::string> notes() const { return {}; }
 };
 
