@@ -61,6 +61,7 @@ seed_corpus() {  # TARGET
         csv_sigrok) copy_small "$c" "$src/captures" "$real/biss-renishaw/sigrok-csv" -name '*.csv' ;;
         csv_saleae) copy_small "$c" "$real/sigrok-dumps" -name '*.csv' ;;
         sr) copy_small "$c" "$real" -name '*.sr' -size -64k ;;
+        dsl) copy_small "$c" "$src/tests/data/real/formats/dsview" -size -16k ;;
     esac
 }
 options_for() {  # TARGET -> libFuzzer options
@@ -68,6 +69,8 @@ options_for() {  # TARGET -> libFuzzer options
         vcd | vcd_pieces) echo "-dict=$src/fuzz/dict/vcd.dict -max_len=4096" ;;
         csv_*) echo "-dict=$src/fuzz/dict/csv.dict -max_len=4096" ;;
         sr) echo "-dict=$src/fuzz/dict/sr.dict -max_len=8192" ;;
+        dsl) echo "-max_len=16384" ;;
+        compressed | sample_rows | saleae_bin) echo "-max_len=4096" ;;
         rules) echo "-dict=$src/fuzz/dict/rules.dict -max_len=2048" ;;
         cli_args) echo "-dict=$src/fuzz/dict/cli_args.dict -max_len=512" ;;
         *) echo "-max_len=${DECODER_MAX_LEN:-4096}" ;;

@@ -19,6 +19,7 @@
 #include "app/report_paths.h"
 #include "app/standard_streams.h"
 #include "capture/analog_lines.h"
+#include "capture/format_list.h"
 #include "core/interrupted.h"
 #include "core/options.h"
 #include "core/registry.h"
@@ -63,7 +64,8 @@ QStringList normaliseArgs(int argc, char** argv) {
 struct Parsed {
     DecodeArgs args;
     bool list = false;
-    bool done = false;  // --help or --version printed
+    bool done = false;     // --help or --version printed
+    bool formats = false;  // --formats: the capture formats, or what each capture is
 };
 
 Parsed parse(const QStringList& argv, bool verify) {
@@ -86,6 +88,7 @@ Parsed parse(const QStringList& argv, bool verify) {
     QCommandLineOption follow("follow", "keep reading a growing capture (or a pipe)");
     QCommandLineOption realtime("realtime", "pace a recorded capture at its own time scale");
     QCommandLineOption list("list", "list decoders, roles, options and defaults");
+    QCommandLineOption formats("formats", "list capture formats; with CAPTURE..., describe each");
     QCommandLineOption rules("rules", "verify: rules file (TOML)", "FILE");
     QCommandLineOption junit("junit", "verify: write JUnit XML", "FILE");
     QCommandLineOption jobs("jobs", "verify: captures checked in parallel (0 = one per core)", "N",
@@ -98,9 +101,9 @@ Parsed parse(const QStringList& argv, bool verify) {
         "2");
     QCommandLineOption help({"h", "help"}, "show this help");
     QCommandLineOption version("version", "show the version");
-    for (auto* o : {&proto,     &map,        &opt,       &format,   &report, &lcm,    &rate,
-                    &threshold, &hysteresis, &follow,    &realtime, &list,   &rules,  &junit,
-                    &jobs,      &shard,      &from_list, &threads,  &help,   &version})
+    for (auto* o : {&proto,     &map,        &opt,    &format,    &report,  &lcm,     &rate,
+                    &threshold, &hysteresis, &follow, &realtime,  &list,    &formats, &rules,
+                    &junit,     &jobs,       &shard,  &from_list, &threads, &help,    &version})
         p.addOption(*o);
     if (!p.parse(argv)) throw InputError(p.errorText().toStdString());
     if (p.isSet(help)) {
@@ -119,6 +122,7 @@ Parsed parse(const QStringList& argv, bool verify) {
     }
     Parsed out;
     out.list = p.isSet(list);
+    out.formats = p.isSet(formats);
     DecodeArgs& a = out.args;
     a.captures = toStd(p.positionalArguments());
     a.protos = toStd(p.values(proto));
@@ -163,9 +167,18 @@ Parsed parse(const QStringList& argv, bool verify) {
         (!a.rules.empty() || !a.junit.empty() || !a.shard.empty() || !a.from_list.empty()))
         throw InputError("--rules, --junit, --shard and --from-list belong to 'decode verify'");
     if (verify && a.rules.empty()) throw InputError("decode verify: --rules FILE is required");
-    if (!out.list && a.captures.empty() && a.from_list.empty())
+    if (!out.list && !out.formats && a.captures.empty() && a.from_list.empty())
         throw InputError("no capture given (see decode --help)");
     return out;
+}
+
+int runFormats(const DecodeArgs& a) {
+    if (a.captures.empty()) printFormatList(stdout);
+    OpenOptions open;
+    open.rate_hz = a.rate_hz;
+    for (const auto& capture : a.captures)
+        printCaptureDescription(stdout, capture, open);
+    return 0;
 }
 
 int runDecode(const DecodeArgs& a) {
@@ -230,6 +243,11 @@ int run(int argc, char** argv, DecodeArgs& args) {
         return 0;
     }
     args = parsed.args;
+    if (parsed.formats) {
+        const int status = runFormats(args);
+        checkStandardOutput();
+        return status;
+    }
     for (const auto& c : args.captures)
         if (c == "-" && standardStreams().stdin_closed)
             throw InputError("-: standard input is closed");

@@ -56,7 +56,8 @@ public:
     // to be wrapped in prefetchReader()).
     virtual bool readsAhead() const { return false; }
     // What the reader chose or found that the user should see in the summary (thresholds
-    // of analog lines, lines that never crossed them); valid after next() = false.
+    // of analog lines, lines that never crossed them; a DSView session's decoder settings,
+    // also shown by `decode --formats FILE`); valid after next() = false.
     virtual std::vector<std::string> notes() const { return {}; }
 };
 

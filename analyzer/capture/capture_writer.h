@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "capture/compression.h"
 #include "core/waveform.h"
 
 namespace busdecode {
@@ -53,6 +54,22 @@ private:
     std::size_t k_ = 0;                            // next edge
     Tick at_ = 0;                                  // tick after the last stretch
 };
+
+// A DSView session (.dsl): one bit-plane per line and block of 2^24 samples. Needs a
+// timebase of one sample per tick; holds the planes in memory (generated traffic).
+void writeDsl(const Waveform& w, const std::string& path);
+
+// One row per sample: Vivado's ILA CSV export (each line a BINARY probe `top/u_ila/NAME`
+// and all of them in the HEX probe `top/u_ila/lines[n-1:0]`) or a headerless list as
+// ChipScope's .prn (TAB after each level, CRLF). Needs one sample per tick, 64 lines at most.
+enum class SampleRowsDialect { VivadoIlaCsv, ChipScopePrn };
+void writeSampleRows(const Waveform& w, const std::string& path, SampleRowsDialect dialect);
+
+// Saleae Logic 2's binary export of the lines: `dir`/digital_N.bin, version 0 or 1.
+void writeSaleaeBin(const Waveform& w, const std::string& dir, int version);
+
+// `in_path` compressed into `out_path` as gzip, xz or zstd (not None) write it.
+void compressFile(const std::string& in_path, const std::string& out_path, Compression kind);
 
 // A sample rate as sigrok writes it ("100 MHz", "250 kHz", "5 Hz").
 std::string sampleRateText(std::int64_t hz);

@@ -1,5 +1,6 @@
-// openCapture: recognises the format by content, not by the file name: a ZIP is a
-// sigrok session, text starting with a `$keyword` is VCD, other text is CSV.
+// openCapture: recognises the format by content, not by the file name: gzip, xz and zstd
+// are decompressed and looked at again, a ZIP is a sigrok session, text starting with a
+// `$keyword` is VCD, other text is CSV.
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
@@ -9,7 +10,10 @@
 #include <unistd.h>
 
 #include "core/options.h"
+#include "decompressing_input.h"
 #include "readers.h"
+#include "sample_rows_reader.h"
+#include "zip_archive.h"
 
 namespace busdecode {
 
@@ -86,20 +90,60 @@ int copyToTempFile(TextSource& src) {
 
 }  // namespace
 
-std::unique_ptr<CaptureReader> openCapture(const std::string& path, const OpenOptions& opts) {
-    auto src = std::make_unique<TextSource>(path, opts);
+namespace {
+
+std::unique_ptr<CaptureReader> openSource(std::unique_ptr<TextSource> src, const std::string& path,
+                                          const OpenOptions& opts);
+
+std::unique_ptr<CaptureReader> openCompressed(std::unique_ptr<TextSource> src, Compression kind,
+                                              const OpenOptions& opts) {
+    auto input = std::make_shared<DecompressingInput>(std::move(src), kind, opts);
+    try {
+        return decompressedReader(openSource(input->output(), "-", opts), input);
+    } catch (const InputError&) {
+        input->throwIfBroken();
+        throw;
+    }
+}
+
+// A sigrok session holds `metadata`, a DSView session `header`; a Saleae .sal (also a
+// ZIP, `meta.json`) is undocumented and refused.
+std::unique_ptr<CaptureReader> openZip(std::unique_ptr<TextSource> src, const std::string& path,
+                                       const OpenOptions& opts) {
+    const std::string name = src->name();
+    const int fd = path == "-" ? copyToTempFile(*src) : -1;
+    src.reset();
+    auto zip =
+        std::make_unique<ZipArchive>(path, fd, name, "ZIP capture (sigrok .sr or DSView .dsl)");
+    if (zip->has("header") && !zip->has("metadata")) return openDsl(std::move(zip), opts);
+    if (zip->has("meta.json") && !zip->has("metadata"))
+        throw InputError(name +
+                         ": a Saleae Logic 2 session (.sal): its format is undocumented and "
+                         "changes between releases; export the channels as binary files in "
+                         "Logic 2 (File > Export Data > Binary) and decode those");
+    if (path != "-") {
+        if (auto analog = openSrAnalogIfAnalog(path, name, opts)) return analog;
+    }
+    return openSr(std::move(zip), opts);
+}
+
+// `path` is the file to reopen for formats read by offset (ZIP); "-" when there is none.
+std::unique_ptr<CaptureReader> openSource(std::unique_ptr<TextSource> src, const std::string& path,
+                                          const OpenOptions& opts) {
     std::string_view head = src->peek(4096);
     if (head.empty()) throw InputError(src->name() + ": empty file");
-    if (head.size() >= 4 && head.substr(0, 4) == std::string_view("PK\x03\x04", 4)) {
-        if (path == "-") {
-            int fd = copyToTempFile(*src);
-            return openSr("", fd, src->name(), opts);
-        }
-        const std::string name = src->name();
+    if (const Compression kind = compressionOf(head); kind != Compression::None)
+        return openCompressed(std::move(src), kind, opts);
+    if (head.substr(0, 8) == "<SALEAE>") {
+        if (path == "-")
+            throw InputError(src->name() +
+                             ": a Saleae binary export is read from its file (or folder), not "
+                             "from a pipe");
         src.reset();
-        if (auto analog = openSrAnalogIfAnalog(path, name, opts)) return analog;
-        return openSr(path, -1, name, opts);
+        return openSaleaeBin(path);
     }
+    if (head.size() >= 4 && head.substr(0, 4) == std::string_view("PK\x03\x04", 4))
+        return openZip(std::move(src), path, opts);
     std::string_view text = head;
     while (!text.empty() && (text.front() == ' ' || text.front() == '\t' || text.front() == '\r' ||
                              text.front() == '\n'))
@@ -111,8 +155,18 @@ std::unique_ptr<CaptureReader> openCapture(const std::string& path, const OpenOp
             src->name() +
             ": unknown format: binary data that is neither VCD, CSV nor a sigrok .sr session");
     if (!text.empty() && text.front() == '$') return openVcd(std::move(src), opts);
+    if (auto r = openIlaCsv(src, head, opts)) return r;
+    if (auto r = openSampleList(src, head, opts)) return r;
     if (auto scope = openScopeCsvIfScope(src, opts)) return scope;
     return openCsv(std::move(src), opts);
+}
+
+}  // namespace
+
+std::unique_ptr<CaptureReader> openCapture(const std::string& path, const OpenOptions& opts) {
+    // A folder of one-file-per-channel exports (Saleae Logic 2) is one capture.
+    if (path != "-" && std::filesystem::is_directory(path)) return openSaleaeBin(path);
+    return openSource(std::make_unique<TextSource>(path, opts), path, opts);
 }
 
 }  // namespace busdecode

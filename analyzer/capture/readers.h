@@ -15,10 +15,14 @@ std::unique_ptr<CaptureReader> openCsv(std::unique_ptr<TextSource> src, const Op
 // A scope's CSV (scope_csv_layout.h), taking `src`; null, leaving `src`, for other CSVs.
 std::unique_ptr<CaptureReader> openScopeCsvIfScope(std::unique_ptr<TextSource>& src,
                                                    const OpenOptions& opts);
-// Opens `path`, or when fd >= 0 that descriptor (a seekable copy of standard input,
-// owned by the reader); `name` is what messages call the file.
-std::unique_ptr<CaptureReader> openSr(const std::string& path, int fd, const std::string& name,
-                                      const OpenOptions& opts);
+class ZipArchive;
+// ZIP captures, the archive already open (zip_archive.h).
+std::unique_ptr<CaptureReader> openSr(std::unique_ptr<ZipArchive> archive, const OpenOptions& opts);
+std::unique_ptr<CaptureReader> openDsl(std::unique_ptr<ZipArchive> archive,
+                                       const OpenOptions& opts);
+
+// Saleae Logic 2 binary export: one digital_N.bin, or a folder of them.
+std::unique_ptr<CaptureReader> openSaleaeBin(const std::string& path);
 
 // A sigrok session of analog channels only (sr_analog_samples.cpp); null for others.
 std::unique_ptr<CaptureReader> openSrAnalogIfAnalog(const std::string& path,

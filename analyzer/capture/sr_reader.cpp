@@ -29,6 +29,7 @@
 #include "core/own_cache_lines.h"
 #include "core/sample_rate.h"
 #include "readers.h"
+#include "zip_archive.h"
 
 namespace busdecode {
 
@@ -46,35 +47,14 @@ std::string trim(const std::string& s) {
 // In cache lines of its own: its state is written as it reads (own_cache_lines.h).
 class alignas(kOwnLineBytes) SrReader : public CaptureReader {
 public:
-    SrReader(const std::string& path, int fd, const std::string& name, const OpenOptions& opts)
-        : name_(name), opts_(opts) {
-        int err = 0;
-        if (fd >= 0) {
-            zip_ = zip_fdopen(fd, ZIP_RDONLY, &err);
-            if (!zip_) close(fd);
-        } else {
-            zip_ = zip_open(path.c_str(), ZIP_RDONLY, &err);
-        }
-        if (!zip_) {
-            zip_error_t ze;
-            zip_error_init_with_code(&ze, err);
-            std::string msg = zip_error_strerror(&ze);
-            zip_error_fini(&ze);
-            throw InputError(
-                fmt::format("{}: not a readable sigrok session (.sr): {}", name_, msg));
-        }
-        try {
-            readMetadata();
-            findChunks();
-        } catch (...) {
-            zip_discard(zip_);
-            zip_ = nullptr;
-            throw;
-        }
+    SrReader(std::unique_ptr<ZipArchive> archive, const OpenOptions& opts)
+        : name_(archive->name()), opts_(opts), archive_(std::move(archive)),
+          zip_(archive_->handle()) {
+        readMetadata();
+        findChunks();
     }
     ~SrReader() override {
         if (file_) zip_fclose(file_);
-        if (zip_) zip_discard(zip_);
     }
 
     const std::vector<SignalInfo>& signals() const override { return signals_; }
@@ -403,6 +383,7 @@ private:
 
     std::string name_;
     OpenOptions opts_;
+    std::unique_ptr<ZipArchive> archive_;
     zip_t* zip_ = nullptr;
     zip_file_t* file_ = nullptr;
     std::vector<std::string> chunks_;
@@ -423,9 +404,9 @@ private:
 
 }  // namespace
 
-std::unique_ptr<CaptureReader> openSr(const std::string& path, int fd, const std::string& name,
+std::unique_ptr<CaptureReader> openSr(std::unique_ptr<ZipArchive> archive,
                                       const OpenOptions& opts) {
-    return std::make_unique<SrReader>(path, fd, name, opts);
+    return std::make_unique<SrReader>(std::move(archive), opts);
 }
 
 }  // namespace busdecode

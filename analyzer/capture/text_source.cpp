@@ -39,6 +39,15 @@ TextSource::TextSource(const std::string& path, const OpenOptions& opts) : opts_
             throw InputError(fmt::format("{}: cannot open: {}", path, std::strerror(errno)));
         ::fcntl(fd_, F_SETFL, ::fcntl(fd_, F_GETFL) & ~O_NONBLOCK);
     }
+    setUp();
+}
+
+TextSource::TextSource(int fd, std::string name, const OpenOptions& opts)
+    : name_(std::move(name)), opts_(opts), fd_(fd) {
+    setUp();
+}
+
+void TextSource::setUp() {
     struct stat st {};
     if (fstat(fd_, &st) != 0)
         throw InputError(fmt::format("{}: cannot read: {}", name_, std::strerror(errno)));
@@ -229,6 +238,13 @@ std::optional<TextSource::Status> TextSource::noNewline(std::string_view& rest) 
         return Status::Line;
     }
     return Status::Eof;
+}
+
+TextSource::Status TextSource::nextBytes(std::string_view& bytes) {
+    if (pos_ == end_ && fill() == 0) return eof_ || stopRequested() ? Status::Eof : Status::NoData;
+    bytes = std::string_view(pos_, std::size_t(end_ - pos_));
+    pos_ = end_;
+    return Status::Line;
 }
 
 TextSource::Status TextSource::nextLines(std::string_view& text, std::uint64_t first_line) {

@@ -25,6 +25,8 @@ public:
 
     // Opens `path` ("-" = standard input). Throws InputError naming the file.
     TextSource(const std::string& path, const OpenOptions& opts);
+    // Reads `fd` (a pipe: decompressed input), which it closes; `name` is for messages.
+    TextSource(int fd, std::string name, const OpenOptions& opts);
     ~TextSource();
     TextSource(const TextSource&) = delete;
     TextSource& operator=(const TextSource&) = delete;
@@ -52,6 +54,9 @@ public:
     // `first_line` (the number of the run's first line) only names a line that is too
     // long. Statuses and the view's lifetime are those of nextLine().
     Status nextLines(std::string_view& text, std::uint64_t first_line);
+    // Bulk form for binary input (a compressed stream): everything buffered, refilled
+    // when empty. Statuses and the view's lifetime are those of nextLine().
+    Status nextBytes(std::string_view& bytes);
     // Skips the complete lines already buffered that repeat `line`, the line nextLine()
     // just returned, byte for byte with its line end ("\n" or "\r\n"), up to the first
     // other one, and returns how many: a dense CSV repeats its last row for most samples.
@@ -121,6 +126,7 @@ private:
         if (e > b && e[-1] == '\r') --e;
         return std::string_view(b, std::size_t(e - b));
     }
+    void setUp();  // after fd_ is open: the file's kind, size and buffer
     Status slowNextLine(std::string_view& line);
     // No newline in what is buffered: read more (nullopt: refilled, scan again; NoData
     // on live input for now), or hand out the input's last line, which has no newline

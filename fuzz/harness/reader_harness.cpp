@@ -93,6 +93,9 @@ void runReaderTarget(ReaderKind kind, const std::uint8_t* data, std::size_t size
         case ReaderKind::Sr:
             bytes = srFromFuzzBytes(data, size);
             break;
+        case ReaderKind::Dsl:
+            bytes = dslFromFuzzBytes(data, size);
+            break;
     }
     checkReader(bytes, opts);
 }

@@ -1,0 +1,51 @@
+#include "format_list.h"
+
+#include <fmt/format.h>
+
+namespace busdecode {
+
+const std::vector<FormatEntry>& captureFormats() {
+    static const std::vector<FormatEntry> list = {
+        {"vcd", "text whose first word is a $keyword ($date, $version, $timescale...)",
+         "sigrok, GTKWave, simulators, Vivado ILA VCD"},
+        {"sigrok-csv", "CSV after sigrok's `; Channels`/`; Samplerate` comments",
+         "dense (one row per sample) or with a time column"},
+        {"saleae-csv", "CSV whose first column is `Time [s]`", "Logic 1 and Logic 2 exports"},
+        {"csv", "other CSV with a header of names (ScanaStudio, USBee, plain)",
+         "without a time column: --rate HZ"},
+        {"vivado-ila-csv", "CSV whose second line starts `Radix - `",
+         "--rate HZ; vector probes as name[3]; Sample in Buffer/Window, TRIGGER skipped"},
+        {"sample-list", "first line only 0/1 fields (spaces, TABs or commas; ChipScope .prn)",
+         "--rate HZ; lines named 0, 1, ... by column"},
+        {"sigrok-sr", "ZIP holding `metadata` (sigrok session)", "logic data"},
+        {"dsview-dsl", "ZIP holding `header` (DSView session)",
+         "logic mode; DSO and analog sessions refused; --formats FILE shows its decoders"},
+        {"+gzip, +xz, +zstd", "magic bytes 1f 8b / fd 37 7a 58 5a 00 / 28 b5 2f fd",
+         "any format above compressed, from a file or standard input"},
+        {"(refused) Saleae .sal", "ZIP holding `meta.json`",
+         "undocumented: export binary files from Logic 2 instead"},
+    };
+    return list;
+}
+
+void printFormatList(std::FILE* out) {
+    fmt::print(out, "Capture formats (recognised by content, not by file name):\n");
+    for (const auto& f : captureFormats())
+        fmt::print(out, "  {:<22} {}\n  {:<22}   {}\n", f.name, f.recognised_by, "", f.notes);
+}
+
+void printCaptureDescription(std::FILE* out, const std::string& path, const OpenOptions& opts) {
+    const auto r = openCapture(path, opts);
+    const Timebase tb = r->timebase();
+    fmt::print(out, "{}: {}, timebase {}/{} s, {} signals\n", path, r->formatName(), tb.num, tb.den,
+               r->signals().size());
+    for (std::size_t i = 0; i < r->signals().size(); ++i) {
+        const auto& s = r->signals()[i];
+        fmt::print(out, "  {:>3}  {}{}\n", i, s.full_name,
+                   s.width > 1 ? fmt::format("[{}]", s.width) : "");
+    }
+    for (const auto& note : r->notes())
+        fmt::print(out, "  {}\n", note);
+}
+
+}  // namespace busdecode

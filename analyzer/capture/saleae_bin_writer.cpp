@@ -1,0 +1,46 @@
+// writeSaleaeBin: a Waveform as Saleae Logic 2 exports digital channels in binary, one
+// `digital_N.bin` per line in a folder, version 0 or 1 (one chunk at the waveform's
+// sample rate), for round trips through the reader.
+#include <filesystem>
+
+#include <fmt/format.h>
+
+#include "capture_writer.h"
+#include "core/atomic_file.h"
+
+namespace busdecode {
+
+namespace {
+
+template <class T>
+void put(AtomicFile& out, T v) {
+    out.put(std::string_view(reinterpret_cast<const char*>(&v), sizeof v));
+}
+
+}  // namespace
+
+void writeSaleaeBin(const Waveform& w, const std::string& dir, int version) {
+    std::filesystem::create_directories(dir);
+    const double tick = double(w.timebase.num) / double(w.timebase.den);
+    const double begin = double(w.start) * tick, end = double(w.end) * tick;
+    for (std::uint32_t l = 0; l < w.names.size(); ++l) {
+        std::vector<double> times;
+        for (const Edge& e : w.edges)
+            if (e.line == l) times.push_back(double(e.t) * tick);
+        AtomicFile out(fmt::format("{}/digital_{}.bin", dir, l));
+        out.put("<SALEAE>");
+        put(out, std::int32_t(version));
+        put(out, std::int32_t(0));  // digital
+        if (version == 1) put(out, std::uint64_t(1));
+        put(out, std::uint32_t(l < w.initial.size() && w.initial[l]));
+        if (version == 1) put(out, double(w.timebase.den) / double(w.timebase.num));
+        put(out, begin);
+        put(out, end);
+        put(out, std::uint64_t(times.size()));
+        for (double t : times)
+            put(out, t);
+        out.commit();
+    }
+}
+
+}  // namespace busdecode

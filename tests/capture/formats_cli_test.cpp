@@ -1,0 +1,44 @@
+// `decode --formats`: every reader listed with what it recognises; with a capture, what
+// it is, DSView's decoder settings included so they can be copied.
+#include <gtest/gtest.h>
+
+#include "capture/format_list.h"
+#include "support/paths.h"
+
+namespace busdecode::test {
+namespace {
+
+TEST(FormatsCli, ListsEveryReader) {
+    const auto r = runDecode({"--formats"});
+    ASSERT_EQ(r.status, 0) << r.err;
+    for (const auto& f : captureFormats())
+        EXPECT_NE(r.out.find(f.name), std::string::npos) << f.name;
+    for (const char* name : {"vcd", "sigrok-sr", "dsview-dsl", "vivado-ila-csv", "sample-list",
+                             "gzip", "xz", "zstd", ".sal"})
+        EXPECT_NE(r.out.find(name), std::string::npos) << name;
+}
+
+TEST(FormatsCli, DescribesADsviewSessionAndItsDecoders) {
+    const auto r =
+        runDecode({"--formats", sourceDir() + "/tests/data/real/formats/dsview/demo_spi.dsl"});
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.out.find("dsview-dsl, timebase 1/40000000 s, 6 signals"), std::string::npos)
+        << r.out;
+    EXPECT_NE(r.out.find("DSView decoders: [{\"channel\": [{\"miso\": 0}, {\"cs\": 2}"),
+              std::string::npos)
+        << r.out;
+    EXPECT_NE(r.out.find("\"wordsize\": 8}"), std::string::npos) << r.out;
+}
+
+TEST(FormatsCli, BadFileIsOneLineExitTwo) {
+    const std::string p = tempDir() + "/x.bin";
+    writeFile(p, std::string("\x01\x02\x03\x00\x05", 5));
+    const auto r = runDecode({"--formats", p});
+    EXPECT_EQ(r.status, 2);
+    EXPECT_EQ(r.err, "decode: " + p +
+                         ": unknown format: binary data that is neither VCD, CSV nor a sigrok .sr "
+                         "session\n");
+}
+
+}  // namespace
+}  // namespace busdecode::test

@@ -1,0 +1,56 @@
+// The fuzz targets of the new formats (dsl, compressed, sample_rows, saleae_bin) run on
+// their seeds and on cut and mutated copies of them, through the same harness the
+// libFuzzer targets use: every input either reads or ends in one InputError naming the
+// file, under the CI's sanitizers too.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <random>
+
+#include "fuzz_harness.h"
+#include "support/paths.h"
+
+namespace busdecode::test {
+namespace {
+
+void runAll(const std::string& target) {
+    const auto dir = std::filesystem::path(sourceDir()) / "fuzz/seeds" / target;
+    std::mt19937 rng(1);
+    int inputs = 0;
+    for (const auto& e : std::filesystem::directory_iterator(dir)) {
+        const std::string seed = readFile(e.path().string());
+        auto run = [&](const std::string& bytes) {
+            ++inputs;
+            ASSERT_NO_THROW(fuzz::runTarget(
+                target, reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size()))
+                << target << " " << e.path();
+        };
+        run(seed);
+        for (std::size_t cut = 0; cut < seed.size();
+             cut += std::max<std::size_t>(1, seed.size() / 24))
+            run(seed.substr(0, cut));
+        for (int m = 0; m < 150 && !seed.empty(); ++m) {
+            std::string bytes = seed;
+            for (int k = 0; k < 1 + int(rng() % 4); ++k)
+                bytes[rng() % bytes.size()] = char(rng());
+            run(bytes);
+        }
+    }
+    EXPECT_GT(inputs, 100) << target;
+}
+
+TEST(FormatsFuzzSeeds, Dsl) {
+    runAll("dsl");
+}
+TEST(FormatsFuzzSeeds, Compressed) {
+    runAll("compressed");
+}
+TEST(FormatsFuzzSeeds, SampleRows) {
+    runAll("sample_rows");
+}
+TEST(FormatsFuzzSeeds, SaleaeBin) {
+    runAll("saleae_bin");
+}
+
+}  // namespace
+}  // namespace busdecode::test

@@ -1,0 +1,97 @@
+// Saleae Logic 2 binary exports (digital, versions 0 and 1): a folder of channels or one
+// file read back as the VCD of the same traffic; broken files named with what is wrong.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <random>
+
+#include "capture/capture_writer.h"
+#include "capture_util.h"
+#include "core/waveform.h"
+#include "zip_builder.h"
+
+namespace busdecode::test {
+namespace {
+
+Waveform traffic() {
+    std::mt19937 rng(11);
+    WaveBuilder b(Timebase::fromSampleRate(12'500'000), {"clk", "data", "cs"}, {1, 0, 1});
+    Tick t = 100;
+    for (int i = 0; i < 5000; ++i) {
+        t += 1 + Tick(rng() % 40);
+        const auto l = std::uint32_t(rng() % 3);
+        b.set(l, t, !b.level(l));
+    }
+    Waveform w = b.build(t + 9);
+    w.start = 7;
+    return w;
+}
+
+TEST(SaleaeBin, FolderRoundTripVersions0And1) {
+    const Waveform w = traffic();
+    const std::string vcd = tempDir() + "/s.vcd";
+    writeVcd(w, vcd);
+    const Collected want = collectFile(vcd, {"clk", "data", "cs"});
+    for (int version : {0, 1}) {
+        SCOPED_TRACE(version);
+        const std::string dir = tempDir() + "/export" + std::to_string(version);
+        writeSaleaeBin(w, dir, version);
+        const Collected c = collectFile(dir, {"0", "1", "digital_2"});
+        EXPECT_EQ(c.format, "saleae-bin");
+        EXPECT_EQ(c.initial, want.initial);
+        // Ticks count from the capture's begin, so times are compared from there.
+        std::vector<NsEdge> got = inNs(c), exp = inNs(want);
+        ASSERT_EQ(got.size(), exp.size());
+        const std::int64_t offset = w.timebase.toNs(w.start);
+        for (std::size_t i = 0; i < got.size(); ++i) {
+            EXPECT_EQ(got[i].line, exp[i].line);
+            EXPECT_EQ(got[i].level, exp[i].level);
+            EXPECT_NEAR(double(got[i].ns + offset), double(exp[i].ns), 1.0) << i;
+        }
+        if (version == 1) EXPECT_EQ(c.tb.den / c.tb.num, 12'500'000);
+        // One channel's file alone.
+        const Collected one = collectFile(dir + "/digital_1.bin");
+        ASSERT_EQ(one.signals.size(), 1u);
+        EXPECT_EQ(one.signals[0].name, "1");
+    }
+}
+
+TEST(SaleaeBin, BrokenFiles) {
+    const Waveform w = traffic();
+    const std::string dir = tempDir() + "/broken";
+    writeSaleaeBin(w, dir, 0);
+    const std::string good = readFile(dir + "/digital_0.bin");
+    std::string p = tempCapture("cut.bin", good.substr(0, good.size() - 12));
+    EXPECT_NE(errorOf(p).find(p + ": chunk 0 header says"), std::string::npos) << errorOf(p);
+    EXPECT_NE(errorOf(p).find("(truncated)"), std::string::npos);
+    p = tempCapture("head.bin", good.substr(0, 20));
+    EXPECT_EQ(errorOf(p), p + ": ends inside its chunk 0 header (truncated)");
+    std::string v = good;
+    v[8] = 2;
+    p = tempCapture("v2.bin", v);
+    EXPECT_EQ(errorOf(p),
+              p + ": Saleae binary export version 2 is not read (versions 0 and 1 are)");
+    v = good;
+    v[12] = 1;
+    p = tempCapture("analog.bin", v);
+    EXPECT_EQ(errorOf(p), p + ": an analog channel (type 1): it holds voltages, only digital "
+                              "channels (type 0) are read");
+    p = tempCapture("tail.bin", good + "xyz");
+    EXPECT_EQ(errorOf(p), p + ": 3 bytes after the last transition (not a Saleae export?)");
+    const std::string empty = tempDir() + "/nothing";
+    std::filesystem::create_directories(empty);
+    EXPECT_EQ(errorOf(empty), empty + ": is a directory without Saleae digital_N.bin files");
+}
+
+TEST(SaleaeBin, SalSessionRefusedPointingToTheExport) {
+    const std::string p =
+        tempCapture("x.sal", fuzz::buildStoredZip({{"meta.json", "{\"version\": 22}"}}));
+    EXPECT_NE(errorOf(p).find(p + ": a Saleae Logic 2 session (.sal): its format is "
+                                  "undocumented"),
+              std::string::npos)
+        << errorOf(p);
+    EXPECT_NE(errorOf(p).find("Export Data > Binary"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace busdecode::test
