@@ -121,7 +121,7 @@ TEST(SignalExit, InterruptedDecodeSaysWhereAndLeavesTheEarlierReport) {
     const std::string out = tempDir() + "/paced.out";
     const RunResult r = signalWhen(shellQuote(capture) + " --proto spi --realtime --report " +
                                        shellQuote(report) + " >" + shellQuote(out),
-                                   ":", "grep -q transfer " + shellQuote(out), "TERM");
+                                   ":", "grep -qs transfer " + shellQuote(out), "TERM");
     EXPECT_EQ(r.status, 143) << r.err;
     EXPECT_EQ(r.err.rfind("decode: " + capture + ": interrupted ", 0), 0u) << r.err;
     EXPECT_NE(r.err.find(" s into the capture, after reading "), std::string::npos) << r.err;
