@@ -140,7 +140,7 @@ TEST(SignalExit, FollowedCaptureStillEndsCleanly) {
     const std::string out = tempDir() + "/followed.out";
     const RunResult r = signalWhen(shellQuote(capture) + " --proto spi --follow --report " +
                                        shellQuote(report) + " >" + shellQuote(out),
-                                   ":", "grep -q transfer " + shellQuote(out), "INT");
+                                   ":", "grep -qs transfer " + shellQuote(out), "INT");
     EXPECT_EQ(r.status, 0) << r.err;
     EXPECT_EQ(r.err, "");
     EXPECT_NE(readFile(report).find("busdecode report"), std::string::npos);
