@@ -102,6 +102,7 @@ public:
             if (head_ == count_) {
                 block.clear();
                 end_ = x_.seen_time ? x_.cur : vcd_->startTick();
+                vcd_->finishedAt(x_);
                 return false;
             }
             if (!awaitHead()) {
@@ -319,6 +320,7 @@ private:
                 p.run.seen_time = false;
                 p.run.in_block = false;
                 p.run.line = 0;
+                p.run.unknown_states = 0;
             }
             p.run.first_time = kNoTick;
             tok.tokenise(at(p, p.begin), at(p, p.end), p.run, p.blocks, p.used);
@@ -393,6 +395,7 @@ private:
             }
             x_.in_block = p.run.in_block;
             x_.line += p.run.line;
+            x_.unknown_states += p.run.unknown_states;
         }
         expected_begin_ = p.end;
         return true;

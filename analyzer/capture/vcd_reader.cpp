@@ -186,6 +186,11 @@ public:
             out.push_back(
                 "times look like Vivado ILA sample indices under $timescale 1ps: give the "
                 "sample clock with --rate HZ for real times");
+        if (unknown_states_ > 0)
+            out.push_back(fmt::format(
+                "{} value changes of mapped lines to x, z, u, w or -: each kept the line's "
+                "level before it",
+                unknown_states_));
         return out;
     }
 
@@ -234,6 +239,7 @@ public:
         s.seen_time = seen_time_;
         s.in_block = in_block_;
         s.line = line_;
+        s.unknown_states = unknown_states_;
         return s;
     }
     void resumeAt(std::uint64_t offset, const VcdTokenState& state) override {
@@ -242,6 +248,7 @@ public:
         piece_ = false;
         p_ = e_ = nullptr;
     }
+    void finishedAt(const VcdTokenState& state) override { unknown_states_ = state.unknown_states; }
     int fileDescriptor() const override { return src_->fd(); }
     const std::string& fileName() const override { return name_; }
 
@@ -285,6 +292,7 @@ private:
         seen_time_ = state.seen_time;
         in_block_ = state.in_block;
         line_ = state.line;
+        unknown_states_ = state.unknown_states;
     }
 
     // tokenise()'s source: the piece in runs of whole lines, as TextSource::nextLines()
@@ -696,6 +704,8 @@ private:
                     if (code.tbegin != code.tend && level != kKeepLevel) {
                         for (std::uint32_t k = code.tbegin; k < code.tend; ++k)
                             set(targets_[k].line, targets_[k].bit == 0 ? level : 0, block);
+                    } else if (level == kKeepLevel) {
+                        unknown_states_ += code.tend - code.tbegin;
                     }
                     break;
                 }
@@ -735,7 +745,10 @@ private:
                                     ? kStateLevel[static_cast<unsigned char>(v[len - 1 - bit])]
                                 : lead <= 1 ? 0
                                             : kKeepLevel;
-                            if (level <= 1) set(targets_[k].line, level, block);
+                            if (level <= 1)
+                                set(targets_[k].line, level, block);
+                            else
+                                ++unknown_states_;
                         }
                     }
                     break;
@@ -985,9 +998,10 @@ private:
     bool initial_done_ = false;
     bool done_ = false;
     Tick start_ = 0, cur_ = 0, end_ = 0;
-    int time_digits_ = 1;  // fastRun()'s loop: for times of this many digits
-    bool vivado_ = false;  // $version names Vivado
-    Tick first_step_ = 0;  // from the first timestamp to the second (0: none)
+    int time_digits_ = 1;               // fastRun()'s loop: for times of this many digits
+    std::uint64_t unknown_states_ = 0;  // x z u w - on selected lines (VcdTokenState)
+    bool vivado_ = false;               // $version names Vivado
+    Tick first_step_ = 0;               // from the first timestamp to the second (0: none)
     // tokenise(): the piece's bytes not yet handed to pump() (piece_ set).
     bool piece_ = false;
     const char* piece_next_ = nullptr;

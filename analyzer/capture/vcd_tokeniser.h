@@ -21,6 +21,8 @@ struct VcdTokenState {
     bool in_block = false;      // inside a `$comment ... $end`
     std::uint64_t line = 0;     // number of the line the piece starts in (0: counted from 0)
     Tick first_time = kNoTick;  // out: the piece's first time, when seen_time was false
+    // Changes of selected lines to x z u w - (levels kept), counted for the summary.
+    std::uint64_t unknown_states = 0;
 };
 inline constexpr std::uint8_t kUnknownLevel = 2;
 
@@ -43,6 +45,8 @@ public:
     virtual VcdTokenState resumeState() const = 0;
     // Goes on reading sequentially (next()) from `offset` (a line start) in `state`.
     virtual void resumeAt(std::uint64_t offset, const VcdTokenState& state) = 0;
+    // The pieces ended in `state` (no resumeAt() followed): what notes() counts.
+    virtual void finishedAt(const VcdTokenState& state) = 0;
     // The file being read (a regular file), for pread() on other threads.
     virtual int fileDescriptor() const = 0;
     virtual const std::string& fileName() const = 0;

@@ -4,6 +4,8 @@
 // and a Vivado ILA file (sample indices as 1 ps times) gets a hint to give it.
 #include <gtest/gtest.h>
 
+#include <fmt/format.h>
+
 #include "capture/capture_reader.h"
 #include "robustness_cli.h"
 
@@ -112,3 +114,35 @@ TEST(VcdStates, VivadoIlaSampleIndicesGetAHint) {
 }
 
 }  // namespace
+
+// Unknown states on mapped lines keep the level and are counted in the summary's notes,
+// the same whether the file is read sequentially or in pieces on two threads.
+TEST(VcdStates, UnknownStatesOnMappedLinesAreCounted) {
+    std::string text =
+        "$timescale 1 ns $end\n$var wire 1 ! a $end\n$var wire 4 \" v [3:0] $end\n"
+        "$var wire 1 # spare $end\n$enddefinitions $end\n#0\n0!\nb0000 \"\n";
+    // Per step: a scalar x, a vector with two unknown bits of the two mapped, an
+    // unmapped x (not counted), then known levels again.
+    for (int t = 1; t <= 200; ++t)
+        text += fmt::format("#{}\nx!\nbz1u0 \"\nx#\n#{}\n1!\nb0000 \"\n", 10 * t, 10 * t + 5);
+    const auto p = caseFile("unknowns.vcd", text);
+    const std::string want = "400 value changes of mapped lines to x, z, u, w or -";
+    for (const bool pieces : {false, true}) {
+        OpenOptions o;
+        o.read_ahead = pieces;
+        o.vcd_piece_bytes = 61;
+        o.vcd_boundary_search = 64;
+        auto r = openCapture(p, o);
+        r->select({{0, -1}, {1, 1}});  // a, and v's bit 1 (x then 0: unknown once per step)
+        r->initialLevels();
+        EdgeBlock b;
+        std::size_t edges = 0;
+        while (r->next(b))
+            edges += b.edges.size();
+        EXPECT_EQ(edges, 1u) << pieces;  // a: 0, kept through x, then 1 for good
+        std::string notes;
+        for (const auto& n : r->notes())
+            notes += n + "\n";
+        EXPECT_NE(notes.find(want), std::string::npos) << pieces << ": " << notes;
+    }
+}
