@@ -80,21 +80,40 @@ public:
             double t;
             if (!nextSample(t)) {
                 done_ = true;
-                for (auto& l : lines_)
-                    if (l.watch) l.watch->finish(end_tick_);
                 order_.release(kMaxEdgeTick, block.edges);
                 block.known_until = end_tick_;
-                return !block.edges.empty();
+                addFindings(block);
+                return !block.edges.empty() || !block.findings.empty();
             }
             takeSample(t, block.edges);
         }
         block.known_until = bound_;
+        addFindings(block);
         return true;
     }
 
     std::vector<std::string> notes() const override;
 
 private:
+    // Pair faults closed so far; at the end, the faults still open and each line's
+    // `signal` event too.
+    void addFindings(EdgeBlock& block) {
+        for (auto& l : lines_) {
+            if (!l.watch) continue;
+            if (done_) l.watch->finish(end_tick_);
+            addPairFindings(signals_[l.channel].name, *l.watch, block);
+        }
+        if (!done_) return;
+        for (const auto& l : lines_) {
+            if (l.bit >= 0) continue;
+            Event e = l.quality.event(signals_[l.channel].name, l.settings.threshold,
+                                      l.settings.hysteresis, l.trigger.reversals());
+            e.start = start_tick_;
+            e.end = end_tick_;
+            block.findings.push_back(std::move(e));
+        }
+    }
+
     // A differential pair: its line is the difference of two channels' voltages.
     struct Pair {
         std::size_t slot[2] = {0, 0};
@@ -106,6 +125,7 @@ private:
         Pair pair;
         std::unique_ptr<PairWatch> watch;
         SchmittLine wire[2];
+        std::pair<double, double> wire_levels[2];
         SignalQuality quality;
         SchmittLine trigger;
         SchmittSettings settings;
@@ -244,9 +264,18 @@ private:
     void watchWires(Line& l, double t) {
         for (int w = 0; w < 2; ++w) {
             double et;
-            if (l.wire[w].feed(t, row_[l.pair.slot[w]], et))
-                l.watch->edge(toTick(et), w, l.wire[w].level());
+            if (l.wire[w].feed(t, row_[l.pair.slot[w]], et) &&
+                l.watch->edge(toTick(et), w, l.wire[w].level()))
+                checkOpen(l);
         }
+    }
+    // A wire that stopped following and sits in the middle half of its swing is open
+    // (floating), not driven to a level.
+    void checkOpen(Line& l) const {
+        const int w = l.watch->stuckWire();
+        const auto [low, high] = l.wire_levels[w];
+        const double v = row_[l.pair.slot[w]], quarter = (high - low) / 4;
+        if (quarter > 0 && v > low + quarter && v < high - quarter) l.watch->markOpen();
     }
 
     std::unique_ptr<SampleSource> src_;
@@ -302,6 +331,7 @@ void AnalogReader::start() {
             for (std::size_t r = 0; r < prefix_t_.size(); ++r)
                 wire.add(prefixValue(r, l.pair.slot[w]));
             l.wire[w].configure(wire.settings());
+            l.wire_levels[w] = wire.levels();
         }
     }
     double t;

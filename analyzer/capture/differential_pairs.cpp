@@ -15,15 +15,33 @@ void PairWatch::start(Tick t, std::uint8_t p, std::uint8_t n) {
     equal_since_ = p == n ? t : kNoTick;
 }
 
-void PairWatch::edge(Tick t, int wire, std::uint8_t level) {
-    if (level == level_[wire]) return;
+const char* pairFaultKindName(PairFaultKind k) {
+    switch (k) {
+        case PairFaultKind::Open:
+            return "open";
+        case PairFaultKind::Shorted:
+            return "shorted";
+        case PairFaultKind::Stuck:
+            break;
+    }
+    return "stuck";
+}
+
+bool PairWatch::openFault() {
+    if (in_fault_) return false;
+    in_fault_ = true;
+    open_ = false;
+    fault_start_ = equal_since_;
+    fault_edges_[0] = fault_edges_[1] = 0;
+    return true;
+}
+
+bool PairWatch::edge(Tick t, int wire, std::uint8_t level) {
+    if (level == level_[wire]) return false;
+    bool opened = false;
     // An equal stretch longer than the skew between the wires ends here: a fault.
     if (equal_since_ != kNoTick && t - equal_since_ > grace_) {
-        if (!in_fault_) {
-            in_fault_ = true;
-            fault_start_ = equal_since_;
-            fault_edges_[0] = fault_edges_[1] = 0;
-        }
+        opened = openFault();
         last_bad_ = t;
         clean_edges_[0] = clean_edges_[1] = 0;
     }
@@ -39,23 +57,29 @@ void PairWatch::edge(Tick t, int wire, std::uint8_t level) {
     } else {
         equal_since_ = kNoTick;
     }
+    return opened;
 }
 
 void PairWatch::finish(Tick t) {
     if (equal_since_ != kNoTick && t - equal_since_ > grace_) {
-        if (!in_fault_) {
-            in_fault_ = true;
-            fault_start_ = equal_since_;
-            fault_edges_[0] = fault_edges_[1] = 0;
-        }
+        openFault();
         last_bad_ = t;
     }
     if (in_fault_) closeFault(last_bad_);
+    equal_since_ = kNoTick;
 }
 
 void PairWatch::closeFault(Tick end) {
     ++count_;
-    if (faults_.size() < kKeptFaults) faults_.push_back({fault_start_, end, stuck()});
+    // Both wires moving while equal: tied together; one still: stuck (or open).
+    const std::uint64_t lo = std::min(fault_edges_[0], fault_edges_[1]);
+    const std::uint64_t hi = std::max(fault_edges_[0], fault_edges_[1]);
+    const PairFaultKind kind = lo >= 2 && 2 * lo >= hi ? PairFaultKind::Shorted
+                               : open_                 ? PairFaultKind::Open
+                                                       : PairFaultKind::Stuck;
+    const PairFault f{fault_start_, end, stuck(), kind};
+    if (faults_.size() < kKeptFaults) faults_.push_back(f);
+    closed_.push_back(f);
     in_fault_ = false;
 }
 
@@ -85,15 +109,42 @@ std::vector<std::string> pairFaultNotes(const std::string& pair, const PairWatch
     std::string p, n;
     splitPair(pair, p, n);
     for (const auto& f : watch.faults())
-        out.push_back(fmt::format(
-            "{}: pair_fault from {:.9f} s to {:.9f} s: {} does not follow {} (open, shorted or "
-            "stuck)",
-            pair, double(tb.toNs(f.start)) / 1e9, double(tb.toNs(f.end)) / 1e9, f.wire ? n : p,
-            f.wire ? p : n));
+        out.push_back(
+            fmt::format("{}: pair_fault from {:.9f} s to {:.9f} s: {} does not follow {} ({})",
+                        pair, double(tb.toNs(f.start)) / 1e9, double(tb.toNs(f.end)) / 1e9,
+                        f.wire ? n : p, f.wire ? p : n, pairFaultKindName(f.kind)));
     if (watch.faultCount() > watch.faults().size())
         out.push_back(fmt::format("{}: {} more pair faults", pair,
                                   watch.faultCount() - watch.faults().size()));
     return out;
+}
+
+Event pairFaultEvent(const std::string& pair, const PairFault& f) {
+    std::string p, n;
+    splitPair(pair, p, n);
+    const std::string& wire = f.wire ? n : p;
+    const std::string& working = f.wire ? p : n;
+    Event e;
+    e.proto = "capture";
+    e.type = "pair_fault";
+    e.start = f.start;
+    e.end = f.end;
+    e.add("pair", pair).add("wire", wire).add("working", working);
+    e.add("kind", std::string(pairFaultKindName(f.kind)));
+    e.error("pair_fault");
+    e.summary = fmt::format("{}: {} does not follow {} ({})", pair, wire, working,
+                            pairFaultKindName(f.kind));
+    return e;
+}
+
+void addPairFindings(const std::string& pair, PairWatch& watch, EdgeBlock& block) {
+    std::vector<PairFault> closed;
+    watch.takeClosed(closed);
+    for (const auto& f : closed)
+        block.findings.push_back(pairFaultEvent(pair, f));
+    const Tick from = watch.pendingFrom();
+    if (from != kNoTick && (block.findings_from == kNoTick || from < block.findings_from))
+        block.findings_from = from;
 }
 
 namespace {
@@ -159,6 +210,7 @@ private:
     std::vector<std::vector<std::pair<std::uint32_t, int>>> feeds_;
     std::vector<std::uint8_t> wire_level_;
     EdgeBlock in_block_;
+    bool ended_ = false;
 };
 
 void PairedReader::select(const std::vector<LineRef>& lines) {
@@ -202,6 +254,7 @@ std::vector<std::uint8_t> PairedReader::initialLevels() {
 bool PairedReader::next(EdgeBlock& block) {
     block.clear();
     if (wire_level_.empty()) initialLevels();
+    if (ended_) return false;
     const bool more = in_->next(in_block_);
     for (const Edge& e : in_block_.edges) {
         wire_level_[e.line] = std::uint8_t(e.level);
@@ -216,10 +269,15 @@ bool PairedReader::next(EdgeBlock& block) {
         }
     }
     block.known_until = in_block_.known_until;
-    if (!more)
-        for (auto& s : sel_)
-            if (s.watch) s.watch->finish(in_->endTick());
-    return more || !block.edges.empty();
+    block.findings = std::move(in_block_.findings);
+    block.findings_from = in_block_.findings_from;
+    ended_ = !more;
+    for (auto& s : sel_) {
+        if (!s.watch) continue;
+        if (ended_) s.watch->finish(in_->endTick());
+        addPairFindings(pairs_[std::size_t(s.pair)].name, *s.watch, block);
+    }
+    return more || !block.edges.empty() || !block.findings.empty();
 }
 
 std::vector<std::string> PairedReader::notes() const {

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cctype>
 #include <charconv>
+#include <cmath>
 #include <cstring>
 
 #include <fmt/format.h>
@@ -159,6 +160,32 @@ std::size_t lineStarting(const std::vector<std::string_view>& lines, std::string
     return lines.size();
 }
 
+// LeCroy's "Segments,N,SegmentSize,M" and its N "#k,TrigTime,TimeSinceSegment1" lines
+// before `header_at`: every segment, shifted to its trigger's time.
+void lecroySegments(const std::vector<std::string_view>& lines, std::size_t header_at,
+                    const std::string& name, ScopeLayout& l) {
+    const Fields f = splitFields(lines[1], ',');
+    double n = 0, rows = 0;
+    if (f.size() < 4 || f[2] != "SegmentSize" || !parseScopeNumber(f[1], false, n) ||
+        !parseScopeNumber(f[3], false, rows) || n < 1 || rows < 1 || n != std::floor(n) ||
+        rows != std::floor(rows))
+        broken(name, 2, "expected LeCroy's 'Segments,COUNT,SegmentSize,ROWS'");
+    if (n == 1) return;
+    for (std::size_t i = 2; i < header_at; ++i) {
+        if (!startsWith(lines[i], "#")) continue;
+        const Fields s = splitFields(lines[i], ',');
+        double since = 0;
+        if (s.size() < 3 || !parseScopeNumber(s[2], false, since) || !std::isfinite(since))
+            broken(name, i + 1, "expected a segment line '#K,TRIGTIME,SECONDS_SINCE_SEGMENT_1'");
+        l.segment_starts.push_back(since);
+    }
+    if (double(l.segment_starts.size()) != n)
+        broken(name, header_at + 1,
+               fmt::format("LeCroy file of {} segments lists {} segment lines before 'Time,'", n,
+                           l.segment_starts.size()));
+    l.segment_rows = std::size_t(rows);
+}
+
 // A key/value block, then a column header row: Tektronix MSO/MDO ("TIME,CH1,CH2"), Rigol's
 // PC software ("Time (s)",...), Siglent ("Second,Volt"), LeCroy ("Time,Ampl").
 std::optional<ScopeLayout> blockThenHeader(const std::vector<std::string_view>& lines,
@@ -194,6 +221,7 @@ std::optional<ScopeLayout> blockThenHeader(const std::vector<std::string_view>& 
         addChannels(l, f, 1, f.size());
     }
     l.fields = l.channels.size() + 1;
+    if (format == "lecroy-csv") lecroySegments(lines, at, name, l);
     return l;
 }
 

@@ -29,6 +29,11 @@ struct ScopeLayout {
     bool time_is_index = false;  // t = start + index * increment
     double start = 0, increment = 0;
     std::vector<ScopeChannel> channels;
+    // LeCroy sequence mode: the data rows come in segments of `segment_rows`, each timed
+    // from its own trigger; segment k's times are shifted by segment_starts[k] (seconds
+    // after the first trigger). Empty: one segment.
+    std::size_t segment_rows = 0;
+    std::vector<double> segment_starts;
 };
 
 // The layout of `head` (the first bytes of the file; `whole`: all of it), or nullopt when

@@ -88,6 +88,7 @@ private:
                              lay_.time_is_index ? "sample index" : "time", lay_.time_field + 1,
                              printable(fields_[lay_.time_field])));
         t = lay_.time_is_index ? lay_.start + x * lay_.increment : x * lay_.time_scale;
+        if (lay_.segment_rows) t += segmentStart();
         std::size_t empty = 0;
         for (std::size_t s = 0; s < slot_field_.size(); ++s) {
             const std::string_view f = fields_[slot_field_[s]];
@@ -104,8 +105,18 @@ private:
         return true;
     }
 
+    // The trigger time of the segment this data row belongs to.
+    double segmentStart() {
+        const std::size_t k = rows_++ / lay_.segment_rows;
+        if (k >= lay_.segment_starts.size())
+            fail(fmt::format("more rows than {} segments of {}", lay_.segment_starts.size(),
+                             lay_.segment_rows));
+        return lay_.segment_starts[k];
+    }
+
     std::unique_ptr<TextSource> src_;
     ScopeLayout lay_;
+    std::uint64_t rows_ = 0;
     OpenOptions opts_;
     std::vector<AnalogChannel> channels_;
     std::vector<std::size_t> slot_field_;  // the field of each value slot

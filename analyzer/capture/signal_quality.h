@@ -9,7 +9,16 @@
 #include <string>
 #include <vector>
 
+#include "core/event.h"
+
 namespace busdecode {
+
+// Durations in ns; NaN where no edge was seen.
+struct SignalFigures {
+    double low_v = 0, high_v = 0, swing_v = 0, overshoot_pct = 0;
+    double rise_median_ns = 0, rise_p99_ns = 0, fall_median_ns = 0, fall_p99_ns = 0;
+    std::uint64_t rises = 0, falls = 0;
+};
 
 class SignalQuality {
 public:
@@ -39,6 +48,10 @@ public:
     // "low 0.02 V, high 3.28 V, swing 3.26 V, rise (10-90 %) median 41 ns p99 55 ns, ..."
     // with the trigger's count of reversals inside its band.
     std::string summary(std::uint64_t reversals) const;
+    SignalFigures figures() const;
+    // The line's `signal` event (proto "capture"), times left to the caller.
+    Event event(const std::string& line, double threshold, double hysteresis,
+                std::uint64_t reversals) const;
 
 private:
     static constexpr std::size_t kKept = 4096;

@@ -7,6 +7,7 @@
 #include <cstring>
 #include <vector>
 
+#include "event.h"
 #include "time.h"
 
 namespace busdecode {
@@ -60,9 +61,17 @@ struct EdgeBlock {
     // Time up to which the capture is known to be complete (>= last edge). Lets
     // decoders close frames on timeouts while a followed file is still growing.
     Tick known_until = kNoTick;
+    // What the capture layer found in the signal itself (a differential pair's fault,
+    // an analog line's `signal` summary at the end), as events of proto "capture"; rare.
+    std::vector<Event> findings;
+    // No finding still to come starts before this tick (a pair fault still open since
+    // then); kNoTick: none pending. The session holds later events back to keep order.
+    Tick findings_from = kNoTick;
     void clear() {
         edges.clear();
         known_until = kNoTick;
+        if (!findings.empty()) findings.clear();
+        findings_from = kNoTick;
     }
 };
 

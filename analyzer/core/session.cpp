@@ -164,10 +164,15 @@ struct Session::Impl : EventSink {
         // (PieceSpeculator), and writing it here would pull the event's storage to this
         // core, from which that thread must pull it back (bench/README.md, "Two dies").
         if (e->instance != slots[emitting].instance) e->instance = slots[emitting].instance;
+        insertPending(std::move(e), emitting);
+    }
+
+    // `slot` -1: a finding of the capture layer (EdgeBlock::findings), not a decoder's.
+    void insertPending(EventPtr e, int slot) {
         const Tick start = e->start;
         if (pending.empty() || pending.back()->start <= start) {  // the rule: in order
             pending.push_back(std::move(e));
-            pending_slot.push_back(emitting);
+            pending_slot.push_back(slot);
             return;
         }
         // Insert keeping start order (out-of-order events are late by a few: search from
@@ -176,11 +181,49 @@ struct Session::Impl : EventSink {
         while (at > 0 && pending[at - 1]->start > start)
             --at;
         pending.insert(pending.begin() + at, std::move(e));
-        pending_slot.insert(pending_slot.begin() + at, emitting);
+        pending_slot.insert(pending_slot.begin() + at, slot);
+    }
+
+    // A pair fault's span, and the slots decoding from that pair (their events in it
+    // are marked `pair_fault`).
+    struct FaultSpan {
+        Tick start, end;
+        std::vector<int> slots;
+    };
+    std::deque<FaultSpan> fault_spans;
+    Tick findings_from = kNoTick;
+
+    void takeFindings(EdgeBlock& block) {
+        findings_from = block.findings_from;
+        for (Event& f : block.findings) {
+            if (f.type == "pair_fault") fault_spans.push_back({f.start, f.end, slotsOf(f)});
+            f.instance = f.proto;
+            insertPending(spare.adopt(std::move(f)), -1);
+        }
+        block.findings.clear();
+    }
+    std::vector<int> slotsOf(const Event& fault) const {
+        std::vector<int> out;
+        const Value* pair = fault.get("pair");
+        for (const auto& b : facts->bindings)
+            for (int s = 0; s < int(slots.size()); ++s)
+                if (pair && slots[s].instance == b.instance &&
+                    std::get<std::string>(*pair) == b.signal)
+                    out.push_back(s);
+        return out;
+    }
+    // Events go out in start order: spans ending before this one's start are done.
+    void markPairFaults(Event& e, int slot) {
+        while (!fault_spans.empty() && fault_spans.front().end < e.start)
+            fault_spans.pop_front();
+        for (const auto& f : fault_spans)
+            if (f.start <= e.end && e.start <= f.end &&
+                std::find(f.slots.begin(), f.slots.end(), slot) != f.slots.end())
+                e.error("pair_fault");
     }
 
     Tick watermark() const {
-        Tick w = now;
+        Tick w = findings_from == kNoTick ? now : std::min(now, findings_from);
         for (const auto& s : slots) {
             w = std::min(w, s.decoder->watermark(now));
             if (s.glitch && s.glitch->oldest() != kNoTick) w = std::min(w, s.glitch->oldest());
@@ -191,14 +234,15 @@ struct Session::Impl : EventSink {
     // Outputs e, taken out of `pending`, then keeps it for reuse or in the correlation
     // window.
     void output(EventPtr e, int slot) {
-        if (e->wants_correlation) {
+        if (slot >= 0 && e->wants_correlation) {
             window.setPending(&pending);
             slots[slot].decoder->correlate(*e, window);
             window.setPending(nullptr);
         }
+        if (slot >= 0 && !fault_spans.empty()) markPairFaults(*e, slot);
         for (auto* s : *sinks)
             s->onEvent(*e, *facts);
-        if (keep_window) {
+        if (keep_window && slot >= 0) {
             window.remember(std::move(e), 4096);
         } else {
             spare.recycle(std::move(e));
@@ -214,6 +258,8 @@ struct Session::Impl : EventSink {
             if (!all && !forced) {
                 if (next.start >= w) break;
                 if (next.wants_correlation && next.end >= w) break;
+                // One reaching into a pair fault still open waits to be marked.
+                if (findings_from != kNoTick && next.end >= findings_from) break;
             }
             // Out of `pending` first: the correlation window shows what is still pending.
             EventPtr out = std::move(pending.front());
@@ -542,6 +588,7 @@ std::uint64_t Session::decodeBlock(EdgeBlock& block, std::uint64_t before) {
             for (const auto& tg : im.targets[kept[i].line])
                 im.deliver(tg, kept[i].t, kept[i].level);
     }
+    if (!block.findings.empty() || block.findings_from != im.findings_from) im.takeFindings(block);
     if (!block.edges.empty()) im.now = std::max(im.now, block.edges.back().t);
     if (block.known_until != kNoTick && block.known_until > im.now) im.now = block.known_until;
     if (advance) im.advanceAll(im.now);

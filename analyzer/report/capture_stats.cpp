@@ -138,6 +138,7 @@ GroupStats& CaptureStats::group(const Event& e) {
 
 void CaptureStats::add(const Event& e) {
     const Timebase& tb = facts_.timebase;
+    if (signal_.add(e, tb)) return;
     GroupStats& g = group(e);
     if (g.count == 0) {
         g.first_start = e.start;

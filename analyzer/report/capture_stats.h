@@ -21,6 +21,7 @@
 #include "edge_window.h"
 #include "position_wrap.h"
 #include "quantile_sketch.h"
+#include "signal_section.h"
 
 namespace busdecode {
 
@@ -135,6 +136,8 @@ public:
     void addEdges(const Edge* first, const Edge* last) { edges_.addEdges(first, last); }
     void keepWaveforms(bool on) { keep_waves_ = on; }
     const std::vector<FrameWave>& waveforms() const { return edges_.waves(); }
+    // Analog lines' signal quality and pair faults (the capture layer's events).
+    const SignalSection& signalSection() const { return signal_; }
 
 private:
     GroupStats& group(const Event& e);
@@ -142,6 +145,7 @@ private:
     void addPosition(const std::string& inst, const Event& e, double value);
 
     CaptureFacts facts_;
+    SignalSection signal_;
     std::vector<std::string> instances_;
     std::vector<GroupStats> groups_;  // few (instances x types): linear search is fine
     std::map<std::string, PositionStats> positions_;

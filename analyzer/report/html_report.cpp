@@ -460,6 +460,7 @@ std::string renderHtmlReport(const CaptureStats& stats) {
                 opts == f.options.end() ? std::map<std::string, std::string>{} : opts->second);
         }
     }
+    h += stats.signalSection().html();
     h += "<h2>Faults</h2>\n";
     if (stats.firstFaults().empty()) {
         h += "<p>None.</p>\n";

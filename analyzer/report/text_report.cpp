@@ -130,6 +130,7 @@ std::string renderTextReport(const CaptureStats& stats) {
     captureSection(out, stats);
     for (const auto& inst : stats.instances())
         busSection(out, stats, inst);
+    out += stats.signalSection().text();
     faultSection(out, stats);
     return out;
 }

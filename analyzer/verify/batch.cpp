@@ -59,7 +59,7 @@ DecodeChoice combineDecodeChoice(const Rules& rules, const std::vector<std::stri
     c.protos = !cli_protos.empty() ? cli_protos : rules.decode.protos;
     if (c.protos.empty())
         for (const auto& t : rules.tables)
-            c.protos.push_back(t.proto);
+            if (t.proto != kSignalTable) c.protos.push_back(t.proto);  // not a decoder
     c.maps = overlay(rules.decode.maps, cli_maps);
     c.opts = overlay(rules.decode.opts, cli_opts);
     return c;

@@ -174,6 +174,7 @@ private:
     std::string fmtv(double v) const { return formatFieldValue(unit_key_, v); }
     std::string limits() const {
         if (min_ == -std::numeric_limits<double>::infinity()) return "above " + fmtv(max_);
+        if (max_ == std::numeric_limits<double>::infinity()) return "below " + fmtv(min_);
         return fmt::format("outside [{}, {}]", fmtv(min_), fmtv(max_));
     }
     std::string proto_, rule_, field_;
@@ -374,6 +375,18 @@ void addChecks(const ProtoRules& r, std::vector<std::unique_ptr<RuleCheck>>& out
         else if (key == "registers")
             for (const auto& [addr, value] : r.registers)
                 out.push_back(std::make_unique<RegisterCheck>(p, addr, value));
+        else if (key == "min_swing_v")
+            out.push_back(std::make_unique<RangeCheck>(p, key, "swing_v", 1.0, *r.min_swing_v, kInf,
+                                                       "swing_v"));
+        else if (key == "max_rise_ns")
+            out.push_back(std::make_unique<RangeCheck>(p, key, "rise_p99_ns", 1.0, -kInf,
+                                                       *r.max_rise_ns, "rise_p99_ns"));
+        else if (key == "max_fall_ns")
+            out.push_back(std::make_unique<RangeCheck>(p, key, "fall_p99_ns", 1.0, -kInf,
+                                                       *r.max_fall_ns, "fall_p99_ns"));
+        else if (key == "max_overshoot_pct")
+            out.push_back(std::make_unique<RangeCheck>(p, key, "overshoot_pct", 1.0, -kInf,
+                                                       *r.max_overshoot_pct, "overshoot_pct"));
     }
 }
 
@@ -401,7 +414,9 @@ void RuleChecker::begin(const CaptureFacts& facts) {
 void RuleChecker::onEvent(const Event& e, const CaptureFacts&) {
     for (auto& t : tables_) {
         // A table names a decoder id, or one instance when the same decoder runs twice.
-        if (e.proto != t.proto && e.instance != t.proto) continue;
+        if (t.proto == kSignalTable ? e.proto != "capture" || e.type != "signal"
+                                    : e.proto != t.proto && e.instance != t.proto)
+            continue;
         ++t.events;
         if (t.primary_type.empty() || e.type == t.primary_type) ++t.primary;
         for (auto& c : t.checks)

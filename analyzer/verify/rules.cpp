@@ -23,6 +23,9 @@ const std::vector<std::string> kRuleKeys = {
     "min_frames",     "clock_hz",   "max_line_delay_ns", "max_proc_cycles",       "tm_us",
     "timeout_us",     "position",   "max_position_jump", "position_modulus",      "registers"};
 
+const std::vector<std::string> kSignalRuleKeys = {"min_swing_v", "max_rise_ns", "max_fall_ns",
+                                                  "max_overshoot_pct"};
+
 const std::vector<std::string> kDecodeKeys = {"proto", "map", "opt", "rate"};
 
 // toml++ keeps a table's keys sorted; rules are reported in the order the file gives them.
@@ -125,20 +128,29 @@ public:
         r.proto = name;
         r.line = line;
         // A table that checks nothing would pass every capture: most likely a mistake.
+        const auto& valid = name == kSignalTable ? kSignalRuleKeys : kRuleKeys;
         if (t.empty())
             throw InputError(
                 fmt::format("{}:{}: [{}]: no rules in this table (it would check "
                             "nothing; valid keys: {})",
-                            file_, line, printable(name, 80), fmt::join(kRuleKeys, ", ")));
+                            file_, line, printable(name, 80), fmt::join(valid, ", ")));
         for (auto [kp, vp] : inFileOrder(t)) {
             const toml::key& k = *kp;
             const toml::node& v = *vp;
             const std::string key(k.str());
-            if (std::find(kRuleKeys.begin(), kRuleKeys.end(), key) == kRuleKeys.end())
+            if (std::find(valid.begin(), valid.end(), key) == valid.end())
                 fail(k.source(), name, key,
-                     fmt::format("unknown key (valid: {})", fmt::join(kRuleKeys, ", ")));
+                     fmt::format("unknown key (valid: {})", fmt::join(valid, ", ")));
             r.keys.push_back(key);
-            if (key == "max_crc_errors")
+            if (key == "min_swing_v")
+                r.min_swing_v = nonNegative(v, name, key);
+            else if (key == "max_rise_ns")
+                r.max_rise_ns = nonNegative(v, name, key);
+            else if (key == "max_fall_ns")
+                r.max_fall_ns = nonNegative(v, name, key);
+            else if (key == "max_overshoot_pct")
+                r.max_overshoot_pct = nonNegative(v, name, key);
+            else if (key == "max_crc_errors")
                 r.max_crc_errors = count(v, name, key);
             else if (key == "max_errors")
                 r.max_errors = count(v, name, key);
@@ -258,6 +270,10 @@ const std::vector<std::string>& ruleKeys() {
     return kRuleKeys;
 }
 
+const std::vector<std::string>& signalRuleKeys() {
+    return kSignalRuleKeys;
+}
+
 std::string primaryEventType(const std::string& proto) {
     if (proto == "ssi" || proto == "bissc") return "frame";
     if (proto == "spi") return "transfer";
@@ -291,10 +307,10 @@ Rules parseRules(const std::string& text, const std::string& file_name,
             rules.decode = reader.decodeTable(*t);
             continue;
         }
-        if (!known_protos.empty() &&
+        if (!known_protos.empty() && name != kSignalTable &&
             std::find(known_protos.begin(), known_protos.end(), name) == known_protos.end())
             reader.fail(k.source(), "", "[" + name + "]",
-                        fmt::format("unknown decoder (known: {}, and decode)",
+                        fmt::format("unknown decoder (known: {}, and decode, signal)",
                                     fmt::join(known_protos, ", ")));
         rules.tables.push_back(reader.protoTable(name, *t, int(k.source().begin.line)));
     }

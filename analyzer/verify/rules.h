@@ -39,7 +39,12 @@ struct ProtoRules {
     // BiSS-C: 2^(st_bits + mt_bits)).
     std::optional<double> position_modulus;
     std::map<std::int64_t, std::int64_t> registers;  // address -> expected data (register events)
-    std::vector<std::string> keys;                   // the keys given, in file order
+    // The [signal] table: limits on every analog line's `signal` event.
+    std::optional<double> min_swing_v;        // swing_v
+    std::optional<double> max_rise_ns;        // rise_p99_ns
+    std::optional<double> max_fall_ns;        // fall_p99_ns
+    std::optional<double> max_overshoot_pct;  // overshoot_pct
+    std::vector<std::string> keys;            // the keys given, in file order
 };
 
 struct DecodeDefaults {
@@ -63,6 +68,11 @@ Rules loadRules(const std::string& path, const std::vector<std::string>& known_p
 
 // The keys a decoder table accepts, for error messages and the README.
 const std::vector<std::string>& ruleKeys();
+
+// The table of limits on analog lines' signal quality (`capture`/`signal` events), and
+// its keys.
+inline constexpr const char* kSignalTable = "signal";
+const std::vector<std::string>& signalRuleKeys();
 
 // The event type `min_frames` counts for a decoder: frame (ssi, bissc), transfer (spi),
 // byte (uart), command (tmcl, tmc8100); "" (every event) for others.

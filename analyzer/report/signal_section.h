@@ -1,0 +1,33 @@
+#pragma once
+// The reports' signal-quality section: a row per analog line from its `signal` event
+// (levels, swing, threshold, edge times, overshoot, reversals) and the pair faults seen,
+// as text and as HTML. Logic captures have neither: the section is then left out.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/event.h"
+#include "core/time.h"
+
+namespace busdecode {
+
+class SignalSection {
+public:
+    static constexpr std::size_t kMaxLines = 64;
+    static constexpr std::size_t kMaxFaults = 10;
+
+    // Takes the capture layer's events (proto "capture"); true if `e` was one.
+    bool add(const Event& e, const Timebase& tb);
+    bool empty() const { return lines_.empty() && faults_ == 0; }
+    std::string text() const;
+    std::string html() const;
+
+private:
+    // The table's cells, formatted once: line, low, high, swing, threshold, hysteresis,
+    // rise median/p99, fall median/p99, overshoot, reversals.
+    std::vector<std::vector<std::string>> lines_;
+    std::uint64_t faults_ = 0;
+    std::vector<std::string> first_faults_;  // "1.234 ms to 5.678 ms: MA+,MA-: ..."
+};
+
+}  // namespace busdecode
