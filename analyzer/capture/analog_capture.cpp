@@ -269,11 +269,13 @@ private:
                 checkOpen(l);
         }
     }
-    // A wire that stopped following and sits in the middle half of its swing is open
-    // (floating), not driven to a level.
+    // A wire that stopped following and sits in the middle half of the pair's swing is
+    // open (floating), not driven to a level. The pair's: an open wire's own levels may
+    // be the one it drove and the one it floats at.
     void checkOpen(Line& l) const {
         const int w = l.watch->stuckWire();
-        const auto [low, high] = l.wire_levels[w];
+        const double low = std::min(l.wire_levels[0].first, l.wire_levels[1].first);
+        const double high = std::max(l.wire_levels[0].second, l.wire_levels[1].second);
         const double v = row_[l.pair.slot[w]], quarter = (high - low) / 4;
         if (quarter > 0 && v > low + quarter && v < high - quarter) l.watch->markOpen();
     }

@@ -61,11 +61,9 @@ bool PairWatch::edge(Tick t, int wire, std::uint8_t level) {
 }
 
 void PairWatch::finish(Tick t) {
-    if (equal_since_ != kNoTick && t - equal_since_ > grace_) {
-        openFault();
-        last_bad_ = t;
-    }
-    if (in_fault_) closeFault(last_bad_);
+    if (equal_since_ != kNoTick && t - equal_since_ > grace_) openFault();
+    // Not seen following each other again: the fault lasts to the end.
+    if (in_fault_) closeFault(t);
     equal_since_ = kNoTick;
 }
 
