@@ -140,6 +140,38 @@ TEST(ScopeFindings, SignalEventGivesTheGeneratedLevelsAndRiseTime) {
     EXPECT_EQ(number(sig, "reversals"), 0) << sig;
 }
 
+TEST(ScopeFindings, ReportsHaveASignalQualityTablePerLineAndThePairFaults) {
+    AnalogStyle s = scope(0.2 * kBitNs);
+    s.differential = true;
+    s.open_line = 0;
+    s.open_after_ns = 60'000;
+    const std::string p = writeCapture("report.csv", uartText("UART"), s);
+    for (const char* ext : {"txt", "html"}) {
+        const std::string report = tempDir() + "/report." + ext;
+        const auto r = runDecode({p, "--proto", "uart", "--map", "rx=TX+,TX-", "--opt",
+                                  "baud=115200", "--report", report});
+        ASSERT_EQ(r.status, 0) << r.err;
+        const std::string text = readFile(report);
+        SCOPED_TRACE(text);
+        if (std::string(ext) == "txt") {
+            // Once open, the difference swings half: its main levels are about +-1.65 V.
+            EXPECT_NE(text.find("Signal quality (analog lines; rise and fall 10-90 %)\n"
+                                "  line    low"),
+                      std::string::npos);
+            EXPECT_TRUE(std::regex_search(
+                text,
+                std::regex(R"(\n  TX\+,TX- +-1\.[67][0-9]* V +1\.[67][0-9]* V +3\.[0-9]+ V )")));
+            EXPECT_NE(text.find("  pair faults: 1\n"), std::string::npos);
+            EXPECT_NE(text.find("TX+,TX-: TX- does not follow TX+ (open)"), std::string::npos);
+        } else {
+            EXPECT_NE(text.find("<h2>Signal quality</h2>"), std::string::npos);
+            EXPECT_NE(text.find("<th>rise p99</th>"), std::string::npos);
+            EXPECT_NE(text.find("<td>TX+,TX-</td>"), std::string::npos);
+            EXPECT_NE(text.find("<p>Pair faults: 1</p>"), std::string::npos);
+        }
+    }
+}
+
 std::string rules(const std::string& name, const std::string& text) {
     const std::string path = tempDir() + "/" + name;
     writeFile(path, text);
