@@ -146,12 +146,14 @@ private:
     }
 
     void checkThresholdNames() const {
-        for (const auto& [name, v] : opts_.thresholds)
+        for (const auto& threshold : opts_.thresholds) {
+            const std::string& name = threshold.first;  // not a binding: lambdas capture it
             if (!name.empty() && std::none_of(signals_.begin(), signals_.end(), [&](auto& s) {
                     return s.name == name || s.full_name == name;
                 }))
-                throw InputError(fmt::format("--threshold {}={}: {} has no signal '{}'", name, v,
-                                             src_->fileName(), name));
+                throw InputError(fmt::format("--threshold {}={}: {} has no signal '{}'", name,
+                                             threshold.second, src_->fileName(), name));
+        }
     }
 
     bool nextRow(double& t) {
