@@ -159,6 +159,9 @@ private:
     bool nextRow(double& t) {
         if (!src_->next(t, row_.data())) return false;
         computePairs();
+        // A value beyond float's range (or a pair's difference) would poison the levels.
+        for (const float v : row_)
+            if (!std::isfinite(v)) src_->fail("a value beyond ±3.4e38 (or a pair's difference)");
         if (have_time_ && t < last_t_)
             src_->fail(fmt::format("time going backwards ({} s after {} s)", t, last_t_));
         have_time_ = true;
