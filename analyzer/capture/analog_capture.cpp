@@ -108,8 +108,8 @@ private:
             if (l.bit >= 0) continue;
             Event e = l.quality.event(signals_[l.channel].name, l.settings.threshold,
                                       l.settings.hysteresis, l.trigger.reversals());
-            e.start = start_tick_;
-            e.end = end_tick_;
+            // At the end: a summary of the whole line, after every event it sums up.
+            e.start = e.end = end_tick_;
             block.findings.push_back(std::move(e));
         }
     }

@@ -90,6 +90,9 @@ TEST(ScopeFindings, AnOpenWireIsAPairFaultEventAndMarksTheBytesItOverlaps) {
         if (l.find("\"type\":\"pair_fault\"") != std::string::npos) faults.push_back(l);
     }
     ASSERT_EQ(bytes.size(), kText.size()) << r.out;
+    // The pair's signal summary comes last, at the capture's end.
+    EXPECT_NE(linesOf(r.out).back().find("\"type\":\"signal\",\"start_ns\":"), std::string::npos)
+        << r.out;
     ASSERT_EQ(faults.size(), 1u) << r.out;
     const std::string& f = faults[0];
     EXPECT_NE(f.find("\"proto\":\"capture\""), std::string::npos) << f;
