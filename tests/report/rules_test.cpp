@@ -98,6 +98,27 @@ TEST(Rules, WrongTypes) {
         << errorOf("bissc = 3\n");
 }
 
+TEST(Rules, SignalTableTakesTheSignalKeysOnly) {
+    const Rules r = parseRules(
+        "[signal]\nmin_swing_v = 2.5\nmax_rise_ns = 150\nmax_fall_ns = 160\n"
+        "max_overshoot_pct = 20\n",
+        "rules.toml", kKnown);
+    ASSERT_EQ(r.tables.size(), 1u);
+    EXPECT_EQ(r.tables[0].proto, "signal");
+    EXPECT_EQ(r.tables[0].min_swing_v, 2.5);
+    EXPECT_EQ(r.tables[0].max_rise_ns, 150);
+    EXPECT_EQ(r.tables[0].max_fall_ns, 160);
+    EXPECT_EQ(r.tables[0].max_overshoot_pct, 20);
+    EXPECT_NE(errorOf("[signal]\nmin_frames = 1\n")
+                  .find("rules.toml:2: [signal] min_frames: unknown key (valid: min_swing_v, "
+                        "max_rise_ns, max_fall_ns, max_overshoot_pct)"),
+              std::string::npos);
+    EXPECT_NE(errorOf("[bissc]\nmin_swing_v = 1\n").find("[bissc] min_swing_v: unknown key"),
+              std::string::npos);
+    EXPECT_NE(errorOf("[signal]\nmax_rise_ns = -3\n").find("must not be negative"),
+              std::string::npos);
+}
+
 TEST(Rules, ImpossibleRanges) {
     const std::string e = errorOf("[bissc]\nmin_frames = 1\nclock_hz = [10e6, 1e6]\n");
     EXPECT_NE(
