@@ -369,9 +369,6 @@ std::vector<std::string> AnalogReader::notes() const {
                                         : "as given";
         out.push_back(fmt::format("{}: threshold {}, hysteresis {} ({})", name, volts(s.threshold),
                                   volts(s.hysteresis), how));
-        if (!s.flat)
-            out.push_back(
-                fmt::format("{} signal: {}", name, l.quality.summary(l.trigger.reversals())));
         if (l.edges == 0)
             out.push_back(fmt::format(
                 "{} never crossed its threshold {} (its range {} to {}): give --threshold {}=VOLTS",
