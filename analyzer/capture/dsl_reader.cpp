@@ -7,6 +7,7 @@
 // voltages, not logic levels.
 #include <algorithm>
 #include <bit>
+#include <charconv>
 #include <cmath>
 #include <cstring>
 #include <map>
@@ -42,6 +43,13 @@ std::uint64_t number(const std::string& file, const std::string& key, const std:
     return std::stoull(text);
 }
 
+// Metadata, never a reason to refuse the file: false when `text` is not a whole number.
+bool parseTime(const std::string& text, std::int64_t& out) {
+    const char* end = text.data() + text.size();
+    const auto [p, ec] = std::from_chars(text.data(), end, out);
+    return ec == std::errc() && p == end;
+}
+
 struct DslHeader {
     int version = 0;
     int mode = -1;
@@ -55,7 +63,8 @@ DslHeader parseHeader(const std::string& file, const std::string& text) {
     DslHeader h;
     std::string section, rate_text;
     bool have_rate = false, have_samples = false, have_blocks = false, have_trigger = false;
-    std::uint64_t trigger_ms = 0, trigger_pos = 0;
+    std::int64_t trigger_ms = 0;
+    std::uint64_t trigger_pos = 0;
     std::size_t at = 0, line_no = 0;
     while (at < text.size()) {
         std::size_t nl = text.find('\n', at);
@@ -93,10 +102,10 @@ DslHeader parseHeader(const std::string& file, const std::string& text) {
             h.rate = parseRateHz(value);
             have_rate = true;
         } else if (key == "trigger time") {
-            trigger_ms = number(file, key, value);
-            have_trigger = true;
+            have_trigger = parseTime(value, trigger_ms);
         } else if (key == "trigger pos") {
-            trigger_pos = number(file, key, value);
+            std::int64_t pos = 0;
+            if (parseTime(value, pos) && pos > 0) trigger_pos = std::uint64_t(pos);
         } else if (key.rfind("probe", 0) == 0 && key.size() > 5 &&
                    key.find_first_not_of("0123456789", 5) == std::string::npos) {
             h.probes[int(number(file, key, key.substr(5)))] = value;
@@ -112,10 +121,13 @@ DslHeader parseHeader(const std::string& file, const std::string& text) {
         throw InputError(
             fmt::format("{}: header: samplerate '{}' is not a rate", file, printable(rate_text)));
     if (h.probes.empty()) throw missing("probes");
-    // The trigger's instant (ms since 1970), `trigger pos` samples into the capture.
-    if (have_trigger)
+    // The trigger's instant (ms since 1970), `trigger pos` samples into the capture. A
+    // session never triggered says its local midnight of 1 January 1970 (-28800000 in
+    // DSView's demo): no time.
+    constexpr std::int64_t kUnsetBefore = 2 * 86400000;
+    if (have_trigger && trigger_ms > kUnsetBefore)
         h.wall_clock = wallClockFromUnixMs(
-            std::int64_t(trigger_ms) - std::llround(double(trigger_pos) * 1e3 / double(h.rate)));
+            trigger_ms - std::llround(double(trigger_pos) * 1e3 / double(h.rate)));
     return h;
 }
 

@@ -77,11 +77,12 @@ TEST(WallClock, RealFilesOfOtherTools) {
     // sigrok CSV: "; from Session-emulating driver on Sun Nov 22 06:44:45 2026".
     EXPECT_EQ(startOfFile(real + "biss-renishaw/sigrok-csv/renishaw_biss_1MHz.csv"),
               "2026-11-22T06:44:45");
-    // A sigrok session (its metadata has no date), scope CSVs of Keysight, Rigol,
-    // Tektronix and PicoScope: none.
+    // DSView's demo session never triggered ("trigger time = -28800000"), a sigrok session
+    // (its metadata has no date), scope CSVs of Keysight, Rigol, Tektronix, PicoScope: none.
     for (const char* file :
-         {"formats/tek-mdo/RTC.sr", "formats/tek-mdo/RTC.csv", "formats/keysight/scope_3.csv",
-          "formats/rigol/DS1052E.csv", "formats/mixed-gpl/rigol_ds1000z_mixed_signal.csv",
+         {"formats/dsview/protocol.demo", "formats/tek-mdo/RTC.sr", "formats/tek-mdo/RTC.csv",
+          "formats/keysight/scope_3.csv", "formats/rigol/DS1052E.csv",
+          "formats/mixed-gpl/rigol_ds1000z_mixed_signal.csv",
           "formats/mixed-gpl/picoscope6_excerpt.csv"}) {
         SCOPED_TRACE(file);
         EXPECT_EQ(startOfFile(real + file), "");
