@@ -246,8 +246,9 @@ TEST(HtmlReport, SsiRepeatMismatchAsCaptured) {
 
 // A BiSS-C capture as a scope records it (Rigol CSV: 0.7 V to 5.7 V, slow noisy edges
 // with ringing) whose frame 3 has a wrong CRC.
-std::string scopeBisscCapture() {
-    const std::string path = test::tempDir() + "/html/biss_scope.csv";
+std::string scopeBisscCapture(bool differential = false) {
+    const std::string path =
+        test::tempDir() + (differential ? "/html/biss_rs422_scope.csv" : "/html/biss_scope.csv");
     std::filesystem::create_directories(test::tempDir() + "/html");
     BisscGenConfig cfg;
     cfg.line_delay_ns = 600;
@@ -267,6 +268,7 @@ std::string scopeBisscCapture() {
     style.rise_ns = 150;
     style.snr_db = 26;
     style.ringing = 0.1;
+    style.differential = differential;
     writeScopeCsv(gen.build(), path, ScopeDialect::Rigol, style);
     return path;
 }
@@ -319,6 +321,25 @@ TEST(HtmlReport, ScopeCaptureDrawsVoltageWithThreshold) {
     EXPECT_LT(ticks[0], 1.0);  // the low level, noise and ringing below it
     EXPECT_GT(ticks[1], 5.4);  // the high level
     EXPECT_TRUE(has(dom, R"(class="sample-point")"));
+}
+
+// RS-422 as a scope records it: each line the difference of its two wires, drawn so.
+TEST(HtmlReport, DifferentialScopeCaptureDrawsThePairsVoltage) {
+    const std::string html = test::tempDir() + "/html/biss_rs422.html";
+    const auto r = test::runDecode({scopeBisscCapture(true), "--proto", "bissc", "--map",
+                                    "ma=MA+,MA-", "--map", "sl=SLO+,SLO-", "--report", html});
+    ASSERT_EQ(r.status, 0) << r.err;
+    const std::string page = test::readFile(html);
+    EXPECT_TRUE(has(page, "errors crc"));
+    for (const char* role : {"ma", "sl"}) {
+        SCOPED_TRACE(role);
+        EXPECT_TRUE(has(page, fmt::format(R"(<path class="volt-trace" data-role="{}")", role)));
+        EXPECT_TRUE(has(page, fmt::format(R"(<line class="threshold" data-role="{}")", role)));
+    }
+    // A difference swings both ways: the threshold at 0 V.
+    const auto thr = numbersIn(page, "threshold-label");
+    ASSERT_EQ(thr.size(), 2u);
+    EXPECT_NEAR(thr[0], 0.0, 0.3);
 }
 
 TEST(HtmlReport, RendersInHeadlessChromium) {
