@@ -72,6 +72,26 @@ std::string voltageTrace(const LineWave& l, const Timebase& tb, ToX x, double le
     return s;
 }
 
+// The decoded fields above the bits they came from; `x` maps ns to the plot.
+template <typename ToX>
+std::string fieldSpans(const SamplePlan& plan, ToX x, double top) {
+    std::string s;
+    const double half = plan.t_ns.size() > 1 ? (x(plan.t_ns[1]) - x(plan.t_ns[0])) / 2 : 4;
+    for (const auto& seg : plan.segments) {
+        if (seg.first >= plan.t_ns.size()) break;
+        const std::size_t last = std::min(seg.first + seg.count, plan.t_ns.size()) - 1;
+        const double xa = x(plan.t_ns[seg.first]) - half, xb = x(plan.t_ns[last]) + half;
+        s += fmt::format(
+            R"(<rect class="field-span" x="{}" y="{}" width="{}" height="18" fill="{}" stroke="#555"/>)",
+            num(xa), num(top + 6), num(std::max(xb - xa, 1.0)), seg.fault ? "#ffcdd2" : "#e3f2fd");
+        if (xb - xa > 8.0 * double(seg.label.size()) * 0.8)
+            s += fmt::format(
+                R"(<text class="field-name" x="{}" y="{}" text-anchor="middle">{}</text>)",
+                num((xa + xb) / 2), num(top + 19), xmlEscape(seg.label));
+    }
+    return s;
+}
+
 }  // namespace
 
 std::string waveformSvg(const FrameWave& w, const Timebase& tb,
@@ -149,21 +169,7 @@ std::string waveformSvg(const FrameWave& w, const Timebase& tb,
                 num(xb + 3), num(hi - 4), *plan.delay_ns);
         }
     }
-    // The decoded fields above the bits they came from.
-    const double half = plan.t_ns.size() > 1 ? (x(plan.t_ns[1]) - x(plan.t_ns[0])) / 2 : 4;
-    for (const auto& seg : plan.segments) {
-        if (seg.first >= plan.t_ns.size()) break;
-        const std::size_t last = std::min(seg.first + seg.count, plan.t_ns.size()) - 1;
-        const double xa = x(plan.t_ns[seg.first]) - half, xb = x(plan.t_ns[last]) + half;
-        s += fmt::format(
-            R"(<rect class="field-span" x="{}" y="{}" width="{}" height="18" fill="{}" stroke="#555"/>)",
-            num(xa), num(plot.top() + 6), num(std::max(xb - xa, 1.0)),
-            seg.fault ? "#ffcdd2" : "#e3f2fd");
-        if (xb - xa > 8.0 * double(seg.label.size()) * 0.8)
-            s += fmt::format(
-                R"(<text class="field-name" x="{}" y="{}" text-anchor="middle">{}</text>)",
-                num((xa + xb) / 2), num(plot.top() + 19), xmlEscape(seg.label));
-    }
+    s += fieldSpans(plan, x, plot.top());
     return plot.svg();
 }
 
