@@ -124,10 +124,11 @@ DslHeader parseHeader(const std::string& file, const std::string& text) {
     // The trigger's instant (ms since 1970), `trigger pos` samples into the capture. A
     // session never triggered says its local midnight of 1 January 1970 (-28800000 in
     // DSView's demo): no time.
-    constexpr std::int64_t kUnsetBefore = 2 * 86400000;
-    if (have_trigger && trigger_ms > kUnsetBefore)
-        h.wall_clock = wallClockFromUnixMs(
-            trigger_ms - std::llround(double(trigger_pos) * 1e3 / double(h.rate)));
+    constexpr double kUnsetBefore = 2 * 86400000.0, kAfterAnyDate = 1e15;
+    const double start_ms = double(trigger_ms) - double(trigger_pos) * 1e3 / double(h.rate);
+    if (have_trigger && trigger_ms > kUnsetBefore && start_ms > kUnsetBefore &&
+        start_ms < kAfterAnyDate)
+        h.wall_clock = wallClockFromUnixMs(std::llround(start_ms));
     return h;
 }
 

@@ -11,6 +11,7 @@
 #include "core/waveform.h"
 #include "fault_captures.h"
 #include "support/paths.h"
+#include "zip_builder.h"
 
 namespace busdecode {
 namespace {
@@ -87,6 +88,30 @@ TEST(WallClock, RealFilesOfOtherTools) {
         SCOPED_TRACE(file);
         EXPECT_EQ(startOfFile(real + file), "");
     }
+}
+
+// A DSView session's header with `lines` after the rate; one probe, 100 samples.
+std::string dslWith(const std::string& name, const std::string& lines) {
+    const std::string header =
+        "[version]\nversion = 2\n[header]\ndevice mode = 0\ntotal samples = 100\n"
+        "total probes = 1\ntotal blocks = 1\nsamplerate = 1 MHz\n" +
+        lines + "probe0 = a\n";
+    const std::string path = test::tempDir() + "/" + name;
+    test::writeFile(path,
+                    fuzz::buildStoredZip({{"header", header}, {"L-0/0", std::string(16, 'U')}}));
+    return path;
+}
+
+TEST(WallClock, DsviewTriggerLessItsPosition) {
+    // Triggered 2 s (2000000 samples at 1 MHz) into the capture.
+    EXPECT_EQ(
+        startOfFile(dslWith("pos.dsl", "trigger time = 1622598460321\ntrigger pos = 2000000\n")),
+        "2021-06-02T01:47:38.321Z");
+    // Metadata never refuses a file: a time that is no number, or absurd, is no time.
+    EXPECT_EQ(startOfFile(dslWith("text.dsl", "trigger time = soon\n")), "");
+    EXPECT_EQ(startOfFile(dslWith(
+                  "far.dsl", "trigger time = 1622598460321\ntrigger pos = 9223372036854775807\n")),
+              "");
 }
 
 TEST(WallClock, LecroyCsvGivesItsFirstSegmentsTriggerTime) {
