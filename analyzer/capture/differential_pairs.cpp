@@ -266,6 +266,15 @@ bool PairedReader::next(EdgeBlock& block) {
             }
         }
     }
+    // Analog lines passed through keep their samples (an analog pair is the analog
+    // reader's own line, passed through too).
+    for (const VoltSample& v : in_block_.volts)
+        for (const auto& [line, wire] : feeds_[v.line])
+            if (sel_[line].pair < 0) block.volts.push_back({v.t, v.volts, line});
+    for (const LineThreshold& th : in_block_.thresholds)
+        for (const auto& [line, wire] : feeds_[th.line])
+            if (sel_[line].pair < 0)
+                block.thresholds.push_back({line, th.threshold, th.hysteresis});
     block.known_until = in_block_.known_until;
     block.findings = std::move(in_block_.findings);
     block.findings_from = in_block_.findings_from;
@@ -275,7 +284,7 @@ bool PairedReader::next(EdgeBlock& block) {
         if (ended_) s.watch->finish(in_->endTick());
         addPairFindings(pairs_[std::size_t(s.pair)].name, *s.watch, block);
     }
-    return more || !block.edges.empty() || !block.findings.empty();
+    return more || !block.edges.empty() || !block.volts.empty() || !block.findings.empty();
 }
 
 std::vector<std::string> PairedReader::notes() const {

@@ -56,6 +56,19 @@ struct Edge {
 };
 static_assert(sizeof(Edge) == 8, "one edge in one 8-byte word");
 
+// One sample of an analog line (scope captures), handed on when a sink draws the trace.
+struct VoltSample {
+    Tick t;
+    float volts;
+    std::uint32_t line;  // as Edge::line
+};
+
+// The trigger an analog line's edges come from.
+struct LineThreshold {
+    std::uint32_t line;
+    float threshold, hysteresis;  // volts
+};
+
 struct EdgeBlock {
     std::vector<Edge> edges;  // time ordered; ties keep reader order
     // Time up to which the capture is known to be complete (>= last edge). Lets
@@ -67,11 +80,17 @@ struct EdgeBlock {
     // No finding still to come starts before this tick (a pair fault still open since
     // then); kNoTick: none pending. The session holds later events back to keep order.
     Tick findings_from = kNoTick;
+    // Analog readers asked for them (OpenOptions::keep_voltages): the samples read for
+    // this block, in time order, and the thresholds of their lines.
+    std::vector<VoltSample> volts;
+    std::vector<LineThreshold> thresholds;
     void clear() {
         edges.clear();
         known_until = kNoTick;
         if (!findings.empty()) findings.clear();
         findings_from = kNoTick;
+        volts.clear();
+        thresholds.clear();
     }
 };
 
