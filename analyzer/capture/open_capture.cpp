@@ -11,6 +11,7 @@
 
 #include "core/options.h"
 #include "decompressing_input.h"
+#include "fst_api.h"
 #include "readers.h"
 #include "sample_rows_reader.h"
 #include "zip_archive.h"
@@ -141,6 +142,16 @@ std::unique_ptr<CaptureReader> openSource(std::unique_ptr<TextSource> src, const
                              "from a pipe");
         src.reset();
         return openSaleaeBin(path);
+    }
+    if (looksLikeFst(head)) {  // fstapi reads a file by its path: a pipe is copied first
+        const std::string name = src->name();
+        if (path != "-" && std::filesystem::is_regular_file(path)) {
+            src.reset();
+            return openFst(path, name, opts);
+        }
+        const int fd = copyToTempFile(*src);
+        src.reset();
+        return openFst("/proc/self/fd/" + std::to_string(fd), name, opts, fd);
     }
     if (head.size() >= 4 && head.substr(0, 4) == std::string_view("PK\x03\x04", 4))
         return openZip(std::move(src), path, opts);

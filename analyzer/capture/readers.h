@@ -24,6 +24,11 @@ std::unique_ptr<CaptureReader> openDsl(std::unique_ptr<ZipArchive> archive,
 // Saleae Logic 2 binary export: one digital_N.bin, or a folder of them.
 std::unique_ptr<CaptureReader> openSaleaeBin(const std::string& path);
 
+// An FST file (fst_reader.cpp) at `path`, named `name` in messages; `owned_fd` (or -1), a
+// descriptor behind `path` that the reader closes when done.
+std::unique_ptr<CaptureReader> openFst(const std::string& path, const std::string& name,
+                                       const OpenOptions& opts, int owned_fd = -1);
+
 // A sigrok session of analog channels only (sr_analog_samples.cpp); null for others.
 std::unique_ptr<CaptureReader> openSrAnalogIfAnalog(const std::string& path,
                                                     const std::string& name,
