@@ -8,6 +8,8 @@ const std::vector<FormatEntry>& captureFormats() {
     static const std::vector<FormatEntry> list = {
         {"vcd", "text whose first word is a $keyword ($date, $version, $timescale...)",
          "sigrok, GTKWave, simulators, Vivado ILA VCD"},
+        {"fst", "binary header block (type 0, 329 bytes), or a gzip-wrapped FST (type 254)",
+         "GTKWave, Verilator; --rate HZ overrides the timescale; scalars and vector bits"},
         {"sigrok-csv", "CSV after sigrok's `; Channels`/`; Samplerate` comments",
          "dense (one row per sample) or with a time column"},
         {"saleae-csv", "CSV whose first column is `Time [s]`", "Logic 1 and Logic 2 exports"},

@@ -200,6 +200,26 @@ extern "C" FILE* busdecode_fst_messages(void) {
     return m.file;
 }
 
+extern "C" int busdecode_fst_fgetc(FILE* f) {
+    // Past this many EOFs in a row fstapi is looping over a corrupt hierarchy; a sound
+    // file gives one at the end of each stream it reads.
+    constexpr int kEofsInARow = 4096;
+    thread_local FILE* eof_file = nullptr;
+    thread_local int eofs = 0;
+    const int c = std::fgetc(f);
+    if (c != EOF) {
+        eofs = 0;
+        return c;
+    }
+    eofs = f == eof_file ? eofs + 1 : 1;
+    eof_file = f;
+    if (eofs > kEofsInARow) {
+        eofs = 0;
+        throw busdecode::FstApiFatal("fstapi: a stream ends inside an item (corrupt or truncated)");
+    }
+    return c;
+}
+
 extern "C" void busdecode_fst_fatal(int) {
     auto& m = busdecode::tls_messages;
     if (m.file) std::fflush(m.file);

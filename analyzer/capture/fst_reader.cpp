@@ -80,11 +80,7 @@ public:
     FstReader(const std::string& path, std::string name, const OpenOptions& opts, int owned_fd)
         : name_(std::move(name)), owned_fd_(owned_fd) {
         checkFstBlocks(path, name_);
-        try {
-            ctx_.reset(fstReaderOpen(path.c_str()));
-        } catch (const FstApiFatal& e) {
-            throw InputError(fmt::format("{}: {}", name_, e.what()));
-        }
+        ctx_.reset(fstReaderOpen(path.c_str()));
         if (!ctx_) throw InputError(fmt::format("{}: fstapi cannot read this FST file", name_));
         tb_ = timebaseOf(fstReaderGetTimescale(ctx_.get()), name_);
         if (opts.rate_hz > 0) {  // one sample per time unit (as for VCD)
@@ -195,7 +191,8 @@ void FstReader::readHierarchy() {
         } else if (h->htyp == FST_HT_VAR && h->u.var.typ != FST_VT_GEN_STRING &&
                    h->u.var.handle > 0 && h->u.var.name) {
             const bool real = isReal(h->u.var.typ);
-            const int width = real ? 1 : int(std::max<std::uint32_t>(1, h->u.var.length));
+            // A real's length is its 8 bytes; VCD declares it `real 64`.
+            const int width = real ? 64 : int(std::max<std::uint32_t>(1, h->u.var.length));
             std::string ref = referenceOf(h->u.var.name, width), full;
             for (const auto& s : scopes)
                 if (!s.empty()) full += s + ".";
@@ -353,10 +350,13 @@ bool FstReader::next(EdgeBlock& block) {
 
 std::unique_ptr<CaptureReader> openFst(const std::string& path, const std::string& name,
                                        const OpenOptions& opts, int owned_fd) {
+    // Until FstReader is made, the descriptor is still ours to close.
     try {
         return std::make_unique<FstReader>(path, name, opts, owned_fd);
+    } catch (const FstApiFatal& e) {
+        if (owned_fd >= 0) ::close(owned_fd);
+        throw InputError(fmt::format("{}: {}", name, e.what()));
     } catch (...) {
-        // FstReader's destructor did not run: the descriptor is still ours to close.
         if (owned_fd >= 0) ::close(owned_fd);
         throw;
     }
