@@ -40,7 +40,13 @@ void emitAll(void* ctx, const Waveform& w, const FstScale& s, const std::vector<
     fstWriterEmitTimeChange(ctx, unitsOf(w.start, w.timebase, s));
     for (std::size_t i = 0; i < h.size(); ++i)
         fstWriterEmitValueChange(ctx, h[i], i < w.initial.size() && w.initial[i] ? "1" : "0");
+    std::size_t in_block = 0;
     for (const Edge& e : w.edges) {
+        // Blocks of about 2^20 changes: a reader holds one block at a time.
+        if (++in_block == (std::size_t(1) << 20)) {
+            fstWriterFlushContext(ctx);
+            in_block = 0;
+        }
         fstWriterEmitTimeChange(ctx, unitsOf(e.t, w.timebase, s));
         fstWriterEmitValueChange(ctx, h[e.line], e.level ? "1" : "0");
     }
