@@ -141,7 +141,7 @@ std::unique_ptr<CaptureReader> openSource(std::unique_ptr<TextSource> src, const
                              ": a Saleae binary export is read from its file (or folder), not "
                              "from a pipe");
         src.reset();
-        return openSaleaeBin(path);
+        return openSaleaeBin(path, opts);
     }
     if (looksLikeFst(head)) {  // fstapi reads a file by its path: a pipe is copied first
         const std::string name = src->name();
@@ -176,7 +176,7 @@ std::unique_ptr<CaptureReader> openSource(std::unique_ptr<TextSource> src, const
 
 std::unique_ptr<CaptureReader> openCapture(const std::string& path, const OpenOptions& opts) {
     // A folder of one-file-per-channel exports (Saleae Logic 2) is one capture.
-    if (path != "-" && std::filesystem::is_directory(path)) return openSaleaeBin(path);
+    if (path != "-" && std::filesystem::is_directory(path)) return openSaleaeBin(path, opts);
     return openSource(std::make_unique<TextSource>(path, opts), path, opts);
 }
 
