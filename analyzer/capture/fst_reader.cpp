@@ -338,6 +338,7 @@ bool FstReader::next(EdgeBlock& block) {
         return false;
     }
     spare_.push_back(std::move(block.edges));
+    block.clear();  // (no voltages: FST holds levels)
     block.edges = std::move(full_.front());
     full_.pop_front();
     block.known_until = block.edges.back().t;
