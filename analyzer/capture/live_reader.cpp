@@ -63,6 +63,10 @@ public:
     Tick endTick() const override { return maker_.samples() ? Tick(maker_.samples() - 1) : 0; }
     bool changesOnly() const override { return true; }
     bool readsAhead() const override { return true; }
+    AcquisitionCounts acquisition() const override {
+        const LiveCounts c = queue_.counts();
+        return {c.samples, c.dropped_samples, c.max_lag_samples};
+    }
     std::vector<std::string> notes() const override;
 
     // Why the acquisition ended early ("" = it did not), valid after next() = false.

@@ -44,6 +44,7 @@ INSTANTIATE_TEST_SUITE_P(Rates, RenishawPlayback,
 struct Received {
     std::vector<std::int64_t> positions;
     std::vector<std::string> states;
+    busdecode_lcm::decode_status_t last{};
     void onFrame(const lcm::ReceiveBuffer*, const std::string&,
                  const busdecode_lcm::bissc_frame_t* m) {
         positions.push_back(m->position);
@@ -51,6 +52,7 @@ struct Received {
     void onStatus(const lcm::ReceiveBuffer*, const std::string&,
                   const busdecode_lcm::decode_status_t* m) {
         states.push_back(m->state);
+        last = *m;
     }
 };
 
@@ -99,6 +101,11 @@ TEST(LivePlayback, PublishesTheFramesOnLcmToASubscriber) {
     EXPECT_EQ(got.positions, decoded);
     ASSERT_FALSE(got.states.empty());
     EXPECT_EQ(got.states.back(), "end");
+    // The acquisition's counts: the whole session, nothing dropped.
+    EXPECT_EQ(got.last.live_samples, 1'000'000);
+    EXPECT_EQ(got.last.live_dropped, 0);
+    EXPECT_GE(got.last.live_behind, 0);
+    EXPECT_EQ(got.last.format, "sigrok-playback");
 }
 
 }  // namespace
