@@ -61,7 +61,8 @@ for rate in $rates; do
         best=$rate
         break
     fi
-    echo "sweep: $rate fell behind ($(grep -o 'dropped [0-9]* samples' "$dir/out" || echo "slow"))"
+    read -r wall _ _ _ <"$dir/time"
+    echo "sweep: $rate fell behind: $(sed -n 's/.*demo: \([0-9]*\) samples at.*/\1/p' "$dir/out") samples in $wall s, $(grep -o 'dropped [0-9]* samples' "$dir/out" || echo "none dropped")"
 done
 [ -n "$best" ] || { echo "$0: no rate of $rates kept up" >&2; exit 1; }
 

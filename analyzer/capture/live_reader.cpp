@@ -1,5 +1,6 @@
 #include "live_reader.h"
 
+#include <chrono>
 #include <cmath>
 #include <condition_variable>
 #include <mutex>
@@ -16,9 +17,10 @@
 namespace busdecode {
 
 namespace {
-// Up to a second or so of backlog at a device's packet rate, and 8 MiB of edges.
+// A second or so of backlog at a device's packet rate, and 32 MiB of edges: drivers deliver
+// in bursts (the demo every 100 ms), which the decoder must be able to take whole.
 constexpr std::size_t kQueueBlocks = 4096;
-constexpr std::size_t kQueueEdges = 64 * kEdgeBlockSize;
+constexpr std::size_t kQueueEdges = 256 * kEdgeBlockSize;
 }  // namespace
 
 class LiveReader : public CaptureReader {
@@ -80,9 +82,15 @@ public:
 private:
     void acquire();
     bool onPacket(const std::uint8_t* data, std::size_t n, unsigned unit);
+    // Asked again until it ends: a stop that comes before libsigrok runs its loop is lost.
     void stopAndJoin() {
         if (!thread_.joinable()) return;
-        device_.stop();
+        std::unique_lock lock(mu_);
+        while (!done_) {
+            device_.stop();
+            started_.wait_for(lock, std::chrono::milliseconds(50), [&] { return done_; });
+        }
+        lock.unlock();
         thread_.join();
     }
 
@@ -97,6 +105,7 @@ private:
     std::mutex mu_;
     std::condition_variable started_;
     bool first_packet_ = false;          // or the acquisition ended without one
+    bool done_ = false;                  // the acquisition thread has ended
     std::atomic<bool> stopping_{false};  // next() ended it
 };
 
@@ -126,14 +135,23 @@ void LiveReader::acquire() {
     }
     queue_.close(error);
     std::lock_guard lock(mu_);
-    first_packet_ = true;
+    first_packet_ = done_ = true;
     started_.notify_all();
 }
 
 std::vector<std::uint8_t> LiveReader::initialLevels() {
     thread_ = std::thread([this] { acquire(); });
-    std::unique_lock lock(mu_);
-    started_.wait(lock, [&] { return first_packet_; });
+    {
+        // A device that sends nothing (a trigger that never fires) still ends on Ctrl-C.
+        std::unique_lock lock(mu_);
+        while (
+            !started_.wait_for(lock, std::chrono::milliseconds(20), [&] { return first_packet_; }))
+            if (stop_ && *stop_) break;
+    }
+    if (!maker_.started()) {
+        stopping_ = true;
+        stopAndJoin();
+    }
     if (maker_.started()) return maker_.initialLevels();
     return std::vector<std::uint8_t>(maker_.initialLevels().size(), 0);
 }
