@@ -146,17 +146,22 @@ private:
     }
 
     void checkThresholdNames() const {
-        for (const auto& [name, v] : opts_.thresholds)
+        for (const auto& threshold : opts_.thresholds) {
+            const std::string& name = threshold.first;  // not a binding: lambdas capture it
             if (!name.empty() && std::none_of(signals_.begin(), signals_.end(), [&](auto& s) {
                     return s.name == name || s.full_name == name;
                 }))
-                throw InputError(fmt::format("--threshold {}={}: {} has no signal '{}'", name, v,
-                                             src_->fileName(), name));
+                throw InputError(fmt::format("--threshold {}={}: {} has no signal '{}'", name,
+                                             threshold.second, src_->fileName(), name));
+        }
     }
 
     bool nextRow(double& t) {
         if (!src_->next(t, row_.data())) return false;
         computePairs();
+        // A value beyond float's range (or a pair's difference) would poison the levels.
+        for (const float v : row_)
+            if (!std::isfinite(v)) src_->fail("a value beyond ±3.4e38 (or a pair's difference)");
         if (have_time_ && t < last_t_)
             src_->fail(fmt::format("time going backwards ({} s after {} s)", t, last_t_));
         have_time_ = true;

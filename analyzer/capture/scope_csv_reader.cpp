@@ -4,6 +4,7 @@
 // are values whose bits are the lines.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include <fmt/format.h>
 
@@ -94,7 +95,8 @@ private:
             double v = 0;
             if (blank(f))
                 ++empty;
-            else if (!parseScopeNumber(f, lay_.decimal_comma, v) || !std::isfinite(v))
+            else if (!parseScopeNumber(f, lay_.decimal_comma, v) ||
+                     !(std::abs(v) <= std::numeric_limits<float>::max()))
                 fail(fmt::format("expected a number in column {}, found '{}'", slot_field_[s] + 1,
                                  printable(f)));
             values[s] = float(v);
