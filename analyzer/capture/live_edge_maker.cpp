@@ -46,16 +46,10 @@ void LiveEdgeMaker::flush(LiveEdgeQueue& queue) {
     queue.push(block_, tick_);
 }
 
-std::size_t LiveEdgeMaker::addPacket(const std::uint8_t* data, std::size_t n, unsigned unit,
-                                     LiveEdgeQueue& queue) {
-    n = take(n);
-    if (n == 0) return 0;
-    if (!started_) start(sampleWord(data, unit));
-    // After a dropped packet the lines jump to where the device is now, at this tick.
-    if (gap_) {
-        emitChanges(delivered_ ^ prev_, prev_, Tick(tick_));
-        gap_ = false;
-    }
+template <unsigned Unit>
+void LiveEdgeMaker::scan(const std::uint8_t* data, std::size_t n, LiveEdgeQueue& queue,
+                         unsigned unit) {
+    if (Unit) unit = Unit;
     std::uint64_t prev = prev_;
     for (std::size_t i = 0; i < n; ++i) {
         const std::uint64_t w = sampleWord(data + i * unit, unit) & mask_;
@@ -67,7 +61,35 @@ std::size_t LiveEdgeMaker::addPacket(const std::uint8_t* data, std::size_t n, un
         emitChanges(w ^ prev, w, Tick(tick_ + i));
         prev = w;
     }
-    prev_ = delivered_ = prev;
+    prev_ = prev;
+}
+
+std::size_t LiveEdgeMaker::addPacket(const std::uint8_t* data, std::size_t n, unsigned unit,
+                                     LiveEdgeQueue& queue) {
+    n = take(n);
+    if (n == 0) return 0;
+    if (!started_) start(sampleWord(data, unit));
+    // After a dropped packet the lines jump to where the device is now, at this tick.
+    if (gap_) {
+        emitChanges(delivered_ ^ prev_, prev_, Tick(tick_));
+        gap_ = false;
+    }
+    // The common word widths with the width known to the compiler (one load a sample).
+    switch (unit) {
+        case 1:
+            scan<1>(data, n, queue);
+            break;
+        case 2:
+            scan<2>(data, n, queue);
+            break;
+        case 4:
+            scan<4>(data, n, queue);
+            break;
+        default:
+            scan<0>(data, n, queue, unit);
+            break;
+    }
+    delivered_ = prev_;
     tick_ += n;
     queue.countSamples(n);
     flush(queue);

@@ -37,6 +37,9 @@ private:
     void start(std::uint64_t first_word);
     void emitChanges(std::uint64_t changed, std::uint64_t word, Tick t);
     void flush(LiveEdgeQueue& queue);
+    // Edges of n samples from prev_ on; Unit 0: words of `unit` bytes.
+    template <unsigned Unit>
+    void scan(const std::uint8_t* data, std::size_t n, LiveEdgeQueue& queue, unsigned unit = Unit);
 
     std::vector<int> bits_;
     std::array<std::vector<std::uint32_t>, 64> lines_of_bit_;

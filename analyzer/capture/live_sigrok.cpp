@@ -356,9 +356,10 @@ std::vector<std::string> scanSigrokDevices() {
             GSList* channels = sr_dev_inst_channels_get(sdi);
             std::string device = driver->name;
             if (conn && *conn) device += fmt::format(":conn={}", conn);
-            std::string what = fmt::format("{} {}", vendor ? vendor : "", model ? model : "");
+            std::string what = vendor ? vendor : "";
+            if (model && *model) what += (what.empty() ? "" : " ") + std::string(model);
             std::string analog = channelList(channels, SR_CHANNEL_ANALOG);
-            lines.push_back(fmt::format("{}\t{}\tlogic: {}{}", device, g_strstrip(what.data()),
+            lines.push_back(fmt::format("{}\t{}\tlogic: {}{}", device, what,
                                         channelList(channels, SR_CHANNEL_LOGIC),
                                         analog.empty() ? "" : "\tanalog: " + analog));
         }
