@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cmath>
 #include <condition_variable>
+#include <cstdlib>
 #include <mutex>
 #include <thread>
 
@@ -21,12 +22,24 @@ namespace {
 // in bursts (the demo every 100 ms), which the decoder must be able to take whole.
 constexpr std::size_t kQueueBlocks = 4096;
 constexpr std::size_t kQueueEdges = 256 * kEdgeBlockSize;
+
+// BUSDECODE_LIVE_QUEUE=N: at most N blocks waiting (as BUSDECODE_LCM_QUEUE for LCM), to
+// see how a run that falls behind reports it.
+std::size_t queueBlocks() {
+    const char* q = std::getenv("BUSDECODE_LIVE_QUEUE");
+    if (!q) return kQueueBlocks;
+    char* end = nullptr;
+    const long long n = std::strtoll(q, &end, 10);
+    if (!end || *end || n < 1)
+        throw InputError(fmt::format("BUSDECODE_LIVE_QUEUE='{}': expected a positive count", q));
+    return std::size_t(n);
+}
 }  // namespace
 
 class LiveReader : public CaptureReader {
 public:
     LiveReader(const LiveSettings& settings, const std::atomic<bool>* stop)
-        : settings_(settings), stop_(stop), device_(settings), queue_(kQueueBlocks, kQueueEdges) {
+        : settings_(settings), stop_(stop), device_(settings), queue_(queueBlocks(), kQueueEdges) {
         for (std::size_t i = 0; i < device_.channelNames().size(); ++i)
             signals_.push_back({device_.channelNames()[i], device_.channelNames()[i], 1});
         std::uint64_t limit = settings.samples;

@@ -114,3 +114,29 @@ TEST(LiveCli, BadDevicesRatesAndChannelsAreOneLine) {
 
 }  // namespace
 }  // namespace busdecode::test
+
+namespace busdecode::test {
+namespace {
+
+TEST(LiveCli, FallingBehindDropsWholePacketsAndSaysSo) {
+    // The decoder held back by a slow LCM publisher (20 events/s, queue of 1, waiting), the
+    // acquisition's queue 2 blocks: most of the demo's packets cannot be taken.
+    const RunResult r = runCommand(
+        "BUSDECODE_LIVE_QUEUE=2 BUSDECODE_LCM_RATE=20 BUSDECODE_LCM_QUEUE=1 " +
+        shellQuote(binDir() + "/decode") +
+        " --device demo --samplerate 1M --channels D0,D1 --time 1 --proto spi --map sclk=D0 "
+        "--map mosi=D1 --lcm memq://");
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.out.find("demo: 1000000 samples at 1 MHz"), std::string::npos) << r.out;
+    const std::size_t at = r.out.find("demo: dropped ");
+    ASSERT_NE(at, std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("decoding fell behind the device", at), std::string::npos);
+    const RunResult bad = runCommand("BUSDECODE_LIVE_QUEUE=0 " + shellQuote(binDir() + "/decode") +
+                                     " --device demo --samples 10 --proto spi --map sclk=D0 "
+                                     "--map mosi=D1");
+    EXPECT_EQ(bad.status, 2);
+    EXPECT_EQ(bad.err, "decode: BUSDECODE_LIVE_QUEUE='0': expected a positive count\n");
+}
+
+}  // namespace
+}  // namespace busdecode::test
