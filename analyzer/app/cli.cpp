@@ -168,13 +168,8 @@ Parsed parse(const QStringList& argv, bool verify) {
     }
     for (const auto& t : toStd(p.values(threshold)))
         a.thresholds.push_back(parseThresholdOption(t));
-    if (p.isSet(hysteresis)) {
-        auto h = parseNumber(p.value(hysteresis).toStdString());
-        if (!h || *h < 0)
-            throw InputError(fmt::format("--hysteresis {}: expected a number of volts, 0 or more",
-                                         p.value(hysteresis).toStdString()));
-        a.hysteresis = *h;
-    }
+    if (p.isSet(hysteresis))
+        a.hysteresis = parseHysteresisOption(p.value(hysteresis).toStdString());
     a.follow = p.isSet(follow);
     a.realtime = p.isSet(realtime);
     a.rules = p.value(rules).toStdString();

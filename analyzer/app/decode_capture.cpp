@@ -52,6 +52,8 @@ CaptureFacts decodeCapture(const std::string& path, const std::vector<DecoderReq
     for (const auto& r : requests)
         for (const auto& [role, signal] : r.map)
             if (splitPair(signal, wire_p, wire_n)) with_pairs.pairs.push_back(signal);
+    for (auto* s : sinks)
+        with_pairs.keep_voltages |= s->wantsEdges();
     std::unique_ptr<CaptureReader> reader = openCapture(path, with_pairs);
     if (!with_pairs.pairs.empty()) reader = pairedReader(std::move(reader), with_pairs.pairs);
     if (open.read_ahead && !reader->readsAhead()) {

@@ -39,6 +39,7 @@ public:
     const std::vector<SignalInfo>& signals() const override { return signals_; }
     Timebase timebase() const override { return tb_; }
     std::string formatName() const override { return src_->formatName(); }
+    std::string wallClockStart() const override { return src_->wallClockStart(); }
 
     void select(const std::vector<LineRef>& lines) override {
         checkSelection(lines);
@@ -76,7 +77,8 @@ public:
         block.clear();
         if (!started_) start();
         if (done_) return false;
-        while (block.edges.size() + order_.held() + lines_.size() < kEdgeBlockSize) {
+        while (block.edges.size() + order_.held() + lines_.size() < kEdgeBlockSize &&
+               block.volts.size() < kVoltBlock) {
             double t;
             if (!nextSample(t)) {
                 done_ = true;
@@ -84,11 +86,14 @@ public:
                     if (l.watch) l.watch->finish(end_tick_);
                 order_.release(kMaxEdgeTick, block.edges);
                 block.known_until = end_tick_;
-                return !block.edges.empty();
+                handVolts(block);
+                return !block.edges.empty() || !block.volts.empty();
             }
             takeSample(t, block.edges);
+            if (opts_.keep_voltages) keepVolts(block.volts);
         }
         block.known_until = bound_;
+        handVolts(block);
         return true;
     }
 
@@ -244,6 +249,21 @@ private:
         }
         bound_ = std::max(Tick(std::floor(bound)), start_tick_);
         order_.release(bound_, out);
+    }
+
+    // A block ends after this many voltage samples, so that a quiet stretch stays bounded.
+    static constexpr std::size_t kVoltBlock = 16384;
+    void keepVolts(std::vector<VoltSample>& out) const {
+        for (std::size_t i = 0; i < lines_.size(); ++i)
+            if (lines_[i].bit < 0)
+                out.push_back({end_tick_, row_[lines_[i].slot], std::uint32_t(i)});
+    }
+    void handVolts(EdgeBlock& block) const {
+        if (block.volts.empty()) return;
+        for (std::size_t i = 0; i < lines_.size(); ++i)
+            if (lines_[i].bit < 0)
+                block.thresholds.push_back({std::uint32_t(i), float(lines_[i].settings.threshold),
+                                            float(lines_[i].settings.hysteresis)});
     }
 
     void watchWires(Line& l, double t) {

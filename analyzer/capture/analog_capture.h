@@ -29,6 +29,8 @@ public:
     virtual std::string fileName() const = 0;  // for messages
     // Seconds between samples when the file states it; 0: found from the rows.
     virtual double period() const { return 0; }
+    // When the capture began by the wall clock, as the file says (wall_clock.h), or "".
+    virtual std::string wallClockStart() const { return {}; }
     // The next row: its time in seconds and slots() values. False at the end. Throws
     // InputError naming the file and line.
     virtual bool next(double& t, float* values) = 0;

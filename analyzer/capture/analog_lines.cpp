@@ -114,4 +114,14 @@ std::pair<std::string, double> parseThresholdOption(const std::string& text) {
     return {name, v};
 }
 
+double parseHysteresisOption(const std::string& text) {
+    double v = 0;
+    const auto [p, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+    if (text.empty() || ec != std::errc() || p != text.data() + text.size() || !std::isfinite(v) ||
+        v < 0)
+        throw InputError(
+            fmt::format("--hysteresis {}: expected a number of volts, 0 or more", text));
+    return v;
+}
+
 }  // namespace busdecode

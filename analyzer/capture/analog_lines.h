@@ -154,5 +154,7 @@ private:
 // "CH1=1.5" or "1.5" (--threshold) -> (signal, volts); signal empty for all lines.
 // Throws InputError naming the option.
 std::pair<std::string, double> parseThresholdOption(const std::string& text);
+// "0.2" (--hysteresis) -> volts, 0 or more. Throws InputError naming the option.
+double parseHysteresisOption(const std::string& text);
 
 }  // namespace busdecode

@@ -105,6 +105,9 @@ struct OpenOptions {
     // SIGNAL=VOLTS, --hysteresis VOLTS (< 0: a tenth of the swing); unset: from the data.
     std::vector<std::pair<std::string, double>> thresholds;
     double hysteresis = -1;
+    // Analog readers hand their samples on with the edges (EdgeBlock::volts), for a
+    // sink that draws the voltage trace (the HTML report).
+    bool keep_voltages = false;
     // Differential pairs named in --map ("MA+,MA-"): each becomes a signal of that name.
     std::vector<std::string> pairs;
 };

@@ -28,6 +28,7 @@
 #include "core/sample_rate.h"
 #include "decimal_scan.h"
 #include "readers.h"
+#include "wall_clock.h"
 
 namespace busdecode {
 
@@ -158,6 +159,7 @@ public:
     const std::vector<SignalInfo>& signals() const override { return signals_; }
     Timebase timebase() const override { return tb_; }
     std::string formatName() const override { return format_; }
+    std::string wallClockStart() const override { return wall_clock_; }
 
     void select(const std::vector<LineRef>& lines) override {
         checkSelection(lines);
@@ -283,6 +285,8 @@ private:
                 } else if (lb.rfind("samplerate", 0) == 0 && colon != std::string_view::npos) {
                     comment_rate = parseSampleRate(body.substr(colon + 1), true);
                     comment_rate_line = line_no_;
+                } else if (wall_clock_.empty()) {
+                    wall_clock_ = wallClockOfSigrokComment(body);
                 }
                 continue;
             }
@@ -603,6 +607,7 @@ private:
     std::unique_ptr<TextSource> src_;
     OpenOptions opts_;
     std::string format_;
+    std::string wall_clock_;  // sigrok's "; from ... on <date>"
     std::vector<SignalInfo> signals_;
     Timebase tb_;
     char sep_ = ',';

@@ -215,11 +215,20 @@ bool PairedReader::next(EdgeBlock& block) {
             }
         }
     }
+    // Analog lines passed through keep their samples (an analog pair is the analog
+    // reader's own line, passed through too).
+    for (const VoltSample& v : in_block_.volts)
+        for (const auto& [line, wire] : feeds_[v.line])
+            if (sel_[line].pair < 0) block.volts.push_back({v.t, v.volts, line});
+    for (const LineThreshold& th : in_block_.thresholds)
+        for (const auto& [line, wire] : feeds_[th.line])
+            if (sel_[line].pair < 0)
+                block.thresholds.push_back({line, th.threshold, th.hysteresis});
     block.known_until = in_block_.known_until;
     if (!more)
         for (auto& s : sel_)
             if (s.watch) s.watch->finish(in_->endTick());
-    return more || !block.edges.empty();
+    return more || !block.edges.empty() || !block.volts.empty();
 }
 
 std::vector<std::string> PairedReader::notes() const {

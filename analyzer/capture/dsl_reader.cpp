@@ -7,6 +7,8 @@
 // voltages, not logic levels.
 #include <algorithm>
 #include <bit>
+#include <charconv>
+#include <cmath>
 #include <cstring>
 #include <map>
 
@@ -14,6 +16,7 @@
 
 #include "core/options.h"
 #include "readers.h"
+#include "wall_clock.h"
 #include "zip_archive.h"
 
 namespace busdecode {
@@ -40,18 +43,28 @@ std::uint64_t number(const std::string& file, const std::string& key, const std:
     return std::stoull(text);
 }
 
+// Metadata, never a reason to refuse the file: false when `text` is not a whole number.
+bool parseTime(const std::string& text, std::int64_t& out) {
+    const char* end = text.data() + text.size();
+    const auto [p, ec] = std::from_chars(text.data(), end, out);
+    return ec == std::errc() && p == end;
+}
+
 struct DslHeader {
     int version = 0;
     int mode = -1;
     std::uint64_t samples = 0, blocks = 0;
     std::int64_t rate = 0;
     std::map<int, std::string> probes;  // hardware index -> name
+    std::string wall_clock;             // "trigger time" less "trigger pos" samples
 };
 
 DslHeader parseHeader(const std::string& file, const std::string& text) {
     DslHeader h;
     std::string section, rate_text;
-    bool have_rate = false, have_samples = false, have_blocks = false;
+    bool have_rate = false, have_samples = false, have_blocks = false, have_trigger = false;
+    std::int64_t trigger_ms = 0;
+    std::uint64_t trigger_pos = 0;
     std::size_t at = 0, line_no = 0;
     while (at < text.size()) {
         std::size_t nl = text.find('\n', at);
@@ -88,6 +101,11 @@ DslHeader parseHeader(const std::string& file, const std::string& text) {
             rate_text = value;
             h.rate = parseRateHz(value);
             have_rate = true;
+        } else if (key == "trigger time") {
+            have_trigger = parseTime(value, trigger_ms);
+        } else if (key == "trigger pos") {
+            std::int64_t pos = 0;
+            if (parseTime(value, pos) && pos > 0) trigger_pos = std::uint64_t(pos);
         } else if (key.rfind("probe", 0) == 0 && key.size() > 5 &&
                    key.find_first_not_of("0123456789", 5) == std::string::npos) {
             h.probes[int(number(file, key, key.substr(5)))] = value;
@@ -103,6 +121,14 @@ DslHeader parseHeader(const std::string& file, const std::string& text) {
         throw InputError(
             fmt::format("{}: header: samplerate '{}' is not a rate", file, printable(rate_text)));
     if (h.probes.empty()) throw missing("probes");
+    // The trigger's instant (ms since 1970), `trigger pos` samples into the capture. A
+    // session never triggered says its local midnight of 1 January 1970 (-28800000 in
+    // DSView's demo): no time.
+    constexpr double kUnsetBefore = 2 * 86400000.0, kAfterAnyDate = 1e15;
+    const double start_ms = double(trigger_ms) - double(trigger_pos) * 1e3 / double(h.rate);
+    if (have_trigger && trigger_ms > kUnsetBefore && start_ms > kUnsetBefore &&
+        start_ms < kAfterAnyDate)
+        h.wall_clock = wallClockFromUnixMs(std::llround(start_ms));
     return h;
 }
 
@@ -114,6 +140,7 @@ public:
         const DslHeader h = parseHeader(file, *zip_->readText("header"));
         checkMode(h);
         samples_ = h.samples;
+        wall_clock_ = h.wall_clock;
         rate_ = h.rate;
         const std::uint64_t need = (samples_ + kBlockSamples - 1) / kBlockSamples;
         if (h.blocks != need)
@@ -132,6 +159,7 @@ public:
     const std::vector<SignalInfo>& signals() const override { return signals_; }
     Timebase timebase() const override { return Timebase::fromSampleRate(rate_); }
     std::string formatName() const override { return "dsview-dsl"; }
+    std::string wallClockStart() const override { return wall_clock_; }
     std::uint64_t bytesRead() const override { return bytes_read_; }
     std::uint64_t bytesTotal() const override { return bytes_total_; }
     bool changesOnly() const override { return true; }
@@ -321,6 +349,7 @@ private:
     OpenOptions opts_;
     std::uint64_t samples_ = 0, blocks_ = 0;
     std::int64_t rate_ = 0;
+    std::string wall_clock_;
     std::vector<int> probes_;
     std::vector<SignalInfo> signals_;
     std::vector<std::string> notes_;

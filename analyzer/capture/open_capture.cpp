@@ -11,6 +11,7 @@
 
 #include "core/options.h"
 #include "decompressing_input.h"
+#include "fst_api.h"
 #include "readers.h"
 #include "sample_rows_reader.h"
 #include "zip_archive.h"
@@ -140,7 +141,17 @@ std::unique_ptr<CaptureReader> openSource(std::unique_ptr<TextSource> src, const
                              ": a Saleae binary export is read from its file (or folder), not "
                              "from a pipe");
         src.reset();
-        return openSaleaeBin(path);
+        return openSaleaeBin(path, opts);
+    }
+    if (looksLikeFst(head)) {  // fstapi reads a file by its path: a pipe is copied first
+        const std::string name = src->name();
+        if (path != "-" && std::filesystem::is_regular_file(path)) {
+            src.reset();
+            return openFst(path, name, opts);
+        }
+        const int fd = copyToTempFile(*src);
+        src.reset();
+        return openFst("/proc/self/fd/" + std::to_string(fd), name, opts, fd);
     }
     if (head.size() >= 4 && head.substr(0, 4) == std::string_view("PK\x03\x04", 4))
         return openZip(std::move(src), path, opts);
@@ -165,7 +176,7 @@ std::unique_ptr<CaptureReader> openSource(std::unique_ptr<TextSource> src, const
 
 std::unique_ptr<CaptureReader> openCapture(const std::string& path, const OpenOptions& opts) {
     // A folder of one-file-per-channel exports (Saleae Logic 2) is one capture.
-    if (path != "-" && std::filesystem::is_directory(path)) return openSaleaeBin(path);
+    if (path != "-" && std::filesystem::is_directory(path)) return openSaleaeBin(path, opts);
     return openSource(std::make_unique<TextSource>(path, opts), path, opts);
 }
 

@@ -4,6 +4,8 @@
 #include <memory>
 #include <string>
 #include <string_view>
+#include <utility>
+#include <vector>
 
 #include "capture_reader.h"
 #include "text_source.h"
@@ -21,8 +23,18 @@ std::unique_ptr<CaptureReader> openSr(std::unique_ptr<ZipArchive> archive, const
 std::unique_ptr<CaptureReader> openDsl(std::unique_ptr<ZipArchive> archive,
                                        const OpenOptions& opts);
 
-// Saleae Logic 2 binary export: one digital_N.bin, or a folder of them.
-std::unique_ptr<CaptureReader> openSaleaeBin(const std::string& path);
+// Saleae Logic 2 binary export: one digital_N.bin or analog_N.bin, or a folder of them
+// (its digital files, or without any its analog ones).
+std::unique_ptr<CaptureReader> openSaleaeBin(const std::string& path, const OpenOptions& opts);
+// Analog channels (saleae_analog_samples.cpp): (path, channel name) each, one capture.
+std::unique_ptr<CaptureReader> openSaleaeAnalog(
+    const std::string& name, const std::vector<std::pair<std::string, std::string>>& files,
+    const OpenOptions& opts);
+
+// An FST file (fst_reader.cpp) at `path`, named `name` in messages; `owned_fd` (or -1), a
+// descriptor behind `path` that the reader closes when done.
+std::unique_ptr<CaptureReader> openFst(const std::string& path, const std::string& name,
+                                       const OpenOptions& opts, int owned_fd = -1);
 
 // A sigrok session of analog channels only (sr_analog_samples.cpp); null for others.
 std::unique_ptr<CaptureReader> openSrAnalogIfAnalog(const std::string& path,

@@ -7,7 +7,7 @@
 // all little-endian, times in seconds. A folder of such files, or one of them, is one
 // capture; the channels' transitions are merged in time order, each file read as a
 // stream. Ticks count from the earliest begin: at version 1's common sample rate, else
-// in nanoseconds. Analog files (type 1) are refused: they hold voltages.
+// in nanoseconds. Analog files (type 1) go to saleae_analog_samples.cpp.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -49,8 +49,8 @@ public:
                 "Saleae binary export version {} is not read (versions 0 and 1 are)", version));
         if (type == 1)
             throw fail(
-                "an analog channel (type 1): it holds voltages, only digital channels "
-                "(type 0) are read");
+                "an analog channel (type 1) among digital ones: decode the analog "
+                "files in a folder of their own");
         if (type != 0) throw fail(fmt::format("type {} is not a Saleae export type", type));
         if (version == 0) {
             chunks_.push_back(chunkHeader(false));
@@ -161,6 +161,16 @@ private:
     double last_ = -INFINITY;
 };
 
+// The export's type field (0 digital, 1 analog), or -1 when the file is shorter.
+int saleaeTypeOf(const std::string& path) {
+    std::int32_t type = -1;
+    if (std::FILE* f = std::fopen(path.c_str(), "rb")) {
+        if (std::fseek(f, 12, SEEK_SET) != 0 || std::fread(&type, 4, 1, f) != 1) type = -1;
+        std::fclose(f);
+    }
+    return type;
+}
+
 class SaleaeBinReader : public CaptureReader {
 public:
     SaleaeBinReader(std::string name, const std::vector<std::pair<std::string, std::string>>& files)
@@ -265,27 +275,35 @@ private:
 
 }  // namespace
 
-std::unique_ptr<CaptureReader> openSaleaeBin(const std::string& path) {
+std::unique_ptr<CaptureReader> openSaleaeBin(const std::string& path, const OpenOptions& opts) {
     namespace fs = std::filesystem;
-    std::vector<std::pair<std::string, std::string>> files;  // path, signal name
-    if (fs::is_directory(path)) {
-        for (const auto& e : fs::directory_iterator(path)) {
-            const std::string stem = e.path().stem().string();
-            if (e.path().extension() == ".bin" && stem.rfind("digital_", 0) == 0)
-                files.push_back({e.path().string(), stem.substr(8)});
-        }
-        if (files.empty())
-            throw InputError(
-                fmt::format("{}: is a directory without Saleae digital_N.bin files", path));
+    using Files = std::vector<std::pair<std::string, std::string>>;  // path, signal name
+    auto byIndex = [](Files& files) {
         std::sort(files.begin(), files.end(), [](const auto& a, const auto& b) {
             return a.second.size() != b.second.size() ? a.second.size() < b.second.size()
                                                       : a.second < b.second;
         });
-    } else {
-        const std::string stem = fs::path(path).stem().string();
-        files.push_back({path, stem.rfind("digital_", 0) == 0 ? stem.substr(8) : stem});
+    };
+    if (fs::is_directory(path)) {
+        Files digital, analog;
+        for (const auto& e : fs::directory_iterator(path)) {
+            const std::string stem = e.path().stem().string();
+            if (e.path().extension() != ".bin") continue;
+            if (stem.rfind("digital_", 0) == 0)
+                digital.push_back({e.path().string(), stem.substr(8)});
+            if (stem.rfind("analog_", 0) == 0) analog.push_back({e.path().string(), stem});
+        }
+        byIndex(digital);
+        byIndex(analog);
+        if (!digital.empty()) return std::make_unique<SaleaeBinReader>(path, digital);
+        if (!analog.empty()) return openSaleaeAnalog(path, analog, opts);
+        throw InputError(fmt::format(
+            "{}: is a directory without Saleae digital_N.bin or analog_N.bin files", path));
     }
-    return std::make_unique<SaleaeBinReader>(path, files);
+    const std::string stem = fs::path(path).stem().string();
+    if (saleaeTypeOf(path) == 1) return openSaleaeAnalog(path, {{path, stem}}, opts);
+    return std::make_unique<SaleaeBinReader>(
+        path, Files{{path, stem.rfind("digital_", 0) == 0 ? stem.substr(8) : stem}});
 }
 
 }  // namespace busdecode

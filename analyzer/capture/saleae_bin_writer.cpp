@@ -1,6 +1,6 @@
 // writeSaleaeBin: a Waveform as Saleae Logic 2 exports digital channels in binary, one
 // `digital_N.bin` per line in a folder, version 0 or 1 (one chunk at the waveform's
-// sample rate), for round trips through the reader.
+// sample rate), for round trips through the reader; analog channels as `analog_N.bin`.
 #include <filesystem>
 
 #include <fmt/format.h>
@@ -39,6 +39,32 @@ void writeSaleaeBin(const Waveform& w, const std::string& dir, int version) {
         put(out, std::uint64_t(times.size()));
         for (double t : times)
             put(out, t);
+        out.commit();
+    }
+}
+
+void writeSaleaeAnalogBin(const Waveform& w, const std::string& dir, double volts) {
+    std::filesystem::create_directories(dir);
+    const double begin = double(w.start) * double(w.timebase.num) / double(w.timebase.den);
+    const auto samples = std::uint64_t(std::max<Tick>(w.end - w.start, 0) + 1);
+    for (std::uint32_t l = 0; l < w.names.size(); ++l) {
+        AtomicFile out(fmt::format("{}/analog_{}.bin", dir, l));
+        out.put("<SALEAE>");
+        put(out, std::int32_t(0));  // version
+        put(out, std::int32_t(1));  // analog
+        put(out, begin);
+        put(out, std::uint64_t(w.timebase.den / w.timebase.num));
+        put(out, std::uint64_t(1));  // downsample
+        put(out, samples);
+        bool level = l < w.initial.size() && w.initial[l];
+        std::size_t k = 0;
+        while (k < w.edges.size() && w.edges[k].t <= w.start)
+            if (w.edges[k++].line == l) level = w.edges[k - 1].level;
+        for (Tick t = w.start; t <= w.end; ++t) {
+            for (; k < w.edges.size() && w.edges[k].t <= t; ++k)
+                if (w.edges[k].line == l) level = w.edges[k].level;
+            put(out, float(level ? volts : 0.0));
+        }
         out.commit();
     }
 }

@@ -12,6 +12,7 @@
 #include "core/options.h"
 #include "readers.h"
 #include "scope_csv_layout.h"
+#include "wall_clock.h"
 
 namespace busdecode {
 
@@ -32,8 +33,10 @@ public:
                 {c.name, c.full_name, std::size_t(at - slot_field_.begin()), c.bit});
         }
         std::string_view line;
-        for (std::size_t i = 0; i < lay_.header_lines; ++i)
+        for (std::size_t i = 0; i < lay_.header_lines; ++i) {
             if (!nextLine(line)) break;
+            if (wall_clock_.empty()) wall_clock_ = wallClockOfLecroySegment(line);
+        }
     }
 
     const std::vector<AnalogChannel>& channels() const override { return channels_; }
@@ -41,6 +44,7 @@ public:
     std::string formatName() const override { return lay_.format; }
     std::string fileName() const override { return src_->name(); }
     double period() const override { return lay_.time_is_index ? lay_.increment : 0; }
+    std::string wallClockStart() const override { return wall_clock_; }
     std::uint64_t bytesRead() const override { return src_->bytesRead(); }
     std::uint64_t bytesTotal() const override { return src_->bytesTotal(); }
     [[noreturn]] void fail(const std::string& what) const override {
@@ -112,6 +116,7 @@ private:
     std::vector<AnalogChannel> channels_;
     std::vector<std::size_t> slot_field_;  // the field of each value slot
     std::vector<std::string_view> fields_;
+    std::string wall_clock_;  // LeCroy's first segment's trigger time
 };
 
 }  // namespace

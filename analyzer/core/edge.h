@@ -55,14 +55,33 @@ struct Edge {
 };
 static_assert(sizeof(Edge) == 8, "one edge in one 8-byte word");
 
+// One sample of an analog line (scope captures), handed on when a sink draws the trace.
+struct VoltSample {
+    Tick t;
+    float volts;
+    std::uint32_t line;  // as Edge::line
+};
+
+// The trigger an analog line's edges come from.
+struct LineThreshold {
+    std::uint32_t line;
+    float threshold, hysteresis;  // volts
+};
+
 struct EdgeBlock {
     std::vector<Edge> edges;  // time ordered; ties keep reader order
     // Time up to which the capture is known to be complete (>= last edge). Lets
     // decoders close frames on timeouts while a followed file is still growing.
     Tick known_until = kNoTick;
+    // Analog readers asked for them (OpenOptions::keep_voltages): the samples read for
+    // this block, in time order, and the thresholds of their lines.
+    std::vector<VoltSample> volts;
+    std::vector<LineThreshold> thresholds;
     void clear() {
         edges.clear();
         known_until = kNoTick;
+        volts.clear();
+        thresholds.clear();
     }
 };
 

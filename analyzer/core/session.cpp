@@ -531,7 +531,10 @@ std::uint64_t Session::decodeBlock(EdgeBlock& block, std::uint64_t before) {
     }
     // A sink drawing the waveform (the HTML report) sees the edges before their events.
     for (auto* s : sinks_)
-        if (s->wantsEdges()) s->onEdges(kept, kept + n);
+        if (s->wantsEdges()) {
+            if (!block.volts.empty()) s->onVolts(block.volts, block.thresholds);
+            s->onEdges(kept, kept + n);
+        }
     bool advance = true;
     if (im.parallel) {
         im.emitting = 0;

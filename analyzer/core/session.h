@@ -63,6 +63,12 @@ public:
         (void)first;
         (void)last;
     }
+    // And the analog lines' samples read with them (when the reader hands them on).
+    virtual void onVolts(const std::vector<VoltSample>& volts,
+                         const std::vector<LineThreshold>& thresholds) {
+        (void)volts;
+        (void)thresholds;
+    }
 };
 
 class Session {

@@ -133,6 +133,10 @@ public:
     // The captured waveforms of the first faulty events and a clean one per type (only
     // when the sink hands the edges over: addEdges()).
     void addEdges(const Edge* first, const Edge* last) { edges_.addEdges(first, last); }
+    void addVolts(const std::vector<VoltSample>& volts,
+                  const std::vector<LineThreshold>& thresholds) {
+        edges_.addVolts(volts, thresholds);
+    }
     void keepWaveforms(bool on) { keep_waves_ = on; }
     const std::vector<FrameWave>& waveforms() const { return edges_.waves(); }
 

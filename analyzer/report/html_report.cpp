@@ -452,7 +452,9 @@ std::string renderHtmlReport(const CaptureStats& stats) {
     if (!stats.waveforms().empty()) {
         h += "<h2>Captured waveforms</h2>\n<p>The first faulty events of each bus as captured, "
              "with a clean one of each event type for comparison: the decoder's sample points "
-             "(orange), the bits read there, the decoded fields above them.</p>\n";
+             "(orange), the bits read there, the decoded fields above them; for an analog line "
+             "(a scope capture) the voltage as sampled below its levels, with the threshold "
+             "(dashed) and the hysteresis band the edges were found with.</p>\n";
         for (const FrameWave& w : stats.waveforms()) {
             auto opts = f.options.find(w.event.instance);
             h += waveformSvg(

@@ -33,6 +33,10 @@ public:
     // The HTML report draws the captured edges of a few events.
     bool wantsEdges() const override { return html_; }
     void onEdges(const Edge* first, const Edge* last) override { stats_.addEdges(first, last); }
+    void onVolts(const std::vector<VoltSample>& volts,
+                 const std::vector<LineThreshold>& thresholds) override {
+        stats_.addVolts(volts, thresholds);
+    }
     void onEvent(const Event& e, const CaptureFacts&) override { stats_.add(e); }
     void end(const CaptureFacts& facts) override {
         stats_.end(facts);

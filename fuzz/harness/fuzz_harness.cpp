@@ -62,7 +62,7 @@ void registerDecoders() {
 std::vector<std::string> targetNames() {
     std::vector<std::string> out = {"vcd",        "vcd_pieces",  "csv_sigrok", "csv_saleae",
                                     "csv_plain",  "sr",          "cli_args",   "dsl",
-                                    "compressed", "sample_rows", "saleae_bin"};
+                                    "compressed", "sample_rows", "saleae_bin", "fst"};
 #ifdef FUZZ_HAVE_RULES
     out.push_back("rules");
 #endif
@@ -80,7 +80,7 @@ void runTarget(const std::string& target, const std::uint8_t* data, std::size_t 
     if (target == "sr") return runReaderTarget(ReaderKind::Sr, data, size);
     if (target == "dsl") return runReaderTarget(ReaderKind::Dsl, data, size);
     // Compressed streams are the file's bytes; rows need the rate a plain CSV needs.
-    if (target == "compressed" || target == "saleae_bin")
+    if (target == "compressed" || target == "saleae_bin" || target == "fst")
         return runReaderTarget(ReaderKind::Text, data, size);
     if (target == "sample_rows") return runReaderTarget(ReaderKind::PlainCsv, data, size);
     if (target == "rules") return runRulesTarget(data, size);

@@ -69,8 +69,28 @@ def _protos(proto: Protos) -> List[str]:
     return [str(p) for p in proto]
 
 
+Threshold = Union[None, float, str, Mapping[str, float]]
+
+
+def _thresholds(threshold: Threshold) -> List[str]:
+    """threshold= as --threshold options: one for every line, or one per named signal."""
+    if threshold is None:
+        return []
+    if isinstance(threshold, Mapping):
+        return [f"{name}={_text(volts)}" for name, volts in threshold.items()]
+    if isinstance(threshold, (int, float, str)) and not isinstance(threshold, bool):
+        return [_text(threshold)]
+    raise UsageError("threshold: expected volts (1.5) or a dict of SIGNAL: volts, "
+                     f"not {type(threshold).__name__}")
+
+
+def _hysteresis(hysteresis: Optional[float]) -> Optional[str]:
+    return None if hysteresis is None else _text(hysteresis)
+
+
 def _capture_args(path: PathLike, proto: Protos, map: Assignments, opts: Assignments,
-                  rate: Optional[float], threads: int) -> "_busdecode.CaptureArgs":
+                  rate: Optional[float], threads: int, threshold: Threshold = None,
+                  hysteresis: Optional[float] = None) -> "_busdecode.CaptureArgs":
     args = _busdecode.CaptureArgs()
     args.path = os.fspath(path)
     args.protos = _protos(proto)
@@ -78,6 +98,8 @@ def _capture_args(path: PathLike, proto: Protos, map: Assignments, opts: Assignm
     args.opts = _assignments("opts", opts)
     args.rate = None if rate is None else float(rate)
     args.threads = int(threads)
+    args.thresholds = _thresholds(threshold)
+    args.hysteresis = _hysteresis(hysteresis)
     return args
 
 
@@ -93,8 +115,9 @@ def decoders() -> List[Dict[str, Any]]:
 
 
 def decode(path: PathLike, proto: Protos, map: Assignments = None, opts: Assignments = None,
-           rate: Optional[float] = None, threads: int = 2,
-           realtime: bool = False) -> "_busdecode.Events":
+           rate: Optional[float] = None, threads: int = 2, realtime: bool = False,
+           threshold: Threshold = None,
+           hysteresis: Optional[float] = None) -> "_busdecode.Events":
     """Decodes a capture; returns an iterator of events, each a dict.
 
     path: a VCD, CSV or sigrok .sr capture ("-" reads standard input).
@@ -108,6 +131,11 @@ def decode(path: PathLike, proto: Protos, map: Assignments = None, opts: Assignm
     rate: sample rate in Hz for a CSV without a time column.
     threads: 2 reads ahead on a second thread, 1 reads and decodes on one.
     realtime: hands events out no faster than the capture's own time runs.
+    threshold: for analog lines (scope captures), the switching level in volts for
+        every line (1.5) or per signal ({"CH1": 1.5, "CH2": 0.8}), as --threshold;
+        None: found from the data (midway between the line's two main levels).
+    hysteresis: the Schmitt trigger's band in volts (--hysteresis); None: a tenth of
+        the line's swing.
 
     The dicts have exactly the keys and values of `decode --format jsonl` (ints for
     integers, None for nulls, a list of error strings). The capture is decoded on a
@@ -124,13 +152,15 @@ def decode(path: PathLike, proto: Protos, map: Assignments = None, opts: Assignm
     ...     if ev["errors"]:
     ...         print(ev["start_ns"], ev["errors"])
     """
-    return _busdecode.decode_events(_capture_args(path, proto, map, opts, rate, threads),
-                                    False, bool(realtime))
+    return _busdecode.decode_events(
+        _capture_args(path, proto, map, opts, rate, threads, threshold, hysteresis), False,
+        bool(realtime))
 
 
 def follow(path_or_stream: Union[PathLike, Any], proto: Protos, map: Assignments = None,
-           opts: Assignments = None, rate: Optional[float] = None,
-           threads: int = 2) -> "_busdecode.Events":
+           opts: Assignments = None, rate: Optional[float] = None, threads: int = 2,
+           threshold: Threshold = None,
+           hysteresis: Optional[float] = None) -> "_busdecode.Events":
     """Follows a live capture (`decode --follow`): an iterator of event dicts.
 
     path_or_stream: a file that is still being written (the iterator waits for more of
@@ -143,8 +173,9 @@ def follow(path_or_stream: Union[PathLike, Any], proto: Protos, map: Assignments
         path = f"/dev/fd/{path_or_stream.fileno()}"
     else:
         path = os.fspath(path_or_stream)
-    return _busdecode.decode_events(_capture_args(path, proto, map, opts, rate, threads),
-                                    True, False)
+    return _busdecode.decode_events(
+        _capture_args(path, proto, map, opts, rate, threads, threshold, hysteresis), True,
+        False)
 
 
 def _pandas_array(pd: Any, kind: str, values: Any, mask: Any) -> Any:
@@ -162,7 +193,8 @@ def _pandas_array(pd: Any, kind: str, values: Any, mask: Any) -> Any:
 
 
 def read(path: PathLike, proto: Protos, map: Assignments = None, opts: Assignments = None,
-         rate: Optional[float] = None, threads: int = 2) -> Dict[str, Any]:
+         rate: Optional[float] = None, threads: int = 2, threshold: Threshold = None,
+         hysteresis: Optional[float] = None) -> Dict[str, Any]:
     """Decodes a whole capture into pandas DataFrames, one per "proto/type".
 
     Arguments as decode(). Returns {"bissc/frame": DataFrame, "bissc/register": ...}
@@ -176,7 +208,7 @@ def read(path: PathLike, proto: Protos, map: Assignments = None, opts: Assignmen
 
     Without pandas, returns {"proto/type": [event dict, ...]} instead.
     """
-    args = _capture_args(path, proto, map, opts, rate, threads)
+    args = _capture_args(path, proto, map, opts, rate, threads, threshold, hysteresis)
     try:
         import pandas as pd
     except ImportError:
@@ -256,12 +288,14 @@ class VerifyResult:
 
 def verify(paths: Union[PathLike, Iterable[PathLike]], rules: PathLike, proto: Protos = (),
            map: Assignments = None, opts: Assignments = None, rate: Optional[float] = None,
-           jobs: int = 0, threads: int = 2) -> VerifyResult:
+           jobs: int = 0, threads: int = 2, threshold: Threshold = None,
+           hysteresis: Optional[float] = None) -> VerifyResult:
     """Checks captures against a rules file, as `decode verify` does.
 
     paths: one capture or several; rules: the TOML rules file (see the README, "Rules
     for verify"); proto, map, opts, rate: on top of the rules' [decode] table, as on the
-    command line; jobs: captures checked at once (0: one per core).
+    command line; threshold, hysteresis: for analog lines, as in decode(); jobs:
+    captures checked at once (0: one per core).
 
     Returns a VerifyResult: .passed, .summary (the lines `decode verify` prints),
     .captures (a CaptureResult each, with .failed rules), so that in pytest
@@ -278,7 +312,7 @@ def verify(paths: Union[PathLike, Iterable[PathLike]], rules: PathLike, proto: P
     verdicts, totals = _busdecode.verify_captures(
         captures, os.fspath(rules), _protos(proto), _assignments("map", map),
         _assignments("opts", opts), None if rate is None else float(rate), int(jobs),
-        int(threads))
+        int(threads), _thresholds(threshold), _hysteresis(hysteresis))
     results = []
     for v in verdicts:
         v["rules"] = [RuleResult(**r) for r in v["rules"]]

@@ -19,6 +19,8 @@ class CaptureArgs:
     maps: List[str]
     opts: List[str]
     rate: Optional[float]
+    thresholds: List[str]
+    hysteresis: Optional[str]
     threads: int
     def __init__(self) -> None: ...
 
@@ -44,6 +46,7 @@ def decode_events(args: CaptureArgs, follow: bool, realtime: bool) -> Events: ..
 def read_columns(args: CaptureArgs) -> Dict[str, List[Tuple[str, str, Any, Any]]]: ...
 def verify_captures(captures: List[str], rules: str, protos: List[str], maps: List[str],
                     opts: List[str], rate: Optional[float], jobs: int,
-                    threads: int) -> Tuple[List[Dict[str, Any]], str]: ...
+                    threads: int, thresholds: List[str],
+                    hysteresis: Optional[str]) -> Tuple[List[Dict[str, Any]], str]: ...
 def subscribe_feed(url: str, channels: List[str], timeout: Optional[float],
                    until_end: bool) -> Subscription: ...

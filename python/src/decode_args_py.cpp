@@ -3,6 +3,8 @@
 #include <fmt/format.h>
 
 #include "bindings.h"
+#include "capture/analog_lines.h"
+#include "core/options.h"
 
 namespace busdecode::py {
 
@@ -20,7 +22,19 @@ DecodeJob jobFor(const CaptureArgs& a, bool follow) {
     job.open.rate_hz = a.rate.value_or(0);
     job.open.follow = follow;
     job.open.read_ahead = a.threads > 1;
+    setAnalogOptions(job.open, a.thresholds, a.hysteresis);
     return job;
+}
+
+void setAnalogOptions(OpenOptions& open, const std::vector<std::string>& thresholds,
+                      const std::optional<std::string>& hysteresis) {
+    try {
+        for (const auto& t : thresholds)
+            open.thresholds.push_back(parseThresholdOption(t));
+        if (hysteresis) open.hysteresis = parseHysteresisOption(*hysteresis);
+    } catch (const InputError& e) {
+        throw UsageError(e.what());
+    }
 }
 
 }  // namespace busdecode::py

@@ -145,6 +145,8 @@ void bindDecode(pyb::module_& m) {
         .def_readwrite("maps", &CaptureArgs::maps)
         .def_readwrite("opts", &CaptureArgs::opts)
         .def_readwrite("rate", &CaptureArgs::rate)
+        .def_readwrite("thresholds", &CaptureArgs::thresholds)
+        .def_readwrite("hysteresis", &CaptureArgs::hysteresis)
         .def_readwrite("threads", &CaptureArgs::threads);
 }
 

@@ -33,11 +33,14 @@ void Column::appendNumber(Kind k, std::uint64_t bits) {
 }
 
 void Column::appendText(const std::string& s) {
+    if (last_text_ < texts.size() && texts[last_text_] == s)
+        return appendNumber(Kind::Text, last_text_);
     auto it = text_codes_.find(s);
     if (it == text_codes_.end()) {
         it = text_codes_.emplace(s, texts.size()).first;
         texts.push_back(s);
     }
+    last_text_ = it->second;
     appendNumber(Kind::Text, it->second);
 }
 

@@ -35,6 +35,7 @@ private:
     void appendNumber(Kind k, std::uint64_t bits);
     void appendText(const std::string& s);
     std::unordered_map<std::string, std::uint64_t> text_codes_;
+    std::uint64_t last_text_ = 0;  // the code appended last: most rows repeat it
     void toReal();
     void toObjects();
 };

@@ -60,9 +60,13 @@ pyb::tuple columnToPython(Column& c) {
             std::vector<pyb::object> texts;
             for (const auto& t : c.texts)
                 texts.push_back(pyb::str(t));
+            // The CPython calls directly: pybind11's item proxies cost several times more a row.
             pyb::list out(c.lanes.size());
-            for (std::size_t i = 0; i < c.lanes.size(); ++i)
-                out[i] = c.nulls[i] ? pyb::none() : texts[c.lanes[i]];
+            for (std::size_t i = 0; i < c.lanes.size(); ++i) {
+                PyObject* item = c.nulls[i] ? Py_None : texts[c.lanes[i]].ptr();
+                Py_INCREF(item);
+                PyList_SET_ITEM(out.ptr(), Py_ssize_t(i), item);
+            }
             return pyb::make_tuple(c.key, "object", out, pyb::none());
         }
         case K::Empty:
@@ -82,10 +86,13 @@ pyb::list errorColumn(const Table& t) {
     pyb::list out(t.errors.size());
     for (std::size_t i = 0; i < t.errors.size(); ++i) {
         const auto& set = sets[t.errors[i]];
-        pyb::list row(set.size());
-        for (std::size_t j = 0; j < set.size(); ++j)
-            row[j] = set[j];
-        out[i] = std::move(row);
+        PyObject* row = PyList_New(Py_ssize_t(set.size()));
+        if (!row) throw pyb::error_already_set();
+        for (std::size_t j = 0; j < set.size(); ++j) {
+            Py_INCREF(set[j].ptr());
+            PyList_SET_ITEM(row, Py_ssize_t(j), set[j].ptr());
+        }
+        PyList_SET_ITEM(out.ptr(), Py_ssize_t(i), row);  // steals the reference
     }
     return out;
 }

@@ -4,6 +4,7 @@
 
 #include "bindings.h"
 #include "core/options.h"
+#include "decode_args_py.h"
 #include "verify/batch.h"
 #include "verify/verify.h"
 
@@ -34,7 +35,8 @@ pyb::dict verdictToPython(const CaptureVerdict& v) {
 pyb::tuple verify(const std::vector<std::string>& captures, const std::string& rules,
                   const std::vector<std::string>& protos, const std::vector<std::string>& maps,
                   const std::vector<std::string>& opts, std::optional<double> rate, int jobs,
-                  int threads) {
+                  int threads, const std::vector<std::string>& thresholds,
+                  const std::optional<std::string>& hysteresis) {
     if (captures.empty()) throw UsageError("decode verify: no capture given");
     if (jobs < 0 || jobs > 256)
         throw UsageError("--jobs: expected a whole number from 0 (all cores) to 256");
@@ -48,6 +50,10 @@ pyb::tuple verify(const std::vector<std::string>& captures, const std::string& r
     args.rate_hz = rate.value_or(0);
     args.jobs = jobs;
     args.threads = threads == 1 ? 1 : 2;
+    OpenOptions analog;
+    setAnalogOptions(analog, thresholds, hysteresis);
+    args.thresholds = analog.thresholds;
+    args.hysteresis = analog.hysteresis;
     std::vector<CaptureVerdict> verdicts;
     {
         pyb::gil_scoped_release nogil;
@@ -67,7 +73,7 @@ pyb::tuple verify(const std::vector<std::string>& captures, const std::string& r
 void bindVerify(pyb::module_& m) {
     m.def("verify_captures", &verify, pyb::arg("captures"), pyb::arg("rules"), pyb::arg("protos"),
           pyb::arg("maps"), pyb::arg("opts"), pyb::arg("rate"), pyb::arg("jobs"),
-          pyb::arg("threads"));
+          pyb::arg("threads"), pyb::arg("thresholds"), pyb::arg("hysteresis"));
 }
 
 }  // namespace busdecode::py

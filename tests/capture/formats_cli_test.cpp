@@ -13,8 +13,9 @@ TEST(FormatsCli, ListsEveryReader) {
     ASSERT_EQ(r.status, 0) << r.err;
     for (const auto& f : captureFormats())
         EXPECT_NE(r.out.find(f.name), std::string::npos) << f.name;
-    for (const char* name : {"vcd", "sigrok-sr", "dsview-dsl", "vivado-ila-csv", "sample-list",
-                             "gzip", "xz", "zstd", ".sal"})
+    for (const char* name :
+         {"vcd", "fst", "saleae-bin", "saleae-bin-analog", "sigrok-sr", "dsview-dsl",
+          "vivado-ila-csv", "sample-list", "gzip", "xz", "zstd", ".sal"})
         EXPECT_NE(r.out.find(name), std::string::npos) << name;
 }
 

@@ -74,13 +74,45 @@ TEST(SaleaeBin, BrokenFiles) {
     v = good;
     v[12] = 1;
     p = tempCapture("analog.bin", v);
-    EXPECT_EQ(errorOf(p), p + ": an analog channel (type 1): it holds voltages, only digital "
-                              "channels (type 0) are read");
+    // Read as an analog channel now: a digital file's bytes make no analog header.
+    EXPECT_EQ(errorOf(p).rfind(p + ": ", 0), 0u) << errorOf(p);
+    EXPECT_EQ(errorOf(p).find('\n'), std::string::npos);
     p = tempCapture("tail.bin", good + "xyz");
     EXPECT_EQ(errorOf(p), p + ": 3 bytes after the last transition (not a Saleae export?)");
     const std::string empty = tempDir() + "/nothing";
     std::filesystem::create_directories(empty);
-    EXPECT_EQ(errorOf(empty), empty + ": is a directory without Saleae digital_N.bin files");
+    EXPECT_EQ(errorOf(empty),
+              empty + ": is a directory without Saleae digital_N.bin or analog_N.bin files");
+}
+
+TEST(SaleaeBin, AnalogFolderReadsAsTheVcdThroughTheSchmittTrigger) {
+    const Waveform w = traffic();
+    const std::string vcd = tempDir() + "/a.vcd", dir = tempDir() + "/analog";
+    writeVcd(w, vcd);
+    writeSaleaeAnalogBin(w, dir, 3.3);
+    const Collected want = collectFile(vcd, {"clk", "data", "cs"});
+    const Collected got = collectFile(dir, {"analog_0", "analog_1", "analog_2"});
+    EXPECT_EQ(got.format, "saleae-bin-analog");
+    EXPECT_EQ(got.initial, want.initial);
+    const auto a = inNs(got), b = inNs(want);
+    ASSERT_EQ(a.size(), b.size());
+    // The crossing of the threshold lies between the samples either side of the edge.
+    const double period_ns = 1e9 / 12'500'000;
+    for (std::size_t i = 0; i < a.size(); ++i) {
+        ASSERT_EQ(a[i].line, b[i].line) << i;
+        ASSERT_EQ(a[i].level, b[i].level) << i;
+        ASSERT_NEAR(double(a[i].ns), double(b[i].ns), period_ns) << i;
+    }
+    // One file alone; a cut file; a version this reader does not know.
+    EXPECT_EQ(collectFile(dir + "/analog_1.bin").signals.size(), 1u);
+    const std::string good = readFile(dir + "/analog_0.bin");
+    std::string p = tempCapture("analog_cut.bin", good.substr(0, good.size() - 6));
+    EXPECT_NE(errorOf(p).find(p + ": says "), std::string::npos) << errorOf(p);
+    EXPECT_NE(errorOf(p).find("(truncated)"), std::string::npos);
+    std::string v1 = good;
+    v1[8] = 1;
+    p = tempCapture("analog_v1.bin", v1);
+    EXPECT_EQ(errorOf(p), p + ": Saleae analog export version 1 is not read (version 0 is)");
 }
 
 TEST(SaleaeBin, SalSessionRefusedPointingToTheExport) {

@@ -4,8 +4,10 @@
 // plots with axis titles, units and round tick values.
 #include <gtest/gtest.h>
 
+#include <fmt/format.h>
 #include <zlib.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <cstdlib>
 #include <filesystem>
@@ -14,6 +16,7 @@
 
 #include "bissc_generator.h"
 #include "capture/capture_writer.h"
+#include "capture/scope_csv_writer.h"
 #include "fault_captures.h"
 #include "support/paths.h"
 
@@ -239,6 +242,104 @@ TEST(HtmlReport, SsiRepeatMismatchAsCaptured) {
     EXPECT_TRUE(has(dom, "position (counts)"));
     EXPECT_TRUE(has(dom, "velocity (rev/min)"));
     EXPECT_GE(roundTicks(dom), 15);
+}
+
+// A BiSS-C capture as a scope records it (Rigol CSV: 0.7 V to 5.7 V, slow noisy edges
+// with ringing) whose frame 3 has a wrong CRC.
+std::string scopeBisscCapture(bool differential = false) {
+    const std::string path =
+        test::tempDir() + (differential ? "/html/biss_rs422_scope.csv" : "/html/biss_scope.csv");
+    std::filesystem::create_directories(test::tempDir() + "/html");
+    BisscGenConfig cfg;
+    cfg.line_delay_ns = 600;
+    cfg.idle_ns = 3000;
+    BisscGenerator gen(cfg);
+    for (int i = 0; i < 6; ++i) {
+        BisscFrameSpec f;
+        f.data = 1000 + std::uint64_t(i);
+        f.corrupt_crc = i == 3;
+        gen.addFrame(f);
+    }
+    AnalogStyle style;
+    style.sample_ns = 10;
+    style.low_v = 0;
+    style.high_v = 5;
+    style.offset_v = 0.7;
+    style.rise_ns = 150;
+    style.snr_db = 26;
+    style.ringing = 0.1;
+    style.differential = differential;
+    writeScopeCsv(gen.build(), path, ScopeDialect::Rigol, style);
+    return path;
+}
+
+// The numbers in the text of the first element of class `cls` ("threshold 3.2 V, ...").
+std::vector<double> numbersIn(const std::string& dom, const std::string& cls) {
+    std::vector<double> out;
+    auto at = dom.find("class=\"" + cls + "\"");
+    if (at == std::string::npos) return out;
+    at = dom.find('>', at) + 1;
+    static const std::regex number(R"(-?[0-9]+(\.[0-9]+)?)");
+    const std::string text = dom.substr(at, dom.find('<', at) - at);
+    for (auto it = std::sregex_iterator(text.begin(), text.end(), number);
+         it != std::sregex_iterator(); ++it)
+        out.push_back(std::stod(it->str()));
+    return out;
+}
+
+TEST(HtmlReport, ScopeCaptureDrawsVoltageWithThreshold) {
+    const std::string chromium = findChromium();
+    if (chromium.empty()) GTEST_SKIP() << "chromium is not installed (Debian package `chromium`)";
+    const Rendered r = render(chromium, "bissc_scope", {scopeBisscCapture(), "--proto", "bissc"});
+    EXPECT_GT(r.colours, 10) << "the screenshot is (nearly) uniform";
+    const std::string& dom = r.dom;
+    EXPECT_TRUE(has(dom, R"(<svg class="waveform faulty")"));
+    EXPECT_TRUE(has(dom, "errors crc"));
+    for (const char* role : {"ma", "sl"}) {
+        SCOPED_TRACE(role);
+        EXPECT_TRUE(has(dom, fmt::format(R"(<path class="edges" data-role="{}")", role)));
+        EXPECT_TRUE(has(dom, fmt::format(R"(<path class="volt-trace" data-role="{}")", role)));
+        EXPECT_TRUE(has(dom, fmt::format(R"(<line class="threshold" data-role="{}")", role)));
+        EXPECT_TRUE(has(dom, fmt::format(R"(<rect class="hysteresis" data-role="{}")", role)));
+    }
+    // The threshold found from the data: midway between 0.7 V and 5.7 V.
+    const auto thr = numbersIn(dom, "threshold-label");
+    ASSERT_EQ(thr.size(), 2u);
+    EXPECT_NEAR(thr[0], 3.2, 0.2);
+    EXPECT_GT(thr[1], 0.1);
+    // The trace: many points, reaching both levels.
+    static const std::regex trace(R"re(class="volt-trace" data-role="ma" d="([^"]*)")re");
+    std::smatch m;
+    ASSERT_TRUE(std::regex_search(dom, m, trace));
+    EXPECT_GT(std::count(m[1].first, m[1].second, 'L'), 200);
+    static const std::regex tick(R"re(class="volt-tick"[^>]*>(-?[0-9.]+) V<)re");
+    std::vector<double> ticks;
+    for (auto it = std::sregex_iterator(dom.begin(), dom.end(), tick); it != std::sregex_iterator();
+         ++it)
+        ticks.push_back(std::stod((*it)[1].str()));
+    ASSERT_GE(ticks.size(), 2u);
+    EXPECT_LT(ticks[0], 1.0);  // the low level, noise and ringing below it
+    EXPECT_GT(ticks[1], 5.4);  // the high level
+    EXPECT_TRUE(has(dom, R"(class="sample-point")"));
+}
+
+// RS-422 as a scope records it: each line the difference of its two wires, drawn so.
+TEST(HtmlReport, DifferentialScopeCaptureDrawsThePairsVoltage) {
+    const std::string html = test::tempDir() + "/html/biss_rs422.html";
+    const auto r = test::runDecode({scopeBisscCapture(true), "--proto", "bissc", "--map",
+                                    "ma=MA+,MA-", "--map", "sl=SLO+,SLO-", "--report", html});
+    ASSERT_EQ(r.status, 0) << r.err;
+    const std::string page = test::readFile(html);
+    EXPECT_TRUE(has(page, "errors crc"));
+    for (const char* role : {"ma", "sl"}) {
+        SCOPED_TRACE(role);
+        EXPECT_TRUE(has(page, fmt::format(R"(<path class="volt-trace" data-role="{}")", role)));
+        EXPECT_TRUE(has(page, fmt::format(R"(<line class="threshold" data-role="{}")", role)));
+    }
+    // A difference swings both ways: the threshold at 0 V.
+    const auto thr = numbersIn(page, "threshold-label");
+    ASSERT_EQ(thr.size(), 2u);
+    EXPECT_NEAR(thr[0], 0.0, 0.3);
 }
 
 TEST(HtmlReport, RendersInHeadlessChromium) {
