@@ -27,4 +27,8 @@ set(CPACK_DEBIAN_PACKAGE_SECTION electronics)
 # header-only on some systems, a library on Debian).
 set(CPACK_DEBIAN_PACKAGE_DEPENDS
     "libc6, libstdc++6, libqt6core6, libfmt9, libzip4, liblcm1, libtomlplusplus3")
+get_property(_live GLOBAL PROPERTY BUSDECODE_LIVE)
+if(_live)  # decode --device (analyzer/CMakeLists.txt)
+  string(APPEND CPACK_DEBIAN_PACKAGE_DEPENDS ", libsigrok4")
+endif()
 include(CPack)

@@ -4,6 +4,7 @@
 #include "cli.h"
 
 #include <unistd.h>
+#include <cmath>
 #include <cstdio>
 #include <system_error>
 
@@ -20,6 +21,7 @@
 #include "app/standard_streams.h"
 #include "capture/analog_lines.h"
 #include "capture/format_list.h"
+#include "core/atomic_file.h"
 #include "core/interrupted.h"
 #include "core/options.h"
 #include "core/registry.h"
@@ -30,6 +32,10 @@
 #include "sinks/stream_sinks.h"
 #include "verify/junit_merge.h"
 #include "verify/verify.h"
+#if BUSDECODE_LIVE
+#include "capture/live_reader.h"
+#include "capture/live_sigrok.h"
+#endif
 
 namespace busdecode {
 
@@ -66,6 +72,7 @@ struct Parsed {
     bool list = false;
     bool done = false;     // --help or --version printed
     bool formats = false;  // --formats: the capture formats, or what each capture is
+    bool scan = false;     // --scan: the attached analysers
 };
 
 Parsed parse(const QStringList& argv, bool verify) {
@@ -99,11 +106,20 @@ Parsed parse(const QStringList& argv, bool verify) {
     QCommandLineOption threads(
         "threads", "per capture: 1 reads and decodes on one thread, 2 reads ahead on another", "N",
         "2");
+    QCommandLineOption device("device", "acquire live through libsigrok (or playback:file=X.sr)",
+                              "DRIVER[:conn=...]");
+    QCommandLineOption samplerate("samplerate", "live: the analyser's sample rate", "HZ");
+    QCommandLineOption channels("channels", "live: the logic channels to acquire", "D0,D1,...");
+    QCommandLineOption samples("samples", "live: stop after N samples", "N");
+    QCommandLineOption seconds("time", "live: stop after this many seconds of samples", "SECONDS");
+    QCommandLineOption save("save", "live: also write the samples as a sigrok session", "FILE.sr");
+    QCommandLineOption scan("scan", "list the analysers libsigrok finds");
     QCommandLineOption help({"h", "help"}, "show this help");
     QCommandLineOption version("version", "show the version");
-    for (auto* o : {&proto,     &map,        &opt,    &format,    &report,  &lcm,     &rate,
-                    &threshold, &hysteresis, &follow, &realtime,  &list,    &formats, &rules,
-                    &junit,     &jobs,       &shard,  &from_list, &threads, &help,    &version})
+    for (auto* o : {&proto,     &map,        &opt,      &format,    &report,  &lcm,     &rate,
+                    &threshold, &hysteresis, &follow,   &realtime,  &list,    &formats, &rules,
+                    &junit,     &jobs,       &shard,    &from_list, &threads, &help,    &version,
+                    &device,    &samplerate, &channels, &samples,   &seconds, &save,    &scan})
         p.addOption(*o);
     if (!p.parse(argv)) throw InputError(p.errorText().toStdString());
     if (p.isSet(help)) {
@@ -112,6 +128,9 @@ Parsed parse(const QStringList& argv, bool verify) {
             "\nCommands:\n  decode CAPTURE... --proto NAME [...]\n"
             "  decode verify CAPTURE... --rules FILE [--junit FILE] [--jobs N] [--threads N]\n"
             "                [--from-list FILE] [--shard K/N]\n"
+            "  decode --device DRIVER[:conn=...] --samplerate HZ [--channels D0,...]\n"
+            "         [--samples N | --time SECONDS] [--save FILE.sr] --proto NAME [...]\n"
+            "  decode --scan\n"
             "  decode merge-junit SHARD.xml... -o ALL.xml [--from-list FILE]\n"
             "  decode monitor [--lcm URL]\n  decode --list\n");
         return {{}, false, true};
@@ -123,7 +142,17 @@ Parsed parse(const QStringList& argv, bool verify) {
     Parsed out;
     out.list = p.isSet(list);
     out.formats = p.isSet(formats);
+    out.scan = p.isSet(scan);
     DecodeArgs& a = out.args;
+    a.device = p.value(device).toStdString();
+    a.samplerate = p.value(samplerate).toStdString();
+    a.channels = p.value(channels).toStdString();
+    a.samples = p.value(samples).toStdString();
+    a.seconds = p.value(seconds).toStdString();
+    a.save = p.value(save).toStdString();
+    if (a.device.empty() && (p.isSet(samplerate) || p.isSet(channels) || p.isSet(samples) ||
+                             p.isSet(seconds) || p.isSet(save)))
+        throw InputError("--samplerate, --channels, --samples, --time and --save need --device");
     a.captures = toStd(p.positionalArguments());
     a.protos = toStd(p.values(proto));
     a.maps = toStd(p.values(map));
@@ -162,7 +191,10 @@ Parsed parse(const QStringList& argv, bool verify) {
         (!a.rules.empty() || !a.junit.empty() || !a.shard.empty() || !a.from_list.empty()))
         throw InputError("--rules, --junit, --shard and --from-list belong to 'decode verify'");
     if (verify && a.rules.empty()) throw InputError("decode verify: --rules FILE is required");
-    if (!out.list && !out.formats && a.captures.empty() && a.from_list.empty())
+    if (!a.device.empty() && (!a.captures.empty() || verify || a.follow))
+        throw InputError("--device acquires live: no capture file, --follow or verify with it");
+    if (!out.list && !out.formats && !out.scan && a.device.empty() && a.captures.empty() &&
+        a.from_list.empty())
         throw InputError("no capture given (see decode --help)");
     return out;
 }
@@ -176,6 +208,90 @@ int runFormats(const DecodeArgs& a) {
     return 0;
 }
 
+// One capture's sinks: the output on stdout, its report, and the shared LCM sink.
+struct OutputSinks {
+    std::vector<std::unique_ptr<OutputSink>> owned;
+    std::vector<OutputSink*> sinks;
+    OutputSinks(const DecodeArgs& a, const std::string& report, bool several, OutputSink* lcm) {
+        owned.push_back(a.format == "jsonl" ? makeJsonlSink(stdout, several)
+                                            : makeTextSink(stdout));
+        if (!report.empty()) owned.push_back(makeReportSink(report));
+        for (auto& s : owned)
+            sinks.push_back(s.get());
+        if (lcm) sinks.push_back(lcm);
+    }
+};
+
+// Live output wants every line at once; a batch run wants big writes.
+void bufferStandardOutput(bool live) {
+    static char buffer[1 << 20];
+    if (live)
+        std::setvbuf(stdout, nullptr, _IOLBF, 0);
+    else
+        std::setvbuf(stdout, buffer, _IOFBF, sizeof buffer);
+}
+
+#if BUSDECODE_LIVE
+LiveSettings liveSettings(const DecodeArgs& a) {
+    LiveSettings s = parseDeviceSpec(a.device);
+    if (!a.samplerate.empty()) {
+        // "24M", "24 MHz" or "24000000", as sigrok-cli takes it.
+        std::string text = a.samplerate;
+        if (!text.empty() && std::string("kKMG").find(text.back()) != std::string::npos)
+            text += "Hz";
+        const SampleRate rate = parseSampleRate(text, true);
+        if (!rate.timebase || rate.timebase->num != 1)
+            throw InputError(fmt::format(
+                "--samplerate {}: expected a whole number of Hz (24000000, 24M, 24 MHz)",
+                a.samplerate));
+        s.samplerate = std::uint64_t(rate.timebase->den);
+    }
+    if (!a.channels.empty())
+        for (const auto& c : QString::fromStdString(a.channels).split(',', Qt::SkipEmptyParts))
+            s.channels.push_back(c.trimmed().toStdString());
+    if (!a.samples.empty()) {
+        const auto n = parseInteger(a.samples);
+        if (!n || *n < 1)
+            throw InputError(
+                fmt::format("--samples {}: expected a whole number, 1 or more", a.samples));
+        s.samples = std::uint64_t(*n);
+    }
+    if (!a.seconds.empty()) {
+        const auto t = parseNumber(a.seconds);
+        if (!t || !(*t > 0) || *t > 1e7)
+            throw InputError(fmt::format("--time {}: expected seconds, more than 0", a.seconds));
+        s.seconds = *t;
+    }
+    s.save = a.save;
+    return s;
+}
+
+int runLive(const DecodeArgs& a) {
+    const LiveSettings settings = liveSettings(a);
+    auto requests = buildRequests(a.protos, a.maps, a.opts);
+    bufferStandardOutput(true);
+    std::unique_ptr<OutputSink> lcm;
+    if (a.lcm_url) lcm = makeLcmSink(*a.lcm_url, false);
+    if (!a.report.empty()) checkWritable(a.report);
+    const OutputSinks out(a, a.report, false, lcm.get());
+    decodeLive(settings, requests, out.sinks, interruptionFlag());
+    return 0;
+}
+
+int runScan() {
+    for (const auto& line : scanSigrokDevices())
+        fmt::print("{}\n", line);
+    return 0;
+}
+#else
+int runLive(const DecodeArgs&) {
+    throw InputError("--device: this decode was built without libsigrok");
+}
+int runScan() {
+    throw InputError("--scan: this decode was built without libsigrok");
+}
+#endif
+
 int runDecode(const DecodeArgs& a) {
     auto requests = buildRequests(a.protos, a.maps, a.opts);
     OpenOptions open;
@@ -185,12 +301,7 @@ int runDecode(const DecodeArgs& a) {
     open.follow = a.follow;
     open.read_ahead = a.threads > 1;
     open.stop = interruptionFlag();
-    // Live output wants every line at once; a batch run wants big writes.
-    static char buffer[1 << 20];
-    if (a.follow || a.realtime || a.lcm_url)
-        std::setvbuf(stdout, nullptr, _IOLBF, 0);
-    else
-        std::setvbuf(stdout, buffer, _IOFBF, sizeof buffer);
+    bufferStandardOutput(a.follow || a.realtime || a.lcm_url);
 
     std::unique_ptr<OutputSink> lcm;
     if (a.lcm_url) lcm = makeLcmSink(*a.lcm_url, a.captures.size() > 1);
@@ -201,16 +312,9 @@ int runDecode(const DecodeArgs& a) {
         if (!report.empty()) refuseOutputOnCapture("--report", report, a.captures);
     for (std::size_t i = 0; i < a.captures.size(); ++i) {
         const std::string& capture = a.captures[i];
-        std::vector<std::unique_ptr<OutputSink>> owned;
-        owned.push_back(a.format == "jsonl" ? makeJsonlSink(stdout, a.captures.size() > 1)
-                                            : makeTextSink(stdout));
-        if (!reports[i].empty()) owned.push_back(makeReportSink(reports[i]));
-        std::vector<OutputSink*> sinks;
-        for (auto& s : owned)
-            sinks.push_back(s.get());
-        if (lcm) sinks.push_back(lcm.get());
+        const OutputSinks out(a, reports[i], a.captures.size() > 1, lcm.get());
         const CaptureFacts facts =
-            decodeCapture(capture, requests, open, sinks, a.realtime, interruptionFlag());
+            decodeCapture(capture, requests, open, out.sinks, a.realtime, interruptionFlag());
         if (a.format == "jsonl")  // text output has them in its summary
             for (const auto& hint : facts.advice)
                 printError(hintLine(capture, hint));
@@ -243,6 +347,11 @@ int run(int argc, char** argv, DecodeArgs& args) {
         checkStandardOutput();
         return status;
     }
+    if (parsed.scan) {
+        const int status = runScan();
+        checkStandardOutput();
+        return status;
+    }
     for (const auto& c : args.captures)
         if (c == "-" && standardStreams().stdin_closed)
             throw InputError("-: standard input is closed");
@@ -254,7 +363,7 @@ int run(int argc, char** argv, DecodeArgs& args) {
         return 0;
     }
     if (verify) return runVerify(args);  // checks stdout before writing its JUnit file
-    const int status = runDecode(args);
+    const int status = args.device.empty() ? runDecode(args) : runLive(args);
     checkStandardOutput();
     return status;
 }

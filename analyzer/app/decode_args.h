@@ -27,6 +27,10 @@ struct DecodeArgs {
     bool follow = false;    // --follow
     bool realtime = false;  // --realtime
     int threads = 2;        // --threads N per capture: 1 or 2 (read ahead)
+    // live acquisition (capture/live_device.h): --device, --samplerate, --channels,
+    // --samples, --time, --save; --scan lists the devices
+    std::string device;
+    std::string samplerate, channels, samples, seconds, save;
     // verify only
     std::string rules;      // --rules FILE
     std::string junit;      // --junit FILE

@@ -15,6 +15,13 @@
 
 namespace busdecode {
 
+// A live acquisition's sample counts (capture/live_reader.h); all zero for a file.
+struct AcquisitionCounts {
+    std::uint64_t samples = 0;  // acquired from the analyser
+    std::uint64_t dropped = 0;  // dropped, whole packets, because decoding fell behind
+    std::uint64_t behind = 0;   // the worst backlog between acquiring and decoding
+};
+
 struct SignalInfo {
     std::string name;       // last component ("MA", "clk")
     std::string full_name;  // hierarchical VCD name ("top.enc.clk"), or same as name
@@ -52,6 +59,8 @@ public:
     // True if every edge changes its line's level (the reader drops repeated values
     // itself): the session then skips its own check.
     virtual bool changesOnly() const { return false; }
+    // A live acquisition's counts so far (valid between next() calls).
+    virtual AcquisitionCounts acquisition() const { return {}; }
     // True if next() already reads ahead on a thread of its own (a reader that is not
     // to be wrapped in prefetchReader()).
     virtual bool readsAhead() const { return false; }

@@ -520,6 +520,7 @@ void Session::run() {
     while (!im.stopped() && reader.next(block)) {
         edges = decodeBlock(block, edges);
         facts_.edges = edges;
+        facts_.acquisition = reader.acquisition();
     }
     if (im.parallel) endParallelPath();
     if (im.stopped() && im.abandon_when_stopped) {
@@ -532,6 +533,7 @@ void Session::run() {
     facts_.end = im.stopped() ? im.now : std::max(reader.endTick(), im.now);
     finishDecoders();
     facts_.bytes = reader.bytesRead();
+    facts_.acquisition = reader.acquisition();
     for (auto* s : sinks_)
         s->end(facts_);
 }

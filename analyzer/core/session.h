@@ -40,6 +40,7 @@ struct CaptureFacts {
     std::map<std::string, std::map<std::string, std::string>> options;
     std::uint64_t edges = 0;  // edges read on the mapped lines
     std::uint64_t bytes = 0;
+    AcquisitionCounts acquisition;  // live acquisitions: updated with every block
     // The decoders' advice at the end (Decoder::advice), each as "instance: text".
     std::vector<std::string> advice;
 };

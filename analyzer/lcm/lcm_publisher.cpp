@@ -97,6 +97,7 @@ struct LcmSink::Impl {
     std::string capture_fields;  // the current capture's (captureJsonFields)
     Timebase tb;
     std::thread worker;
+    std::chrono::steady_clock::time_point last_live{};  // the last "live" status
 
     void publishStatus(const StatusItem& s) {
         busdecode_lcm::decode_status_t m{};
@@ -109,6 +110,9 @@ struct LcmSink::Impl {
         m.num_protos = int16_t(m.protos.size());
         m.ns_per_tick = s.facts.timebase.nsPerTick();
         m.capture_ns = s.facts.timebase.toNs(s.now);
+        m.live_samples = std::int64_t(s.facts.acquisition.samples);
+        m.live_dropped = std::int64_t(s.facts.acquisition.dropped);
+        m.live_behind = std::int64_t(s.facts.acquisition.behind);
         std::lock_guard lock(mu);
         m.events = std::int64_t(counts.events);
         m.published = std::int64_t(counts.published);
@@ -221,6 +225,14 @@ void LcmSink::onEvent(const Event& e, const CaptureFacts& facts) {
         seq = impl_->next_seq++;
     }
     impl_->push(EventItem{e, impl_->tb, seq}, impl_->opt.drop_when_full);
+    // A live acquisition says how it keeps up while it runs, not only at its end.
+    if (facts.acquisition.samples) {
+        const auto now = std::chrono::steady_clock::now();
+        if (now - impl_->last_live >= std::chrono::seconds(1)) {
+            impl_->last_live = now;
+            impl_->push(StatusItem{"live", facts, e.end}, false);
+        }
+    }
 }
 
 void LcmSink::end(const CaptureFacts& facts) {
