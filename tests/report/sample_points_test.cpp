@@ -26,7 +26,7 @@ FrameWave uartA(const std::string& parity = "none") {
     LineWave l;
     l.role = l.signal = "tx";
     l.level_before = 1;
-    // start 0, data LSB first 1 0 0 0 0 0 1 0, [parity 0 for even], stop 1
+    // start 0, data LSB first 1 0 0 0 0 0 1 0, [parity 0 for even], stop bit 1
     std::vector<int> wire = {0, 1, 0, 0, 0, 0, 0, 1, 0};
     if (parity != "none") wire.push_back(0);
     wire.push_back(1);
