@@ -74,7 +74,7 @@ dropped=$(sed -n 's/.*dropped \([0-9]*\) samples.*/\1/p' "$dir/out")
 first=$(head -n 1 "$dir/rss")
 last=$(tail -n 1 "$dir/rss")
 echo "$samples $wall $user $sys $kb ${first:-0} ${last:-0} ${dropped:-0} ${behind:-?}" | awk -v rate="$best" '{
-    printf "demo at %s for %.0f s: %d samples, %.2f Msamples/s, dropped %d, at most %s s behind\n",
+    printf "demo at %s for %.0f s: %.0f samples, %.2f Msamples/s, dropped %.0f, at most %s s behind\n",
            rate, $2, $1, $1 / $2 / 1e6, $8, $9
     printf "CPU %.1f %% of one core (user %.1f s, sys %.1f s); peak RSS %.1f MB, RSS first %.1f MB, last %.1f MB\n",
            100 * ($3 + $4) / $2, $3, $4, $5 / 1024, $6 / 1024, $7 / 1024
