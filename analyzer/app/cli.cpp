@@ -33,8 +33,7 @@
 #include "verify/junit_merge.h"
 #include "verify/verify.h"
 #if BUSDECODE_LIVE
-#include "capture/live_reader.h"
-#include "capture/live_sigrok.h"
+#include "live_module.h"
 #endif
 
 namespace busdecode {
@@ -274,12 +273,12 @@ int runLive(const DecodeArgs& a) {
     if (a.lcm_url) lcm = makeLcmSink(*a.lcm_url, false);
     if (!a.report.empty()) checkWritable(a.report);
     const OutputSinks out(a, a.report, false, lcm.get());
-    decodeLive(settings, requests, out.sinks, interruptionFlag());
+    liveModule("--device").decode(settings, requests, out.sinks, interruptionFlag());
     return 0;
 }
 
 int runScan() {
-    for (const auto& line : scanSigrokDevices())
+    for (const auto& line : liveModule("--scan").scan())
         fmt::print("{}\n", line);
     return 0;
 }

@@ -46,4 +46,17 @@ QT_DEBUG_PLUGINS=1 "$decode" "$example" --proto bissc --format jsonl >"$tmp/out.
 cmp -s "$tmp/out.jsonl" "$golden" || fail "the example's output differs from $golden"
 grep -q "$root/usr/lib.*busdecode_bissc.so\" loaded library" "$tmp/err" ||
     fail "the bissc plugin was not loaded from the package's root"
+# Live acquisition is a module of its own, loaded from the package's root for --scan.
+if ls "$build"/lib/busdecode/busdecode_live.so >/dev/null 2>&1; then
+    live=no
+    for f in "$root"/usr/lib*/busdecode/busdecode_live.so "$root"/usr/lib/*/busdecode/busdecode_live.so; do
+        [ -f "$f" ] && live=yes
+    done
+    [ $live = yes ] || fail "no busdecode_live.so in the package"
+    LD_DEBUG=files "$decode" --scan >"$tmp/scan" 2>"$tmp/scan.err" ||
+        { cat "$tmp/scan.err" >&2; fail "decode --scan failed"; }
+    grep -q "^demo" "$tmp/scan" || fail "decode --scan does not list libsigrok's demo device"
+    grep -q "file=$root/usr/lib.*busdecode_live.so" "$tmp/scan.err" ||
+        fail "the live module was not loaded from the package's root"
+fi
 echo "deb_install_test: $(basename "$deb") installs, lists and decodes from $root"
