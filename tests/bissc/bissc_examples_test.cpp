@@ -23,7 +23,7 @@ std::vector<Event> decodeFile(const BisscExample& ex) {
     auto reader = openCapture(capturePath(ex.file), OpenOptions{});
     DecoderRequest r;
     r.proto = "bissc";
-    r.options = ex.options;
+    r.options = ex.options();
     Session s({r}, *reader, ex.file);
     struct Collect : OutputSink {
         std::vector<Event> events;
@@ -40,10 +40,7 @@ TEST(BisscExamples, CommittedFilesAreWhatTheGeneratorMakes) {
     for (const auto& ex : bisscExamples()) {
         SCOPED_TRACE(ex.file);
         const std::string fresh = tempDir() + "/" + ex.file;
-        if (ex.csv)
-            writeCsv(ex.wave, fresh, CsvDialect::SigrokDense);
-        else
-            writeVcd(ex.wave, fresh);
+        writeExample(ex, fresh);
         // The VCD header carries no date, so the bytes must match.
         EXPECT_EQ(readFile(fresh), readFile(capturePath(ex.file)));
     }
@@ -54,11 +51,11 @@ TEST(BisscExamples, CommittedCapturesDecodeToTheTruth) {
         SCOPED_TRACE(ex.file);
         const auto events = decodeFile(ex);
         const auto frames = ofType(events, "frame");
-        ASSERT_EQ(frames.size(), ex.frames.size());
+        ASSERT_EQ(frames.size(), ex.truth.frames.size());
         const double ns_per_tick = ex.wave.timebase.nsPerTick();
         for (std::size_t i = 0; i < frames.size(); ++i) {
             SCOPED_TRACE(i);
-            const auto& t = ex.frames[i];
+            const auto& t = ex.truth.frames[i];
             EXPECT_NEAR(double(frames[i].start), double(t.start), 1.0 / ns_per_tick + 1);
             if (t.truncated) {
                 EXPECT_FALSE(frames[i].errors.empty());
@@ -74,14 +71,14 @@ TEST(BisscExamples, CommittedCapturesDecodeToTheTruth) {
         std::vector<Event> control;
         for (const auto& e : events)
             if (e.type != "frame") control.push_back(e);
-        ASSERT_EQ(control.size(), ex.control.size());
+        ASSERT_EQ(control.size(), ex.truth.control.size());
         for (std::size_t i = 0; i < control.size(); ++i) {
-            EXPECT_EQ(intField(control[i], "address"), ex.control[i].address);
-            EXPECT_EQ(intField(control[i], "data"), ex.control[i].data);
+            EXPECT_EQ(intField(control[i], "address"), ex.truth.control[i].address);
+            EXPECT_EQ(intField(control[i], "data"), ex.truth.control[i].data);
             EXPECT_TRUE(std::get<bool>(*control[i].get("crc_ok")));
         }
         // The file decodes exactly like the in-memory waveform it was written from.
-        const auto memory = decodeBissc(ex.wave, ex.options);
+        const auto memory = decodeBissc(ex.wave, ex.options());
         ASSERT_EQ(memory.size(), events.size());
         for (std::size_t i = 0; i < events.size(); ++i)
             EXPECT_EQ(memory[i].summary, events[i].summary);
@@ -123,7 +120,7 @@ TEST(BisscExamples, GoldenOutputsMatch) {
     registerBissc();
     for (const auto& ex : bisscExamples()) {
         SCOPED_TRACE(ex.file);
-        EXPECT_EQ(decodeFileToJsonl(capturePath(ex.file), "bissc", ex.options),
+        EXPECT_EQ(decodeFileToJsonl(capturePath(ex.file), "bissc", ex.options()),
                   readFile(capturePath(goldenPathFor(ex.file))));
     }
 }
@@ -133,7 +130,7 @@ TEST(BisscExamples, DecodeCliPrintsTheGoldenOutput) {
         SCOPED_TRACE(ex.file);
         std::vector<std::string> args = {capturePath(ex.file), "--proto", "bissc", "--format",
                                          "jsonl"};
-        for (const auto& [k, v] : ex.options) {
+        for (const auto& [k, v] : ex.options()) {
             args.push_back("--opt");
             args.push_back(k + "=" + v);
         }
@@ -150,7 +147,7 @@ TEST(BisscExamples, DecodeCliWithBitsAutoPrintsTheGoldenOutput) {
         SCOPED_TRACE(ex.file);
         std::vector<std::string> args = {
             capturePath(ex.file), "--proto", "bissc", "--format", "jsonl", "--opt", "bits=auto"};
-        for (const auto& [k, v] : ex.options) {
+        for (const auto& [k, v] : ex.options()) {
             if (k == "bits") continue;
             args.push_back("--opt");
             args.push_back(k + "=" + v);

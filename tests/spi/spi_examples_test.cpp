@@ -34,8 +34,8 @@ TEST(SpiExamples, CommittedCapturesDecodeLikeTheTruth) {
     for (const auto& ex : spiExamples()) {
         SCOPED_TRACE(ex.file);
         const std::string path = sourceDir() + "/captures/" + ex.file;
-        ASSERT_TRUE(std::filesystem::exists(path)) << "run make_spi_examples captures";
-        std::vector<DecoderRequest> req = {DecoderRequest{"spi", {}, ex.options}};
+        ASSERT_TRUE(std::filesystem::exists(path)) << "run make_examples captures spi";
+        const std::vector<DecoderRequest>& req = ex.requests;
         auto truth = decodeWaveform(ex.wave, req);
         auto reader = openCapture(path, OpenOptions{});
         Session s(req, *reader, path);
@@ -57,7 +57,7 @@ TEST(SpiExamples, CommittedCapturesDecodeLikeTheTruth) {
 TEST(SpiExamples, Mode0Lsb16Truth) {
     Registry::instance().add(makeSpiFactory());
     const auto ex = spiExamples().at(0);
-    auto ev = decodeWaveform(ex.wave, {DecoderRequest{"spi", {}, ex.options}});
+    auto ev = decodeWaveform(ex.wave, ex.requests);
     std::vector<std::string> got;
     for (const auto& e : ev)
         got.push_back(e.summary + (e.errors.empty() ? "" : " !" + e.errors[0]));

@@ -28,7 +28,7 @@ std::vector<Event> decodeFileFrames(const SsiExample& ex) {
     auto reader = openCapture(capturePath(ex.file), OpenOptions{});
     DecoderRequest r;
     r.proto = "ssi";
-    r.options = ex.options;
+    r.options = ex.options();
     Session s({r}, *reader, ex.file);
     struct Collect : OutputSink {
         std::vector<Event> frames;
@@ -50,8 +50,8 @@ TEST(SsiExamples, CommittedCapturesDecodeToTheTruth) {
         SCOPED_TRACE(ex.file);
         const auto frames = decodeFileFrames(ex);
         // The truncated burst of the ring-shift example ends inside a repeat-free word.
-        expectTruth(frames, ex.gen, {"tm_missing"});
-        const auto memory = decodeFrames(ex.gen.wave, ex.options);
+        expectTruth(frames, SsiGenerated{ex.wave, ex.truth}, {"tm_missing"});
+        const auto memory = decodeFrames(ex.wave, ex.options());
         ASSERT_EQ(memory.size(), frames.size());
         for (std::size_t i = 0; i < frames.size(); ++i)
             EXPECT_EQ(describe(frames[i]), describe(memory[i]));
@@ -92,7 +92,7 @@ TEST(SsiExamples, GoldenOutputsMatch) {
     for (const auto& ex : ssiExamples()) {
         SCOPED_TRACE(ex.file);
         const std::string golden = test::readFile(capturePath(goldenPathFor(ex.file)));
-        EXPECT_EQ(decodeFileToJsonl(capturePath(ex.file), "ssi", ex.options), golden);
+        EXPECT_EQ(decodeFileToJsonl(capturePath(ex.file), "ssi", ex.options()), golden);
         EXPECT_NE(golden.find("\"type\":\"summary\""), std::string::npos);
     }
 }
@@ -102,7 +102,7 @@ TEST(SsiExamples, DecodeCliPrintsTheGoldenOutput) {
         SCOPED_TRACE(ex.file);
         std::vector<std::string> args = {capturePath(ex.file), "--proto", "ssi", "--format",
                                          "jsonl"};
-        for (const auto& [k, v] : ex.options) {
+        for (const auto& [k, v] : ex.options()) {
             args.push_back("--opt");
             args.push_back(k + "=" + v);
         }

@@ -42,7 +42,7 @@ TEST(Tmc8100Examples, CommittedCapturesDecodeLikeTheTruth) {
             decodable &= Registry::instance().find(r.proto) != nullptr;
         if (!decodable) continue;  // an encoder decoder this build does not have
         const std::string path = sourceDir() + "/captures/" + ex.file;
-        ASSERT_TRUE(std::filesystem::exists(path)) << "run make_tmc8100_examples captures";
+        ASSERT_TRUE(std::filesystem::exists(path)) << "run make_examples captures tmc8100";
         auto truth = decodeWaveform(ex.wave, ex.requests);
         auto reader = openCapture(path, OpenOptions{});
         Session s(ex.requests, *reader, path);
