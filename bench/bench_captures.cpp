@@ -18,7 +18,7 @@
 #include "bissc_generator.h"
 #endif
 #ifdef BENCH_HAVE_SSI
-#include "ssi_factory.h"
+#include "ssi_info.h"
 #include "ssi_generator.h"
 #endif
 #ifdef BENCH_HAVE_TMCL
