@@ -21,7 +21,7 @@ function(busdecode_decoder)
   target_include_directories(decoder_${D_ID} PUBLIC ${CMAKE_CURRENT_SOURCE_DIR})
   target_link_libraries(decoder_${D_ID} PUBLIC busdecode_core ${D_LIBS})
   if(D_EXAMPLES)
-    add_library(examples_${D_ID} STATIC ${D_EXAMPLES})
+    add_library(examples_${D_ID} OBJECT ${D_EXAMPLES})  # whole: each lists itself
     target_link_libraries(examples_${D_ID} PUBLIC decoder_${D_ID} busdecode_examples)
   endif()
 

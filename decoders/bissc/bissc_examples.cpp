@@ -119,4 +119,7 @@ std::vector<BisscExample> bisscExamples() {
     return {registerAccess(), longCable(), faults()};
 }
 
+// make_examples finds them here (this library is linked whole: CMake OBJECT library).
+[[maybe_unused]] const bool kListed = listExamples("bissc", bisscExamples);
+
 }  // namespace busdecode

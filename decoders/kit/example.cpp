@@ -4,6 +4,24 @@
 
 namespace busdecode {
 
+namespace {
+
+std::map<std::string, ExampleList>& examplesById() {
+    static std::map<std::string, ExampleList> lists;  // filled before main, by each decoder
+    return lists;
+}
+
+}  // namespace
+
+bool listExamples(const std::string& id, ExampleList list) {
+    examplesById()[id] = std::move(list);
+    return true;
+}
+
+const std::map<std::string, ExampleList>& listedExamples() {
+    return examplesById();
+}
+
 void writeExample(const ExampleCapture& ex, const std::string& path) {
     switch (ex.format) {
         case ExampleFormat::Vcd:

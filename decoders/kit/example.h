@@ -3,6 +3,7 @@
 // written, how to decode it, the generated waveform and the generator's truth that the
 // decoder's examples test checks. make_examples writes them all; tests/golden checks the
 // decoder output against the golden files. Not part of the shipped core.
+#include <functional>
 #include <map>
 #include <string>
 #include <vector>
@@ -35,6 +36,20 @@ template <class Truth = NoTruth>
 struct Example : ExampleCapture {
     Truth truth;
 };
+
+// The examples of every decoder linked in, by id, for make_examples. A decoder lists its
+// own with one line in <id>_examples.cpp: `const bool kListed = listExamples("<id>", f);`.
+using ExampleList = std::function<std::vector<ExampleCapture>()>;
+bool listExamples(const std::string& id, ExampleList list);
+const std::map<std::string, ExampleList>& listedExamples();
+
+template <class Truth>
+bool listExamples(const std::string& id, std::vector<Example<Truth>> (*examples)()) {
+    return listExamples(id, [examples] {
+        const auto all = examples();
+        return std::vector<ExampleCapture>(all.begin(), all.end());
+    });
+}
 
 // Writes `ex` to `path` in its format (atomically, as the capture writers do).
 void writeExample(const ExampleCapture& ex, const std::string& path);

@@ -1,7 +1,8 @@
 # The decoder kit (not shipped): the one Example shape every decoder's example captures
 # take (example.h) and make_examples, which writes them all:
 #   make_examples <repo>/captures [ID...]
-# A decoder lists its examples in <id>_examples.cpp (busdecode_decoder(... EXAMPLES ...)).
+# A decoder lists its examples in <id>_examples.cpp (busdecode_decoder(... EXAMPLES ...)),
+# an OBJECT library linked whole, so that its listExamples() line runs.
 include_guard(GLOBAL)
 add_library(busdecode_examples STATIC ${CMAKE_CURRENT_LIST_DIR}/example.cpp)
 target_include_directories(busdecode_examples PUBLIC ${CMAKE_CURRENT_LIST_DIR})

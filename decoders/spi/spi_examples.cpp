@@ -46,4 +46,7 @@ std::vector<SpiExample> spiExamples() {
     return {mode0Lsb16(), mode3Datagrams()};
 }
 
+// make_examples finds them here (this library is linked whole: CMake OBJECT library).
+[[maybe_unused]] const bool kListed = listExamples("spi", spiExamples);
+
 }  // namespace busdecode

@@ -125,4 +125,7 @@ std::vector<SsiExample> ssiExamples() {
     return {tmc8100(), posital(), ringShift(), saleae()};
 }
 
+// make_examples finds them here (this library is linked whole: CMake OBJECT library).
+[[maybe_unused]] const bool kListed = listExamples("ssi", ssiExamples);
+
 }  // namespace busdecode

@@ -134,4 +134,7 @@ std::vector<Tmc8100Example> tmc8100Examples() {
     return {dialogue(), faults(), biss(), bootloader()};
 }
 
+// make_examples finds them here (this library is linked whole: CMake OBJECT library).
+[[maybe_unused]] const bool kListed = listExamples("tmc8100", tmc8100Examples);
+
 }  // namespace busdecode

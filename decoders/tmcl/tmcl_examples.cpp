@@ -81,4 +81,7 @@ std::vector<TmclExample> tmclExamples() {
     return {rs485(), lines()};
 }
 
+// make_examples finds them here (this library is linked whole: CMake OBJECT library).
+[[maybe_unused]] const bool kListed = listExamples("tmcl", tmclExamples);
+
 }  // namespace busdecode

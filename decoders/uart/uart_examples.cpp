@@ -52,4 +52,7 @@ std::vector<UartExample> uartExamples() {
     return {rxtx(), faults()};
 }
 
+// make_examples finds them here (this library is linked whole: CMake OBJECT library).
+[[maybe_unused]] const bool kListed = listExamples("uart", uartExamples);
+
 }  // namespace busdecode
