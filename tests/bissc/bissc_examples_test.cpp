@@ -5,8 +5,8 @@
 
 #include "bissc_examples.h"
 #include "bissc_test_util.h"
-#include "capture/capture_reader.h"
 #include "sinks/jsonl_file.h"
+#include "support/decode_file.h"
 #include "support/paths.h"
 
 using namespace busdecode;
@@ -14,24 +14,9 @@ using namespace busdecode::test;
 
 namespace {
 
-std::string capturePath(const std::string& file) {
-    return sourceDir() + "/captures/" + file;
-}
-
 std::vector<Event> decodeFile(const BisscExample& ex) {
     registerBissc();
-    auto reader = openCapture(capturePath(ex.file), OpenOptions{});
-    DecoderRequest r;
-    r.proto = "bissc";
-    r.options = ex.options();
-    Session s({r}, *reader, ex.file);
-    struct Collect : OutputSink {
-        std::vector<Event> events;
-        void onEvent(const Event& e, const CaptureFacts&) override { events.push_back(e); }
-    } sink;
-    s.addSink(&sink);
-    s.run();
-    return sink.events;
+    return decodeFileEvents(examplePath(ex.file), ex.requests);
 }
 
 }  // namespace
@@ -42,7 +27,7 @@ TEST(BisscExamples, CommittedFilesAreWhatTheGeneratorMakes) {
         const std::string fresh = tempDir() + "/" + ex.file;
         writeExample(ex, fresh);
         // The VCD header carries no date, so the bytes must match.
-        EXPECT_EQ(readFile(fresh), readFile(capturePath(ex.file)));
+        EXPECT_EQ(readFile(fresh), readFile(examplePath(ex.file)));
     }
 }
 
@@ -120,15 +105,15 @@ TEST(BisscExamples, GoldenOutputsMatch) {
     registerBissc();
     for (const auto& ex : bisscExamples()) {
         SCOPED_TRACE(ex.file);
-        EXPECT_EQ(decodeFileToJsonl(capturePath(ex.file), "bissc", ex.options()),
-                  readFile(capturePath(goldenPathFor(ex.file))));
+        EXPECT_EQ(decodeFileToJsonl(examplePath(ex.file), "bissc", ex.options()),
+                  readFile(examplePath(goldenPathFor(ex.file))));
     }
 }
 
 TEST(BisscExamples, DecodeCliPrintsTheGoldenOutput) {
     for (const auto& ex : bisscExamples()) {
         SCOPED_TRACE(ex.file);
-        std::vector<std::string> args = {capturePath(ex.file), "--proto", "bissc", "--format",
+        std::vector<std::string> args = {examplePath(ex.file), "--proto", "bissc", "--format",
                                          "jsonl"};
         for (const auto& [k, v] : ex.options()) {
             args.push_back("--opt");
@@ -136,7 +121,7 @@ TEST(BisscExamples, DecodeCliPrintsTheGoldenOutput) {
         }
         const auto r = runDecode(args);
         ASSERT_EQ(r.status, 0) << r.err;
-        EXPECT_EQ(r.out, readFile(capturePath(goldenPathFor(ex.file))));
+        EXPECT_EQ(r.out, readFile(examplePath(goldenPathFor(ex.file))));
     }
 }
 
@@ -146,7 +131,7 @@ TEST(BisscExamples, DecodeCliWithBitsAutoPrintsTheGoldenOutput) {
     for (const auto& ex : bisscExamples()) {
         SCOPED_TRACE(ex.file);
         std::vector<std::string> args = {
-            capturePath(ex.file), "--proto", "bissc", "--format", "jsonl", "--opt", "bits=auto"};
+            examplePath(ex.file), "--proto", "bissc", "--format", "jsonl", "--opt", "bits=auto"};
         for (const auto& [k, v] : ex.options()) {
             if (k == "bits") continue;
             args.push_back("--opt");
@@ -154,6 +139,6 @@ TEST(BisscExamples, DecodeCliWithBitsAutoPrintsTheGoldenOutput) {
         }
         const auto r = runDecode(args);
         ASSERT_EQ(r.status, 0) << r.err;
-        EXPECT_EQ(r.out, readFile(capturePath(goldenPathFor(ex.file))));
+        EXPECT_EQ(r.out, readFile(examplePath(goldenPathFor(ex.file))));
     }
 }
