@@ -6,7 +6,7 @@
 #include "bissc_examples.h"
 #include "bissc_test_util.h"
 #include "sinks/jsonl_file.h"
-#include "support/decode_file.h"
+#include "support/decode_events.h"
 #include "support/paths.h"
 
 using namespace busdecode;
@@ -16,7 +16,7 @@ namespace {
 
 std::vector<Event> decodeFile(const BisscExample& ex) {
     registerBissc();
-    return decodeFileEvents(examplePath(ex.file), ex.requests);
+    return decodeEvents(examplePath(ex.file), ex.requests);
 }
 
 }  // namespace

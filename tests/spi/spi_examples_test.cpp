@@ -8,7 +8,7 @@
 #include "core/session.h"
 #include "spi_examples.h"
 #include "spi_info.h"
-#include "support/decode_file.h"
+#include "support/decode_events.h"
 #include "support/paths.h"
 
 using namespace busdecode;
@@ -31,7 +31,7 @@ TEST(SpiExamples, CommittedCapturesDecodeLikeTheTruth) {
         const std::string path = examplePath(ex.file);
         ASSERT_TRUE(std::filesystem::exists(path)) << "run make_examples captures spi";
         auto truth = decodeWaveform(ex.wave, ex.requests);
-        const auto events = decodeFileEvents(path, ex.requests);
+        const auto events = decodeEvents(path, ex.requests);
         ASSERT_EQ(events.size(), truth.size());
         ASSERT_GE(truth.size(), 6u);
         for (std::size_t i = 0; i < truth.size(); ++i) {

@@ -11,7 +11,7 @@
 #include "sinks/jsonl_file.h"
 #include "ssi_examples.h"
 #include "ssi_test_util.h"
-#include "support/decode_file.h"
+#include "support/decode_events.h"
 #include "support/paths.h"
 
 using namespace busdecode;
@@ -21,8 +21,7 @@ namespace {
 
 std::vector<Event> decodeFileFrames(const SsiExample& ex) {
     registerSsi();
-    return test::eventsOfType(test::decodeFileEvents(test::examplePath(ex.file), ex.requests),
-                              "frame");
+    return test::eventsOfType(test::decodeEvents(test::examplePath(ex.file), ex.requests), "frame");
 }
 
 }  // namespace

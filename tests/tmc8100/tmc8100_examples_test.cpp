@@ -7,7 +7,7 @@
 #include "core/registry.h"
 #include "core/session.h"
 #include "event_expect.h"
-#include "support/decode_file.h"
+#include "support/decode_events.h"
 #include "support/paths.h"
 #include "tmc8100_examples.h"
 
@@ -39,7 +39,7 @@ TEST(Tmc8100Examples, CommittedCapturesDecodeLikeTheTruth) {
         const std::string path = examplePath(ex.file);
         ASSERT_TRUE(std::filesystem::exists(path)) << "run make_examples captures tmc8100";
         auto truth = decodeWaveform(ex.wave, ex.requests);
-        const auto events = decodeFileEvents(path, ex.requests);
+        const auto events = decodeEvents(path, ex.requests);
         ASSERT_EQ(events.size(), truth.size());
         ASSERT_GT(truth.size(), 20u);
         for (std::size_t i = 0; i < truth.size(); ++i)

@@ -6,7 +6,7 @@
 
 #include "core/registry.h"
 #include "core/session.h"
-#include "support/decode_file.h"
+#include "support/decode_events.h"
 #include "support/paths.h"
 #include "tmcl_decoder.h"
 #include "tmcl_examples.h"
@@ -35,7 +35,7 @@ TEST(TmclExamples, CommittedCapturesDecodeLikeTheGenerator) {
     registerDecoders();
     for (const auto& ex : tmclExamples()) {
         const auto memory = decodeWaveform(ex.wave, ex.requests);
-        const auto file = test::decodeFileEvents(test::examplePath(ex.file), ex.requests);
+        const auto file = test::decodeEvents(test::examplePath(ex.file), ex.requests);
         EXPECT_EQ(text(file), text(memory)) << ex.file;
         ASSERT_EQ(file.size(), memory.size());
         for (std::size_t i = 0; i < file.size(); ++i)

@@ -6,7 +6,7 @@
 
 #include "core/registry.h"
 #include "core/session.h"
-#include "support/decode_file.h"
+#include "support/decode_events.h"
 #include "support/paths.h"
 #include "uart_decoder.h"
 #include "uart_examples.h"
@@ -31,7 +31,7 @@ TEST(UartExamples, CommittedCapturesDecodeLikeTheGenerator) {
     ASSERT_EQ(examples.size(), 2u);
     for (const auto& ex : examples) {
         const auto memory = decodeWaveform(ex.wave, ex.requests);
-        const auto file = test::decodeFileEvents(test::examplePath(ex.file), ex.requests);
+        const auto file = test::decodeEvents(test::examplePath(ex.file), ex.requests);
         EXPECT_EQ(text(file), text(memory)) << ex.file;
     }
 }
