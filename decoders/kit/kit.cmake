@@ -8,7 +8,7 @@ add_library(busdecode_examples STATIC ${CMAKE_CURRENT_LIST_DIR}/example.cpp)
 target_include_directories(busdecode_examples PUBLIC ${CMAKE_CURRENT_LIST_DIR})
 target_link_libraries(busdecode_examples PUBLIC busdecode_core busdecode_writers)
 
-add_executable(make_examples EXCLUDE_FROM_ALL ${CMAKE_CURRENT_LIST_DIR}/make_examples.cpp)
+add_executable(make_examples ${CMAKE_CURRENT_LIST_DIR}/make_examples.cpp)
 file(GLOB _example_lists ${CMAKE_SOURCE_DIR}/decoders/*/*_examples.h)
 foreach(_list ${_example_lists})
   get_filename_component(_id ${_list} NAME_WE)
