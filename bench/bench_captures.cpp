@@ -18,8 +18,8 @@
 #include "bissc_generator.h"
 #endif
 #ifdef BENCH_HAVE_SSI
-#include "ssi_factory.h"
 #include "ssi_generator.h"
+#include "ssi_info.h"
 #endif
 #ifdef BENCH_HAVE_TMCL
 #include "tmcl_decoder.h"

@@ -1,8 +1,10 @@
 # Helpers shared by every decoder and test folder, so each folder's CMakeLists.txt is a
 # few declarative lines.
 
+include(${CMAKE_SOURCE_DIR}/decoders/kit/kit.cmake)
+
 # busdecode_decoder(ID <id> FACTORY <function> SOURCES <files...> [LIBS <targets...>]
-#                   [PROVIDES <decoder ids...>])
+#                   [PROVIDES <decoder ids...>] [EXAMPLES <files...>])
 #   Builds decoder_<id> (static, PIC: linked by tests and other decoders) and the Qt
 #   plugin busdecode_<id> in build/bin/plugins. FACTORY names a function
 #   `std::shared_ptr<const busdecode::DecoderFactory> FACTORY()` (namespace busdecode)
@@ -10,12 +12,18 @@
 #   the ids of the decoders its factories make (default: <id>), for the plugin's
 #   metadata: a run loads only the plugins that provide what it asks for (a wrong list
 #   costs time, not results: the CLI loads every plugin before it gives up on an id).
+#   EXAMPLES (<id>_examples.cpp) builds examples_<id>: the decoder's example captures
+#   in the kit's shape (decoders/kit), for make_examples and the decoder's tests.
 function(busdecode_decoder)
-  cmake_parse_arguments(D "" "ID" "FACTORY;SOURCES;LIBS;PROVIDES" ${ARGN})
+  cmake_parse_arguments(D "" "ID" "FACTORY;SOURCES;LIBS;PROVIDES;EXAMPLES" ${ARGN})
   add_library(decoder_${D_ID} STATIC ${D_SOURCES})
   busdecode_speed(decoder_${D_ID})  # -O3 and the profile (cmake/BusdecodePgo.cmake)
   target_include_directories(decoder_${D_ID} PUBLIC ${CMAKE_CURRENT_SOURCE_DIR})
   target_link_libraries(decoder_${D_ID} PUBLIC busdecode_core ${D_LIBS})
+  if(D_EXAMPLES)
+    add_library(examples_${D_ID} OBJECT ${D_EXAMPLES})  # whole: each lists itself
+    target_link_libraries(examples_${D_ID} PUBLIC decoder_${D_ID} busdecode_examples)
+  endif()
 
   set(PLUGIN_CLASS "BusdecodePlugin_${D_ID}")
   set(PLUGIN_ID "${D_ID}")

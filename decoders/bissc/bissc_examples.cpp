@@ -1,6 +1,7 @@
 #include "bissc_examples.h"
 
 #include <random>
+#include <utility>
 
 #include "capture/capture_reader.h"
 #include "core/session.h"
@@ -39,13 +40,13 @@ BisscExample registerAccess() {
         f.proc_cycles = 2;
         gen.addFrame(f);
     }
-    return {"bissc_1mhz_26bit.vcd",
-            false,
-            "26-bit frames at 1 MHz, 300 ns line delay, register read 0x7E and sequential write",
-            {{"bits", "26"}},
-            gen.frames(),
-            seq.events,
-            gen.build()};
+    BisscExampleTruth truth{gen.frames(), seq.events};
+    return {{"bissc_1mhz_26bit.vcd",
+             ExampleFormat::Vcd,
+             "26-bit frames at 1 MHz, 300 ns line delay, register read 0x7E and sequential write",
+             {{"bissc", {}, {{"bits", "26"}}}},
+             gen.build()},
+            std::move(truth)};
 }
 
 // 32-bit frames at 10 MHz behind a 1.2 us cable (12 bit times), 5 busy clocks, 4 clocks
@@ -68,13 +69,13 @@ BisscExample longCable() {
         f.extra_clocks = 4;
         gen.addFrame(f);
     }
-    return {"bissc_10mhz_long_cable.csv",
-            true,
-            "32-bit frames at 10 MHz with a 1.2 us line delay, sigrok CSV at 100 MHz",
-            {{"bits", "32"}},
-            gen.frames(),
-            {},
-            gen.build()};
+    BisscExampleTruth truth{gen.frames(), {}};
+    return {{"bissc_10mhz_long_cable.csv",
+             ExampleFormat::SigrokCsv,
+             "32-bit frames at 10 MHz with a 1.2 us line delay, sigrok CSV at 100 MHz",
+             {{"bissc", {}, {{"bits", "32"}}}},
+             gen.build()},
+            std::move(truth)};
 }
 
 // Faults and special cases at 2 MHz, 24-bit: bad CRC, nE/nW active, a frame cut after
@@ -103,13 +104,13 @@ BisscExample faults() {
     hold.cdm = 1;
     gen.addFrame(hold);
     gen.addFrame(ok);  // starts from MA held low
-    return {"bissc_errors.vcd",
-            false,
-            "2 MHz 24-bit: bad CRC, nE/nW active, truncated frame, Hold-CDM",
-            {{"bits", "24"}},
-            gen.frames(),
-            {},
-            gen.build()};
+    BisscExampleTruth truth{gen.frames(), {}};
+    return {{"bissc_errors.vcd",
+             ExampleFormat::Vcd,
+             "2 MHz 24-bit: bad CRC, nE/nW active, truncated frame, Hold-CDM",
+             {{"bissc", {}, {{"bits", "24"}}}},
+             gen.build()},
+            std::move(truth)};
 }
 
 }  // namespace
@@ -117,5 +118,8 @@ BisscExample faults() {
 std::vector<BisscExample> bisscExamples() {
     return {registerAccess(), longCable(), faults()};
 }
+
+// make_examples finds them here (this library is linked whole: CMake OBJECT library).
+[[maybe_unused]] const bool kListed = listExamples("bissc", bisscExamples);
 
 }  // namespace busdecode

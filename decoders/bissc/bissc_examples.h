@@ -1,26 +1,20 @@
 #pragma once
-// The example captures shipped in captures/bissc_*: how each is generated and the
-// decoder options that decode it. make_bissc_examples writes them (and their golden
-// jsonl); the examples test re-generates them and checks the committed files, the
-// decoder's output and the golden files against the generator's truth.
-#include <map>
-#include <string>
+// The example captures shipped in captures/bissc_*, in the kit's shape (decoders/kit),
+// with the generator's frames and control events as their truth: make_examples writes
+// them; the examples test re-generates them and checks the committed files, the
+// decoder's output and the golden files against the truth.
 #include <vector>
 
 #include "bissc_generator.h"
-#include "capture/capture_writer.h"
+#include "example.h"
 
 namespace busdecode {
 
-struct BisscExample {
-    std::string file;  // name in captures/, e.g. "bissc_1mhz_26bit.vcd"
-    bool csv = false;  // sigrok dense CSV, else VCD
-    std::string description;
-    std::map<std::string, std::string> options;  // --opt KEY=VALUE for `decode --proto bissc`
+struct BisscExampleTruth {
     std::vector<BisscFrameTruth> frames;
     std::vector<ControlEventTruth> control;  // register / command events carried
-    Waveform wave;
 };
+using BisscExample = Example<BisscExampleTruth>;
 
 std::vector<BisscExample> bisscExamples();
 

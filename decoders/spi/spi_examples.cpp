@@ -19,11 +19,11 @@ SpiExample mode0Lsb16() {
     t = gen.transfer(t, {{0x5555, 0xAAAA}}, 16, 11) + 3000;
     t = gen.transfer(t, {{0xC3C3, 0x3C3C}}, 16) + 3000;
     return {
-        "spi_mode0_lsb16.vcd",
-        "vcd",
-        "SPI mode 0, LSB first, 16-bit words (two per cs), one transfer cut short after 11 bits",
-        {{"cpol", "0"}, {"cpha", "0"}, {"bits", "16"}, {"lsb_first", "1"}},
-        wb.build(wb.ticksFromNs(t))};
+        {"spi_mode0_lsb16.vcd",
+         ExampleFormat::Vcd,
+         "SPI mode 0, LSB first, 16-bit words (two per cs), one transfer cut short after 11 bits",
+         {{"spi", {}, {{"cpol", "0"}, {"cpha", "0"}, {"bits", "16"}, {"lsb_first", "1"}}}},
+         wb.build(wb.ticksFromNs(t))}};
 }
 
 SpiExample mode3Datagrams() {
@@ -33,11 +33,11 @@ SpiExample mode3Datagrams() {
     std::vector<std::vector<SpiGenerator::Word>> transfers = {{{0xFE000000, 0}}, {{0, 0x53534920}},
                                                               {{0x80000000, 0}}, {{0, 0x10001B2E}},
                                                               {{0, 0x20001234}}, {{0, 0x70000000}}};
-    return {"spi_mode3_32bit_saleae.csv",
-            "saleae-csv",
-            "SPI mode 3, 32-bit datagrams (the contract defaults), Saleae Logic 2 CSV export",
-            {},
-            makeSpiCapture(transfers, 32, SpiMode{}, tm, 4000)};
+    return {{"spi_mode3_32bit_saleae.csv",
+             ExampleFormat::SaleaeCsv,
+             "SPI mode 3, 32-bit datagrams (the contract defaults), Saleae Logic 2 CSV export",
+             {{"spi", {}, {}}},
+             makeSpiCapture(transfers, 32, SpiMode{}, tm, 4000)}};
 }
 
 }  // namespace
@@ -45,5 +45,8 @@ SpiExample mode3Datagrams() {
 std::vector<SpiExample> spiExamples() {
     return {mode0Lsb16(), mode3Datagrams()};
 }
+
+// make_examples finds them here (this library is linked whole: CMake OBJECT library).
+[[maybe_unused]] const bool kListed = listExamples("spi", spiExamples);
 
 }  // namespace busdecode

@@ -1,5 +1,7 @@
 #include "ssi_examples.h"
 
+#include <utility>
+
 #include "capture/capture_reader.h"
 #include "core/gray.h"
 #include "core/session.h"
@@ -24,14 +26,18 @@ SsiExample tmc8100() {
         {(1u << 22) | binaryToGray(0x7FFF), 0, 1, 60000, {}},
         {(1u << 23) | binaryToGray(0x8000), 0, 1, 60000, {}},
     };
-    return {"ssi_tmc8100_gray25.vcd",
-            "vcd",
-            "TMC8100 note layout: 25-bit word, 16-bit Gray position, status bits 23/22, a re-read",
-            {{"bits", "25"},
-             {"st_bits", "16"},
-             {"gray", "1"},
-             {"status_bits", "out_of_range@23,low_quality@22"}},
-            generateSsi(cfg, frames)};
+    auto gen = generateSsi(cfg, frames);
+    return {{"ssi_tmc8100_gray25.vcd",
+             ExampleFormat::Vcd,
+             "TMC8100 note layout: 25-bit word, 16-bit Gray position, status bits 23/22, a re-read",
+             {{"ssi",
+               {},
+               {{"bits", "25"},
+                {"st_bits", "16"},
+                {"gray", "1"},
+                {"status_bits", "out_of_range@23,low_quality@22"}}}},
+             std::move(gen.wave)},
+            std::move(gen.frames)};
 }
 
 SsiExample posital() {
@@ -49,11 +55,16 @@ SsiExample posital() {
         {0x0014F0, 0, 1, 80000, {}},
         {0x002001, 0, 1, 80000, {}},
     };
-    return {"ssi_posital_lead.csv",
-            "sigrok-csv",
-            "POSITAL note example 0x010014ED at 250 kHz (sigrok CSV, 10 MHz samples)",
-            {{"bits", "25"}, {"lead", "1"}, {"mt_bits", "12"}, {"st_bits", "12"}, {"tm_us", "25"}},
-            generateSsi(cfg, frames)};
+    auto gen = generateSsi(cfg, frames);
+    return {
+        {"ssi_posital_lead.csv",
+         ExampleFormat::SigrokCsv,
+         "POSITAL note example 0x010014ED at 250 kHz (sigrok CSV, 10 MHz samples)",
+         {{"ssi",
+           {},
+           {{"bits", "25"}, {"lead", "1"}, {"mt_bits", "12"}, {"st_bits", "12"}, {"tm_us", "25"}}}},
+         std::move(gen.wave)},
+        std::move(gen.frames)};
 }
 
 SsiExample ringShift() {
@@ -72,12 +83,17 @@ SsiExample ringShift() {
         {binaryToGray(0x0ABC1250), 0, 2, 80000, {}},
         {binaryToGray(0x0ABC1260), 12, 1, 80000, {}},
     };
-    return {"ssi_ringshift_delay.vcd",
-            "vcd",
-            "25-bit Gray MT/ST, ring shift x3 with one corrupted repeat, 400 ns delay, jitter, "
-            "a truncated burst",
-            {{"bits", "25"}, {"st_bits", "13"}, {"mt_bits", "12"}, {"gray", "1"}, {"tm_us", "16"}},
-            generateSsi(cfg, frames)};
+    auto gen = generateSsi(cfg, frames);
+    return {
+        {"ssi_ringshift_delay.vcd",
+         ExampleFormat::Vcd,
+         "25-bit Gray MT/ST, ring shift x3 with one corrupted repeat, 400 ns delay, jitter, "
+         "a truncated burst",
+         {{"ssi",
+           {},
+           {{"bits", "25"}, {"st_bits", "13"}, {"mt_bits", "12"}, {"gray", "1"}, {"tm_us", "16"}}}},
+         std::move(gen.wave)},
+        std::move(gen.frames)};
 }
 
 SsiExample saleae() {
@@ -94,11 +110,13 @@ SsiExample saleae() {
         {binaryToGray(0x1FFF), 0, 1, 40000, {}},
         {binaryToGray(0x0000), 0, 2, 40000, {}},
     };
-    return {"ssi_singleturn_2mhz.csv",
-            "saleae-csv",
-            "13-bit Gray single-turn at 2 MHz (Saleae Logic 2 CSV)",
-            {{"bits", "13"}, {"st_bits", "13"}, {"gray", "1"}},
-            generateSsi(cfg, frames)};
+    auto gen = generateSsi(cfg, frames);
+    return {{"ssi_singleturn_2mhz.csv",
+             ExampleFormat::SaleaeCsv,
+             "13-bit Gray single-turn at 2 MHz (Saleae Logic 2 CSV)",
+             {{"ssi", {}, {{"bits", "13"}, {"st_bits", "13"}, {"gray", "1"}}}},
+             std::move(gen.wave)},
+            std::move(gen.frames)};
 }
 
 }  // namespace
@@ -106,5 +124,8 @@ SsiExample saleae() {
 std::vector<SsiExample> ssiExamples() {
     return {tmc8100(), posital(), ringShift(), saleae()};
 }
+
+// make_examples finds them here (this library is linked whole: CMake OBJECT library).
+[[maybe_unused]] const bool kListed = listExamples("ssi", ssiExamples);
 
 }  // namespace busdecode

@@ -1,22 +1,15 @@
 #pragma once
-// The example captures shipped in captures/ssi_*: how each is generated and the decoder
-// options that decode it. make_ssi_examples writes them; the golden test re-generates
-// them and checks both the files and the decoder's output against the truth.
-#include <map>
-#include <string>
+// The example captures shipped in captures/ssi_*, in the kit's shape (decoders/kit), with
+// the generator's frames as their truth: make_examples writes them; the examples test
+// re-generates them and checks the files and the decoder's output against the truth.
 #include <vector>
 
+#include "example.h"
 #include "ssi_generator.h"
 
 namespace busdecode {
 
-struct SsiExample {
-    std::string file;    // name in captures/, e.g. "ssi_tmc8100_gray25.vcd"
-    std::string format;  // "vcd", "sigrok-csv", "saleae-csv"
-    std::string description;
-    std::map<std::string, std::string> options;  // --opt KEY=VALUE for `decode --proto ssi`
-    SsiGenerated gen;
-};
+using SsiExample = Example<std::vector<SsiTruth>>;
 
 std::vector<SsiExample> ssiExamples();
 

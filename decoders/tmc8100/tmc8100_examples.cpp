@@ -21,11 +21,12 @@ Tmc8100Example dialogue() {
         sc.pause(25000);
     }
     return {
-        "tmc8100_ssi_dialogue.vcd",
-        "TMC8100 SSI demo dialogue: 0xFE -> \"SSI \", 0xFF -> 1.0, six 0x80 reads, GPIO6 and the "
-        "encoder cable (clock, data)",
-        {{"tmc8100", {}, {}}, {"ssi", {}, {{"gray", "1"}}}},
-        sc.build()};
+        {"tmc8100_ssi_dialogue.vcd",
+         ExampleFormat::Vcd,
+         "TMC8100 SSI demo dialogue: 0xFE -> \"SSI \", 0xFF -> 1.0, six 0x80 reads, GPIO6 and the "
+         "encoder cable (clock, data)",
+         {{"tmc8100", {}, {}}, {"ssi", {}, {{"gray", "1"}}}},
+         sc.build()}};
 }
 
 Tmc8100Example faults() {
@@ -65,11 +66,12 @@ Tmc8100Example faults() {
     sc.pause(2000);
     sc.setAvail(false);
     return {
-        "tmc8100_faults.vcd",
-        "TMC8100 faults: firmware binary fault, encoder-cable mismatch, read before GPIO6, GPIO6 "
-        "for nothing, command before the replies were read",
-        {{"tmc8100", {}, {}}, {"ssi", {}, {}}},
-        sc.build()};
+        {"tmc8100_faults.vcd",
+         ExampleFormat::Vcd,
+         "TMC8100 faults: firmware binary fault, encoder-cable mismatch, read before GPIO6, GPIO6 "
+         "for nothing, command before the replies were read",
+         {{"tmc8100", {}, {}}, {"ssi", {}, {}}},
+         sc.build()}};
 }
 
 Tmc8100Example biss() {
@@ -92,11 +94,12 @@ Tmc8100Example biss() {
         sc.readEncoderBiss(r);
         sc.pause(25000);
     }
-    return {"tmc8100_biss_dialogue.vcd",
-            "TMC8100 BiSS demo: 0xFE -> \"BISS\", 13-bit BiSS-C reads with nE, a corrupted CRC "
-            "and an answer that differs from the cable (MA/SLO on clock, data)",
-            {{"tmc8100", {}, {}}, {"bissc", {}, {{"bits", "13"}}}},
-            sc.build()};
+    return {{"tmc8100_biss_dialogue.vcd",
+             ExampleFormat::Vcd,
+             "TMC8100 BiSS demo: 0xFE -> \"BISS\", 13-bit BiSS-C reads with nE, a corrupted CRC "
+             "and an answer that differs from the cable (MA/SLO on clock, data)",
+             {{"tmc8100", {}, {}}, {"bissc", {}, {{"bits", "13"}}}},
+             sc.build()}};
 }
 
 Tmc8100Example bootloader() {
@@ -117,27 +120,21 @@ Tmc8100Example bootloader() {
     sc.transfer(0x10000000u, program[3]);
     sc.pause(20000);
     sc.getVersion(1, 0);
-    return {"tmc8100_bootloader.vcd",
-            "TMC8100 bootloader download: chip queries, program write/verify, start, then the "
-            "application",
-            {{"tmc8100", {}, {{"mode", "bootloader"}}}},
-            sc.build()};
+    return {{"tmc8100_bootloader.vcd",
+             ExampleFormat::Vcd,
+             "TMC8100 bootloader download: chip queries, program write/verify, start, then the "
+             "application",
+             {{"tmc8100", {}, {{"mode", "bootloader"}}}},
+             sc.build()}};
 }
 
 }  // namespace
 
-std::string decodeCommand(const std::string& file, const std::vector<DecoderRequest>& requests) {
-    std::string cmd = "decode " + file;
-    for (const auto& r : requests)
-        cmd += " --proto " + r.proto;
-    for (const auto& r : requests)
-        for (const auto& [k, v] : r.options)
-            cmd += " --opt " + (requests.size() > 1 ? r.proto + "." : std::string()) + k + "=" + v;
-    return cmd;
-}
-
 std::vector<Tmc8100Example> tmc8100Examples() {
     return {dialogue(), faults(), biss(), bootloader()};
 }
+
+// make_examples finds them here (this library is linked whole: CMake OBJECT library).
+[[maybe_unused]] const bool kListed = listExamples("tmc8100", tmc8100Examples);
 
 }  // namespace busdecode

@@ -5,7 +5,6 @@
 namespace busdecode {
 
 DecoderInfo tmc8100Info() {
-    using K = OptionSpec::Kind;
     DecoderInfo info;
     info.id = "tmc8100";
     info.name = "TMC8100 SPI";
@@ -21,23 +20,13 @@ DecoderInfo tmc8100Info() {
          "SPI_DATA_AVAILABLE (GPIO6): high while replies wait in the output buffer"});
     info.options = spiOptionSpecs();  // passed through to the SPI layer, same defaults
     info.options.push_back(
-        {"mode",
-         K::Choice,
-         "auto",
-         {"auto", "app", "bootloader"},
-         -1e300,
-         1e300,
-         "program on the chip: application firmware, bootloader, or detect "
-         "(chip id/revision queries or consecutive program writes mean bootloader)"});
+        choiceOption("mode", {"auto", "app", "bootloader"},
+                     "program on the chip: application firmware, bootloader, or detect "
+                     "(chip id/revision queries or consecutive program writes mean bootloader)"));
     info.options.push_back(
-        {"encoder",
-         K::Choice,
-         "auto",
-         {"auto", "ssi", "biss"},
-         -1e300,
-         1e300,
-         "encoder protocol of the firmware (auto: from the get_protocol reply, or "
-         "a 0x71 word after the flags)"});
+        choiceOption("encoder", {"auto", "ssi", "biss"},
+                     "encoder protocol of the firmware (auto: from the get_protocol reply, or "
+                     "a 0x71 word after the flags)"));
     info.events = {
         {"command", "a host datagram on MOSI", {"code", "name", "word", "address", "data"}},
         {"reply",

@@ -294,48 +294,6 @@ void TmclDecoder::updateBusy() {
         setBusyFrom(busy);
 }
 
-std::shared_ptr<const DecoderFactory> makeTmclFactory() {
-    DecoderInfo info;
-    info.id = "tmcl";
-    info.name = "TMCL";
-    info.description =
-        "Trinamic TMCL datagrams over UART/RS-485 (stacked on uart): commands in TMCL-IDE "
-        "mnemonics with TMCM-1690 parameter names, replies with status text, pairing and "
-        "round-trip time, checksum faults";
-    info.roles = {
-        {"host", false, {"tx", "txd"}, "host to module line"},
-        {"module", false, {"rx", "rxd"}, "module to host line"},
-        {"bus", false, {"rs485", "line"}, "one half-duplex RS-485 line carrying both directions"},
-    };
-    info.need_one_of = {"host", "module", "bus"};
-    info.options = {
-        numberOption("baud", "9600", 1, 1e9,
-                     "bit rate passed to the UART layer, or auto (shortest pulse)", true),
-        intOption("host_address", "auto", 0, 255,
-                  "host (reply) address; helps tell replies from commands on a bus line", true),
-        intOption("module_address", "auto", 0, 255,
-                  "module address; helps tell commands from replies on a bus line", true),
-        numberOption("gap_bytes", "3", 0.5, 1e6,
-                     "a pause longer than this many character times inside a datagram "
-                     "resynchronises"),
-        boolOption("invert", "0", "1: the lines idle low"),
-    };
-    info.events = {
-        {"command",
-         "host to module datagram",
-         {"address", "command", "mnemonic", "type_no", "motor", "value", "checksum_ok", "checksum",
-          "parameter", "text"}},
-        {"reply",
-         "module to host datagram (paired with its command)",
-         {"reply_address", "module_address", "status", "status_text", "command", "value",
-          "checksum_ok", "checksum", "mnemonic", "version", "request", "request_start_ns", "rtt_ns",
-          "latency_ns"}},
-    };
-    // The UART layer is linked in.
-    return std::make_shared<StackedFactory<TmclDecoder>>(
-        std::move(info), std::vector<std::shared_ptr<const DecoderFactory>>{makeUartFactory()});
-}
-
 std::vector<std::string> TmclDecoder::advice() const {
     std::vector<std::string> out;
     for (const auto* stack : {lines_.get(), bus_.get()})

@@ -31,11 +31,12 @@ TmclExample rs485() {
     ask(bad, makeReply(kHost, kModule, 1, 5, 51200));
     ask(makeCommand(kModule, 10, 42, 2, 0), makeReply(kHost, kModule, kOk, 10, -7));  // GGP 42, 2
     ask(makeCommand(kModule, 3, 0, 0, 0), makeReply(kHost, kModule, kOk, 3, 0));      // MST
-    return {"tmcl_rs485_9600.vcd",
-            "TMCL on one half-duplex RS-485 line at 9600: GetVersion, GAP/SAP/MVP/ROL/GGP/MST, a "
-            "command with a bad checksum answered with status 1",
-            {{"tmcl", {}, {}}},
-            wb.build(wb.ticksFromNs(t))};
+    return {{"tmcl_rs485_9600.vcd",
+             ExampleFormat::Vcd,
+             "TMCL on one half-duplex RS-485 line at 9600: GetVersion, GAP/SAP/MVP/ROL/GGP/MST, a "
+             "command with a bad checksum answered with status 1",
+             {{"tmcl", {}, {}}},
+             wb.build(wb.ticksFromNs(t))}};
 }
 
 TmclExample lines() {
@@ -66,11 +67,12 @@ TmclExample lines() {
         t = host.sendChar(t, cut[i]);
     t += pause;
     ask(makeCommand(kModule, 6, 106, 0, 0), makeReply(kHost, kModule, kOk, 6, -1));
-    return {"tmcl_lines_115200.vcd",
-            "TMCL on host and module lines at 115200: TMC8100-Eval UF_CH2 accesses, binary "
-            "GetVersion, an unanswered command, a datagram cut short",
-            {{"tmcl", {}, {{"baud", "115200"}}}},
-            wb.build(wb.ticksFromNs(t))};
+    return {{"tmcl_lines_115200.vcd",
+             ExampleFormat::Vcd,
+             "TMCL on host and module lines at 115200: TMC8100-Eval UF_CH2 accesses, binary "
+             "GetVersion, an unanswered command, a datagram cut short",
+             {{"tmcl", {}, {{"baud", "115200"}}}},
+             wb.build(wb.ticksFromNs(t))}};
 }
 
 }  // namespace
@@ -78,5 +80,8 @@ TmclExample lines() {
 std::vector<TmclExample> tmclExamples() {
     return {rs485(), lines()};
 }
+
+// make_examples finds them here (this library is linked whole: CMake OBJECT library).
+[[maybe_unused]] const bool kListed = listExamples("tmcl", tmclExamples);
 
 }  // namespace busdecode

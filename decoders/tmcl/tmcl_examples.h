@@ -1,21 +1,14 @@
 #pragma once
-// The TMCL example captures shipped in captures/tmcl_*: how each is generated and how
-// to decode it. make_tmcl_examples writes them; tests/tmcl re-generates them and checks
-// that the committed files decode exactly like the in-memory truth.
-#include <string>
+// The example captures shipped in captures/tmcl_*, in the kit's shape (decoders/kit):
+// make_examples writes them; tests/tmcl re-generates them and checks that the committed
+// files decode exactly like the in-memory waveform.
 #include <vector>
 
-#include "core/session.h"
-#include "core/waveform.h"
+#include "example.h"
 
 namespace busdecode {
 
-struct TmclExample {
-    std::string file;  // name in captures/
-    std::string description;
-    std::vector<DecoderRequest> requests;  // what `decode FILE --proto ... --opt ...` asks for
-    Waveform wave;
-};
+using TmclExample = Example<>;
 
 std::vector<TmclExample> tmclExamples();
 

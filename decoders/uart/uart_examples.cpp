@@ -18,10 +18,11 @@ UartExample rxtx() {
     UartGenerator rx(wb, 0, f), tx(wb, 1, f);
     const double t = tx.sendChars(200'000, chars("AT+VERSION?\r\n"), 50'000);
     const double end = rx.sendChars(t - 3 * 10 * tx.bitNs(), chars("+VERSION:1.0\r\nOK\r\n"));
-    return {"uart_rxtx_9600_8n1.vcd",
-            "Two lines at 9600 8N1: a command on tx, its answer on rx overlapping it",
-            {{"uart", {}, {}}},
-            wb.build(wb.ticksFromNs(end + 1e6))};
+    return {{"uart_rxtx_9600_8n1.vcd",
+             ExampleFormat::Vcd,
+             "Two lines at 9600 8N1: a command on tx, its answer on rx overlapping it",
+             {{"uart", {}, {}}},
+             wb.build(wb.ticksFromNs(end + 1e6))}};
 }
 
 UartExample faults() {
@@ -38,10 +39,11 @@ UartExample faults() {
     t = tx.sendChar(t + 100'000, 'F', {.bad_stop = true});
     t = tx.sendBreak(t + 100'000, 2e6);
     t = tx.sendChars(t + 200'000, chars("ok"));
-    return {"uart_7e1_faults.csv",
-            "One line at 19200 7E1 (sigrok CSV): parity error, framing error, a 2 ms break",
-            {{"uart", {}, {{"baud", "19200"}, {"bits", "7"}, {"parity", "even"}}}},
-            wb.build(wb.ticksFromNs(t + 500'000))};
+    return {{"uart_7e1_faults.csv",
+             ExampleFormat::SigrokCsv,
+             "One line at 19200 7E1 (sigrok CSV): parity error, framing error, a 2 ms break",
+             {{"uart", {}, {{"baud", "19200"}, {"bits", "7"}, {"parity", "even"}}}},
+             wb.build(wb.ticksFromNs(t + 500'000))}};
 }
 
 }  // namespace
@@ -49,5 +51,8 @@ UartExample faults() {
 std::vector<UartExample> uartExamples() {
     return {rxtx(), faults()};
 }
+
+// make_examples finds them here (this library is linked whole: CMake OBJECT library).
+[[maybe_unused]] const bool kListed = listExamples("uart", uartExamples);
 
 }  // namespace busdecode

@@ -1,21 +1,14 @@
 #pragma once
-// The UART example captures shipped in captures/uart_*: how each is generated and how
-// to decode it. make_uart_examples writes them; tests/uart re-generates them and checks
-// that the committed files decode exactly like the in-memory truth.
-#include <string>
+// The example captures shipped in captures/uart_*, in the kit's shape (decoders/kit):
+// make_examples writes them; tests/uart re-generates them and checks that the committed
+// files decode exactly like the in-memory waveform.
 #include <vector>
 
-#include "core/session.h"
-#include "core/waveform.h"
+#include "example.h"
 
 namespace busdecode {
 
-struct UartExample {
-    std::string file;  // name in captures/
-    std::string description;
-    std::vector<DecoderRequest> requests;  // what `decode FILE --proto ... --opt ...` asks for
-    Waveform wave;
-};
+using UartExample = Example<>;
 
 std::vector<UartExample> uartExamples();
 

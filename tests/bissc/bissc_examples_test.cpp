@@ -5,8 +5,8 @@
 
 #include "bissc_examples.h"
 #include "bissc_test_util.h"
-#include "capture/capture_reader.h"
 #include "sinks/jsonl_file.h"
+#include "support/decode_events.h"
 #include "support/paths.h"
 
 using namespace busdecode;
@@ -14,24 +14,9 @@ using namespace busdecode::test;
 
 namespace {
 
-std::string capturePath(const std::string& file) {
-    return sourceDir() + "/captures/" + file;
-}
-
 std::vector<Event> decodeFile(const BisscExample& ex) {
     registerBissc();
-    auto reader = openCapture(capturePath(ex.file), OpenOptions{});
-    DecoderRequest r;
-    r.proto = "bissc";
-    r.options = ex.options;
-    Session s({r}, *reader, ex.file);
-    struct Collect : OutputSink {
-        std::vector<Event> events;
-        void onEvent(const Event& e, const CaptureFacts&) override { events.push_back(e); }
-    } sink;
-    s.addSink(&sink);
-    s.run();
-    return sink.events;
+    return decodeEvents(examplePath(ex.file), ex.requests);
 }
 
 }  // namespace
@@ -40,12 +25,9 @@ TEST(BisscExamples, CommittedFilesAreWhatTheGeneratorMakes) {
     for (const auto& ex : bisscExamples()) {
         SCOPED_TRACE(ex.file);
         const std::string fresh = tempDir() + "/" + ex.file;
-        if (ex.csv)
-            writeCsv(ex.wave, fresh, CsvDialect::SigrokDense);
-        else
-            writeVcd(ex.wave, fresh);
+        writeExample(ex, fresh);
         // The VCD header carries no date, so the bytes must match.
-        EXPECT_EQ(readFile(fresh), readFile(capturePath(ex.file)));
+        EXPECT_EQ(readFile(fresh), readFile(examplePath(ex.file)));
     }
 }
 
@@ -54,11 +36,11 @@ TEST(BisscExamples, CommittedCapturesDecodeToTheTruth) {
         SCOPED_TRACE(ex.file);
         const auto events = decodeFile(ex);
         const auto frames = ofType(events, "frame");
-        ASSERT_EQ(frames.size(), ex.frames.size());
+        ASSERT_EQ(frames.size(), ex.truth.frames.size());
         const double ns_per_tick = ex.wave.timebase.nsPerTick();
         for (std::size_t i = 0; i < frames.size(); ++i) {
             SCOPED_TRACE(i);
-            const auto& t = ex.frames[i];
+            const auto& t = ex.truth.frames[i];
             EXPECT_NEAR(double(frames[i].start), double(t.start), 1.0 / ns_per_tick + 1);
             if (t.truncated) {
                 EXPECT_FALSE(frames[i].errors.empty());
@@ -74,14 +56,14 @@ TEST(BisscExamples, CommittedCapturesDecodeToTheTruth) {
         std::vector<Event> control;
         for (const auto& e : events)
             if (e.type != "frame") control.push_back(e);
-        ASSERT_EQ(control.size(), ex.control.size());
+        ASSERT_EQ(control.size(), ex.truth.control.size());
         for (std::size_t i = 0; i < control.size(); ++i) {
-            EXPECT_EQ(intField(control[i], "address"), ex.control[i].address);
-            EXPECT_EQ(intField(control[i], "data"), ex.control[i].data);
+            EXPECT_EQ(intField(control[i], "address"), ex.truth.control[i].address);
+            EXPECT_EQ(intField(control[i], "data"), ex.truth.control[i].data);
             EXPECT_TRUE(std::get<bool>(*control[i].get("crc_ok")));
         }
         // The file decodes exactly like the in-memory waveform it was written from.
-        const auto memory = decodeBissc(ex.wave, ex.options);
+        const auto memory = decodeBissc(ex.wave, ex.options());
         ASSERT_EQ(memory.size(), events.size());
         for (std::size_t i = 0; i < events.size(); ++i)
             EXPECT_EQ(memory[i].summary, events[i].summary);
@@ -123,23 +105,23 @@ TEST(BisscExamples, GoldenOutputsMatch) {
     registerBissc();
     for (const auto& ex : bisscExamples()) {
         SCOPED_TRACE(ex.file);
-        EXPECT_EQ(decodeFileToJsonl(capturePath(ex.file), "bissc", ex.options),
-                  readFile(capturePath(goldenPathFor(ex.file))));
+        EXPECT_EQ(decodeFileToJsonl(examplePath(ex.file), "bissc", ex.options()),
+                  readFile(examplePath(goldenPathFor(ex.file))));
     }
 }
 
 TEST(BisscExamples, DecodeCliPrintsTheGoldenOutput) {
     for (const auto& ex : bisscExamples()) {
         SCOPED_TRACE(ex.file);
-        std::vector<std::string> args = {capturePath(ex.file), "--proto", "bissc", "--format",
+        std::vector<std::string> args = {examplePath(ex.file), "--proto", "bissc", "--format",
                                          "jsonl"};
-        for (const auto& [k, v] : ex.options) {
+        for (const auto& [k, v] : ex.options()) {
             args.push_back("--opt");
             args.push_back(k + "=" + v);
         }
         const auto r = runDecode(args);
         ASSERT_EQ(r.status, 0) << r.err;
-        EXPECT_EQ(r.out, readFile(capturePath(goldenPathFor(ex.file))));
+        EXPECT_EQ(r.out, readFile(examplePath(goldenPathFor(ex.file))));
     }
 }
 
@@ -149,14 +131,14 @@ TEST(BisscExamples, DecodeCliWithBitsAutoPrintsTheGoldenOutput) {
     for (const auto& ex : bisscExamples()) {
         SCOPED_TRACE(ex.file);
         std::vector<std::string> args = {
-            capturePath(ex.file), "--proto", "bissc", "--format", "jsonl", "--opt", "bits=auto"};
-        for (const auto& [k, v] : ex.options) {
+            examplePath(ex.file), "--proto", "bissc", "--format", "jsonl", "--opt", "bits=auto"};
+        for (const auto& [k, v] : ex.options()) {
             if (k == "bits") continue;
             args.push_back("--opt");
             args.push_back(k + "=" + v);
         }
         const auto r = runDecode(args);
         ASSERT_EQ(r.status, 0) << r.err;
-        EXPECT_EQ(r.out, readFile(capturePath(goldenPathFor(ex.file))));
+        EXPECT_EQ(r.out, readFile(examplePath(goldenPathFor(ex.file))));
     }
 }

@@ -4,12 +4,12 @@
 #include <gtest/gtest.h>
 
 #include <cstdlib>
-#include <random>
 
 #include "capture/capture_writer.h"
 #include "capture_util.h"
 #include "core/options.h"
 #include "core/waveform.h"
+#include "random_traffic.h"
 
 namespace busdecode::test {
 namespace {
@@ -88,15 +88,8 @@ TEST(FstReader, UnknownStatesAndRealsAsTheVcdReaderHasThem) {
 }
 
 Waveform traffic(Timebase tb) {
-    std::mt19937 rng(5);
-    WaveBuilder b(tb, {"clk", "data", "cs"}, {1, 0, 1});
-    Tick t = 40;
-    for (int i = 0; i < 60000; ++i) {  // several edge blocks, so hand-offs are exercised
-        t += 1 + Tick(rng() % 30);
-        const auto l = std::uint32_t(rng() % 3);
-        b.set(l, t, !b.level(l));
-    }
-    Waveform w = b.build(t + 11);
+    // Several edge blocks, so hand-offs are exercised.
+    Waveform w = randomTraffic(tb, 5, 60000, 30, 40, 11);
     w.start = 3;
     return w;
 }

@@ -3,26 +3,18 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
-#include <random>
 
 #include "capture/capture_writer.h"
 #include "capture_util.h"
 #include "core/waveform.h"
+#include "random_traffic.h"
 #include "zip_builder.h"
 
 namespace busdecode::test {
 namespace {
 
 Waveform traffic() {
-    std::mt19937 rng(11);
-    WaveBuilder b(Timebase::fromSampleRate(12'500'000), {"clk", "data", "cs"}, {1, 0, 1});
-    Tick t = 100;
-    for (int i = 0; i < 5000; ++i) {
-        t += 1 + Tick(rng() % 40);
-        const auto l = std::uint32_t(rng() % 3);
-        b.set(l, t, !b.level(l));
-    }
-    Waveform w = b.build(t + 9);
+    Waveform w = randomTraffic(Timebase::fromSampleRate(12'500'000), 11, 5000, 40, 100, 9);
     w.start = 7;
     return w;
 }

@@ -3,25 +3,16 @@
 // traffic against its VCD, vector bits as name[3], and bad rows naming dialect and line.
 #include <gtest/gtest.h>
 
-#include <random>
-
 #include "capture/capture_writer.h"
 #include "capture_util.h"
 #include "core/waveform.h"
+#include "random_traffic.h"
 
 namespace busdecode::test {
 namespace {
 
 Waveform denseTraffic() {
-    std::mt19937 rng(9);
-    WaveBuilder b(Timebase::fromSampleRate(1'000'000), {"clk", "data", "cs"}, {1, 0, 1});
-    Tick t = 0;
-    for (int i = 0; i < 3000; ++i) {
-        t += 1 + Tick(rng() % 5);
-        const auto l = std::uint32_t(rng() % 3);
-        b.set(l, t, !b.level(l));
-    }
-    return b.build(t + 3);
+    return randomTraffic(Timebase::fromSampleRate(1'000'000), 9, 3000, 5, 0, 3);
 }
 
 OpenOptions rate(double hz) {

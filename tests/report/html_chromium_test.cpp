@@ -260,15 +260,14 @@ std::string scopeBisscCapture(bool differential = false) {
         f.corrupt_crc = i == 3;
         gen.addFrame(f);
     }
-    AnalogStyle style;
-    style.sample_ns = 10;
-    style.low_v = 0;
-    style.high_v = 5;
-    style.offset_v = 0.7;
-    style.rise_ns = 150;
-    style.snr_db = 26;
-    style.ringing = 0.1;
-    style.differential = differential;
+    const AnalogStyle style{.sample_ns = 10,
+                            .low_v = 0,
+                            .high_v = 5,
+                            .offset_v = 0.7,
+                            .rise_ns = 150,
+                            .snr_db = 26,
+                            .ringing = 0.1,
+                            .differential = differential};
     writeScopeCsv(gen.build(), path, ScopeDialect::Rigol, style);
     return path;
 }

@@ -13,8 +13,8 @@
 #include "core/session.h"
 #include "report/capture_stats.h"
 #include "report/position_wrap.h"
-#include "ssi_factory.h"
 #include "ssi_generator.h"
+#include "ssi_info.h"
 #include "verify/rule_checker.h"
 #include "verify/rules.h"
 

@@ -4,22 +4,17 @@
 
 #include <filesystem>
 
-#include "capture/capture_reader.h"
 #include "core/registry.h"
 #include "core/session.h"
 #include "spi_examples.h"
 #include "spi_info.h"
+#include "support/decode_events.h"
 #include "support/paths.h"
 
 using namespace busdecode;
 using namespace busdecode::test;
 
 namespace {
-struct Collect : OutputSink {
-    std::vector<Event> events;
-    void onEvent(const Event& e, const CaptureFacts&) override { events.push_back(e); }
-};
-
 std::string describe(const Event& e) {
     std::string s =
         e.type + " " + std::to_string(e.start) + "-" + std::to_string(e.end) + " " + e.summary;
@@ -33,23 +28,18 @@ TEST(SpiExamples, CommittedCapturesDecodeLikeTheTruth) {
     Registry::instance().add(makeSpiFactory());
     for (const auto& ex : spiExamples()) {
         SCOPED_TRACE(ex.file);
-        const std::string path = sourceDir() + "/captures/" + ex.file;
-        ASSERT_TRUE(std::filesystem::exists(path)) << "run make_spi_examples captures";
-        std::vector<DecoderRequest> req = {DecoderRequest{"spi", {}, ex.options}};
-        auto truth = decodeWaveform(ex.wave, req);
-        auto reader = openCapture(path, OpenOptions{});
-        Session s(req, *reader, path);
-        Collect c;
-        s.addSink(&c);
-        s.run();
-        ASSERT_EQ(c.events.size(), truth.size());
+        const std::string path = examplePath(ex.file);
+        ASSERT_TRUE(std::filesystem::exists(path)) << "run make_examples captures spi";
+        auto truth = decodeWaveform(ex.wave, ex.requests);
+        const auto events = decodeEvents(path, ex.requests);
+        ASSERT_EQ(events.size(), truth.size());
         ASSERT_GE(truth.size(), 6u);
         for (std::size_t i = 0; i < truth.size(); ++i) {
             // Saleae CSV times are seconds with limited digits: allow a tick of rounding.
-            EXPECT_EQ(c.events[i].summary, truth[i].summary);
-            EXPECT_EQ(c.events[i].errors, truth[i].errors);
-            EXPECT_NEAR(double(c.events[i].start), double(truth[i].start), 1.0)
-                << describe(c.events[i]);
+            EXPECT_EQ(events[i].summary, truth[i].summary);
+            EXPECT_EQ(events[i].errors, truth[i].errors);
+            EXPECT_NEAR(double(events[i].start), double(truth[i].start), 1.0)
+                << describe(events[i]);
         }
     }
 }
@@ -57,7 +47,7 @@ TEST(SpiExamples, CommittedCapturesDecodeLikeTheTruth) {
 TEST(SpiExamples, Mode0Lsb16Truth) {
     Registry::instance().add(makeSpiFactory());
     const auto ex = spiExamples().at(0);
-    auto ev = decodeWaveform(ex.wave, {DecoderRequest{"spi", {}, ex.options}});
+    auto ev = decodeWaveform(ex.wave, ex.requests);
     std::vector<std::string> got;
     for (const auto& e : ev)
         got.push_back(e.summary + (e.errors.empty() ? "" : " !" + e.errors[0]));

@@ -7,11 +7,11 @@
 
 #include <fmt/format.h>
 
-#include "capture/capture_reader.h"
 #include "core/session.h"
 #include "sinks/jsonl_file.h"
 #include "ssi_examples.h"
 #include "ssi_test_util.h"
+#include "support/decode_events.h"
 #include "support/paths.h"
 
 using namespace busdecode;
@@ -19,26 +19,9 @@ using namespace busdecode::ssitest;
 
 namespace {
 
-std::string capturePath(const std::string& file) {
-    return test::sourceDir() + "/captures/" + file;
-}
-
 std::vector<Event> decodeFileFrames(const SsiExample& ex) {
     registerSsi();
-    auto reader = openCapture(capturePath(ex.file), OpenOptions{});
-    DecoderRequest r;
-    r.proto = "ssi";
-    r.options = ex.options;
-    Session s({r}, *reader, ex.file);
-    struct Collect : OutputSink {
-        std::vector<Event> frames;
-        void onEvent(const Event& e, const CaptureFacts&) override {
-            if (e.type == "frame") frames.push_back(e);
-        }
-    } sink;
-    s.addSink(&sink);
-    s.run();
-    return sink.frames;
+    return test::eventsOfType(test::decodeEvents(test::examplePath(ex.file), ex.requests), "frame");
 }
 
 }  // namespace
@@ -50,8 +33,8 @@ TEST(SsiExamples, CommittedCapturesDecodeToTheTruth) {
         SCOPED_TRACE(ex.file);
         const auto frames = decodeFileFrames(ex);
         // The truncated burst of the ring-shift example ends inside a repeat-free word.
-        expectTruth(frames, ex.gen, {"tm_missing"});
-        const auto memory = decodeFrames(ex.gen.wave, ex.options);
+        expectTruth(frames, SsiGenerated{ex.wave, ex.truth}, {"tm_missing"});
+        const auto memory = decodeFrames(ex.wave, ex.options());
         ASSERT_EQ(memory.size(), frames.size());
         for (std::size_t i = 0; i < frames.size(); ++i)
             EXPECT_EQ(describe(frames[i]), describe(memory[i]));
@@ -91,8 +74,8 @@ TEST(SsiExamples, GoldenOutputsMatch) {
     registerSsi();
     for (const auto& ex : ssiExamples()) {
         SCOPED_TRACE(ex.file);
-        const std::string golden = test::readFile(capturePath(goldenPathFor(ex.file)));
-        EXPECT_EQ(decodeFileToJsonl(capturePath(ex.file), "ssi", ex.options), golden);
+        const std::string golden = test::readFile(test::examplePath(goldenPathFor(ex.file)));
+        EXPECT_EQ(decodeFileToJsonl(test::examplePath(ex.file), "ssi", ex.options()), golden);
         EXPECT_NE(golden.find("\"type\":\"summary\""), std::string::npos);
     }
 }
@@ -100,14 +83,14 @@ TEST(SsiExamples, GoldenOutputsMatch) {
 TEST(SsiExamples, DecodeCliPrintsTheGoldenOutput) {
     for (const auto& ex : ssiExamples()) {
         SCOPED_TRACE(ex.file);
-        std::vector<std::string> args = {capturePath(ex.file), "--proto", "ssi", "--format",
+        std::vector<std::string> args = {test::examplePath(ex.file), "--proto", "ssi", "--format",
                                          "jsonl"};
-        for (const auto& [k, v] : ex.options) {
+        for (const auto& [k, v] : ex.options()) {
             args.push_back("--opt");
             args.push_back(k + "=" + v);
         }
         const auto r = test::runDecode(args);
         ASSERT_EQ(r.status, 0) << r.err;
-        EXPECT_EQ(r.out, test::readFile(capturePath(goldenPathFor(ex.file))));
+        EXPECT_EQ(r.out, test::readFile(test::examplePath(goldenPathFor(ex.file))));
     }
 }

@@ -7,7 +7,7 @@
 
 #include "core/registry.h"
 #include "core/session.h"
-#include "ssi_factory.h"
+#include "ssi_info.h"
 
 namespace busdecode::ssitest {
 

@@ -22,6 +22,10 @@ std::string realCaptures() {
     return sourceDir() + "/tests/data/real";
 }
 
+std::string examplePath(const std::string& file) {
+    return sourceDir() + "/captures/" + file;
+}
+
 std::string binDir() {
     if (const char* e = std::getenv("BUSDECODE_BIN_DIR")) return e;
     return BUSDECODE_BIN_DIR;

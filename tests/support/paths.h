@@ -12,6 +12,8 @@ std::string binDir();        // build/bin (decode, plugins/)
 std::string tempDir();       // a fresh directory for this test process
 std::string readFile(const std::string& path);
 void writeFile(const std::string& path, const std::string& text);
+// captures/FILE in the source tree (the example captures).
+std::string examplePath(const std::string& file);
 // The lines of a text (a CLI's output), without their newlines.
 std::vector<std::string> splitLines(const std::string& text);
 

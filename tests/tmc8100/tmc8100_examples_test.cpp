@@ -4,10 +4,10 @@
 
 #include <filesystem>
 
-#include "capture/capture_reader.h"
 #include "core/registry.h"
 #include "core/session.h"
 #include "event_expect.h"
+#include "support/decode_events.h"
 #include "support/paths.h"
 #include "tmc8100_examples.h"
 
@@ -15,11 +15,6 @@ using namespace busdecode;
 using namespace busdecode::test;
 
 namespace {
-struct Collect : OutputSink {
-    std::vector<Event> events;
-    void onEvent(const Event& e, const CaptureFacts&) override { events.push_back(e); }
-};
-
 std::string describe(const Event& e) {
     std::string s =
         e.proto + "/" + e.type + " " + std::to_string(e.start) + "-" + std::to_string(e.end);
@@ -41,18 +36,14 @@ TEST(Tmc8100Examples, CommittedCapturesDecodeLikeTheTruth) {
         for (const auto& r : ex.requests)
             decodable &= Registry::instance().find(r.proto) != nullptr;
         if (!decodable) continue;  // an encoder decoder this build does not have
-        const std::string path = sourceDir() + "/captures/" + ex.file;
-        ASSERT_TRUE(std::filesystem::exists(path)) << "run make_tmc8100_examples captures";
+        const std::string path = examplePath(ex.file);
+        ASSERT_TRUE(std::filesystem::exists(path)) << "run make_examples captures tmc8100";
         auto truth = decodeWaveform(ex.wave, ex.requests);
-        auto reader = openCapture(path, OpenOptions{});
-        Session s(ex.requests, *reader, path);
-        Collect c;
-        s.addSink(&c);
-        s.run();
-        ASSERT_EQ(c.events.size(), truth.size());
+        const auto events = decodeEvents(path, ex.requests);
+        ASSERT_EQ(events.size(), truth.size());
         ASSERT_GT(truth.size(), 20u);
         for (std::size_t i = 0; i < truth.size(); ++i)
-            EXPECT_EQ(describe(c.events[i]), describe(truth[i]));
+            EXPECT_EQ(describe(events[i]), describe(truth[i]));
     }
 }
 

@@ -4,9 +4,9 @@
 
 #include <fmt/format.h>
 
-#include "capture/capture_reader.h"
 #include "core/registry.h"
 #include "core/session.h"
+#include "support/decode_events.h"
 #include "support/paths.h"
 #include "tmcl_decoder.h"
 #include "tmcl_examples.h"
@@ -15,25 +15,9 @@
 namespace busdecode {
 namespace {
 
-class Collect : public OutputSink {
-public:
-    std::vector<Event> events;
-    void onEvent(const Event& e, const CaptureFacts&) override { events.push_back(e); }
-};
-
 void registerDecoders() {
     Registry::instance().add(makeUartFactory());
     Registry::instance().add(makeTmclFactory());
-}
-
-std::vector<Event> decodeFile(const std::string& path,
-                              const std::vector<DecoderRequest>& requests) {
-    auto reader = openCapture(path, OpenOptions{});
-    Session session(requests, *reader, path);
-    Collect sink;
-    session.addSink(&sink);
-    session.run();
-    return sink.events;
 }
 
 std::string text(const std::vector<Event>& events) {
@@ -51,7 +35,7 @@ TEST(TmclExamples, CommittedCapturesDecodeLikeTheGenerator) {
     registerDecoders();
     for (const auto& ex : tmclExamples()) {
         const auto memory = decodeWaveform(ex.wave, ex.requests);
-        const auto file = decodeFile(test::sourceDir() + "/captures/" + ex.file, ex.requests);
+        const auto file = test::decodeEvents(test::examplePath(ex.file), ex.requests);
         EXPECT_EQ(text(file), text(memory)) << ex.file;
         ASSERT_EQ(file.size(), memory.size());
         for (std::size_t i = 0; i < file.size(); ++i)

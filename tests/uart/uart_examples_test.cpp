@@ -4,31 +4,15 @@
 
 #include <fmt/format.h>
 
-#include "capture/capture_reader.h"
 #include "core/registry.h"
 #include "core/session.h"
+#include "support/decode_events.h"
 #include "support/paths.h"
 #include "uart_decoder.h"
 #include "uart_examples.h"
 
 namespace busdecode {
 namespace {
-
-class Collect : public OutputSink {
-public:
-    std::vector<Event> events;
-    void onEvent(const Event& e, const CaptureFacts&) override { events.push_back(e); }
-};
-
-std::vector<Event> decodeFile(const std::string& path,
-                              const std::vector<DecoderRequest>& requests) {
-    auto reader = openCapture(path, OpenOptions{});
-    Session session(requests, *reader, path);
-    Collect sink;
-    session.addSink(&sink);
-    session.run();
-    return sink.events;
-}
 
 std::string text(const std::vector<Event>& events) {
     std::string out;
@@ -47,7 +31,7 @@ TEST(UartExamples, CommittedCapturesDecodeLikeTheGenerator) {
     ASSERT_EQ(examples.size(), 2u);
     for (const auto& ex : examples) {
         const auto memory = decodeWaveform(ex.wave, ex.requests);
-        const auto file = decodeFile(test::sourceDir() + "/captures/" + ex.file, ex.requests);
+        const auto file = test::decodeEvents(test::examplePath(ex.file), ex.requests);
         EXPECT_EQ(text(file), text(memory)) << ex.file;
     }
 }
