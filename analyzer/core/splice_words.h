@@ -28,7 +28,7 @@ constexpr std::size_t fieldCount() {
 }
 inline constexpr std::size_t kMaxFields = 20;
 template <class T, class F>
-void forEachField(const T& v, F&& f) {
+constexpr void forEachField(const T& v, F&& f) {
     constexpr std::size_t n = fieldCount<T>();
     static_assert(n >= 1 && n <= kMaxFields, "forEachField: add a case for this many fields");
     auto each = [&f](const auto&... x) { (f(x), ...); };
@@ -55,6 +55,17 @@ void forEachField(const T& v, F&& f) {
     else { const auto& [a, b, c, d, e, g, h, i, j, k, l, m, o, p, q, r, s, t, u, w] = v; each(a, b, c, d, e, g, h, i, j, k, l, m, o, p, q, r, s, t, u, w); }
     // clang-format on
 }
+// The bytes of T's fields: sizeof(T) when T has no padding.
+template <class T>
+constexpr std::size_t fieldBytes() {
+    std::size_t n = 0;
+    forEachField(T{}, [&n](const auto& x) { n += sizeof(x); });
+    return n;
+}
+// A struct without padding: a compiler copies it whole field by field (GCC copies one with
+// padding through memory, to keep the padding bytes).
+template <class T>
+inline constexpr bool kPaddingFree = fieldBytes<T>() == sizeof(T);
 }  // namespace splice_detail
 
 class SpliceWords {

@@ -149,7 +149,7 @@ void BisscDecoder::beginFrame(Tick start, bool from_hold) {
     f_ = Frame{};
     f_.rises = std::move(rises);
     f_.errors = std::move(errors);
-    run_ = RunFields{.ma = run_.ma, .sl = run_.sl, .last_ma_edge = run_.last_ma_edge};
+    run_ = RunFields{.last_ma_edge = run_.last_ma_edge, .ma = run_.ma, .sl = run_.sl};
     updatePeriod();  // no rises yet: the previous frame's period
     f_.start = start;
     f_.from_hold = from_hold;
@@ -165,7 +165,7 @@ void BisscDecoder::beginFrame(Tick start, bool from_hold) {
 void BisscDecoder::edge(Tick t, int role, bool level) {
     if (dataEdgesNow()) {
         f_.rises.reserve(f_.rises.size() + 1);
-        RunRoom<std::size_t&> room{f_.rises.data(), f_.rises.sizeRef(), quiet_ticks_};
+        RunRoom<std::size_t&> room = runRoom<std::size_t&>();
         if (takeDataEdge(run_, room, t, edgeKey(role, level))) {
             if (role == kSl) sampler_.setLevel(level);  // (empty)
             return;
@@ -228,9 +228,8 @@ bool BisscDecoder::takeMaEdge(RunFields& s, RunRoom<Count>& r, Tick t) {
     // LineSampler::advanceTo() would resolve it so), taken in order, its time pushed
     // past the last sample's as scheduleUpTo() does.
     const double now = double(t);
-    const double half_period = s.period / 2.0;
     while (s.scheduled < r.nrises) {
-        double at = sampleAt(r.rises[s.scheduled], s.delay, half_period);
+        double at = sampleAt(r.rises[s.scheduled], s.delay, r.half_period);
         if (at >= now) break;
         at = std::max(at, s.last_sample_t);
         if (at >= now) return false;  // pushed to t or later: the sampler holds it
@@ -243,9 +242,10 @@ bool BisscDecoder::takeMaEdge(RunFields& s, RunRoom<Count>& r, Tick t) {
     }
     recordMaEdgeOf(s, t, kLevel, true);
     if constexpr (kLevel) {  // addRise()
-        r.rises[r.nrises] = t;
-        s.period = periodOver(r.rises[0], t, double(r.nrises));
-        ++r.nrises;
+        r.rises[r.nrises++] = t;
+        r.gaps += 1.0;
+        s.period = periodOver(r.rises[0], t, r.gaps);
+        r.half_period = s.period / 2.0;
     }
     return true;
 }
@@ -256,10 +256,10 @@ bool BisscDecoder::takeSlEdge(RunFields& s, RunRoom<Count>& r, Tick t, bool leve
     // An SL change before the next sample is due answers that sample's rise; otherwise
     // onSl() checks whether the slave gave up.
     if (s.scheduled >= r.nrises ||
-        sampleAt(r.rises[s.scheduled], s.delay, s.period / 2.0) < double(t))
+        sampleAt(r.rises[s.scheduled], s.delay, r.half_period) < double(t))
         return false;
     s.sl = level;
-    refineDelayOf(s, double(t - r.rises[s.scheduled]));
+    refineDelayOf(s, double(t - r.rises[s.scheduled]), r.half_period);
     return true;
 }
 
@@ -280,8 +280,9 @@ const Edge* BisscDecoder::dataRun(const Edge* e, const Edge* last, const int* ro
     // rises and falls alternate, as edges()'s callers promise; the room must not depend
     // on a promise: a rise past it would be written past the storage.)
     f_.rises.reserve(f_.rises.size() + std::size_t(last - e));
+    static_assert(splice_detail::kPaddingFree<RunFields>, "RunFields: keep it without padding");
     RunFields s = run_;
-    RunRoom<std::size_t> r{f_.rises.data(), f_.rises.size(), quiet_ticks_};
+    RunRoom<std::size_t> r = runRoom<std::size_t>();
     for (; e != last; ++e) {
         const unsigned key =
             kLinesAreRoles ? e->lineAndLevel() : edgeKey(role_of_line[e->line], e->level != 0);

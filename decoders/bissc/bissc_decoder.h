@@ -22,6 +22,7 @@
 #include "core/crc.h"
 #include "core/line_sampler.h"
 #include "core/registry.h"
+#include "core/splice_words.h"
 #include "core/splicing.h"
 #include "rise_list.h"
 
@@ -83,34 +84,48 @@ private:
     // once: a run of edges copies it whole into a local, which the compiler keeps in
     // registers, and back (dataRun()); a single edge works on the member (edge()). The
     // line levels carry over from frame to frame, the rest is the frame's (beginFrame()).
+    // Laid out without padding and with no two doubles side by side: GCC copies a struct
+    // with padding through memory, and packs two adjacent doubles of a copied struct into
+    // one vector register, unpacked again at every edge (dataRun() checks the padding).
     struct RunFields {
-        bool ma = true, sl = true;
         Tick last_ma_edge = kNoTick;
-        std::size_t scheduled = 1;  // rises with a scheduled sample (index 0 = LAT has none)
         double delay = 0;           // line delay in ticks: mean over the SL edges so far
+        std::size_t scheduled = 1;  // rises with a scheduled sample (index 0 = LAT has none)
         double delay_sum = 0;
-        double delay_edges = 0;  // a count, held as the divisor it is used as
-        double last_sample_t = -1e300;
         // Longest MA clock phases (ticks) after LAT until the ACK (masterGaveUp()), then
         // from the ACK on: the clock as it really runs, which a pause before the ACK (a
         // frame whose start was missed) cannot stretch (isClockPhase()).
-        Tick max_high = 0, max_low = 0;
+        Tick max_high = 0;
+        double delay_edges = 0;  // a count, held as the divisor it is used as
+        Tick max_low = 0;
+        double last_sample_t = -1e300;
+        std::uint64_t data = 0;
         // Mean clock period (ticks) over the frame's rises; the previous frame's until
         // there are two. Kept up to date wherever the rises change (updatePeriod()).
         double period = 0;
-        Slot slot = Slot::Ack;
-        std::uint64_t data = 0;
+        // The lines' levels, 0 or 1, as words: sl is shifted into `data` as it is.
+        std::uint64_t ma = 1, sl = 1;
         int data_count = 0;
+        Slot slot = Slot::Ack;
     };
-    // What takeDataEdge() needs beside RunFields: the rises' storage, with room reserved,
-    // and their count, a local for a run (dataRun() sets it back) or the list's own for
-    // one edge (Count = std::size_t&); and the quiet limit, read once.
+    // What takeDataEdge() needs beside RunFields, none of it state of its own: the rises'
+    // storage, with room reserved, and their count, a local for a run (dataRun() sets it
+    // back) or the list's own for one edge (Count = std::size_t&); two values derived
+    // from RunFields, kept up to date rather than worked out at every edge; and the quiet
+    // limit, read once.
     template <class Count>
     struct RunRoom {
         Tick* rises;
         Count nrises;
+        double gaps;         // nrises - 1: the period's divisor (periodOver())
+        double half_period;  // period / 2.0, as sampleAt() adds it
         Tick quiet_ticks;
     };
+    template <class Count>
+    RunRoom<Count> runRoom() {
+        return {f_.rises.data(), Count(f_.rises.sizeRef()), double(f_.rises.size() - 1),
+                run_.period / 2.0, quiet_ticks_};
+    }
     // The rest of a frame: plain fields (compared whole by spliceState()), its rises and
     // its errors.
     struct FrameFields {
@@ -223,7 +238,8 @@ private:
     void refineDelay(Tick t);
     // refineDelay()'s work on the state given (the member, or a run's local copy): an SL
     // edge `offset` ticks after the rise it answers.
-    [[gnu::always_inline]] static inline void refineDelayOf(RunFields& s, double offset);
+    [[gnu::always_inline]] static inline void refineDelayOf(RunFields& s, double offset,
+                                                            double half_period);
     [[gnu::always_inline]] inline void drainSamples();
     void takeSample(int index, bool level, double t);
     // The samples that only set a field of the frame and move `slot` on: a low ACK, the
@@ -390,15 +406,16 @@ inline void BisscDecoder::refineDelay(Tick t) {
     // Every SL change in the frame is the slave answering an MA rising edge: the one
     // whose slot has not been sampled yet (all samples before t are scheduled, the next
     // slot's is after t).
-    if (run_.scheduled < f_.rises.size()) refineDelayOf(run_, double(t - f_.rises[run_.scheduled]));
+    if (run_.scheduled < f_.rises.size())
+        refineDelayOf(run_, double(t - f_.rises[run_.scheduled]), meanPeriod() / 2.0);
 }
 
-inline void BisscDecoder::refineDelayOf(RunFields& s, double offset) {
+inline void BisscDecoder::refineDelayOf(RunFields& s, double offset, double half_period) {
     // The offset is one more measurement of the line delay; the mean resolves the delay
     // to a fraction of a capture sample (the ACK edge alone is quantised to a whole
     // sample, 0.4 bit at 2.4 samples per bit).
     if (s.period <= 0) return;
-    if (std::fabs(offset - s.delay) >= s.period / 2.0) return;
+    if (std::fabs(offset - s.delay) >= half_period) return;
     s.delay_sum += offset;
     ++s.delay_edges;
     s.delay = s.delay_sum / s.delay_edges;
