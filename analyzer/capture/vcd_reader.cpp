@@ -26,6 +26,7 @@
 #include <charconv>
 #include <cstring>
 #include <memory>
+#include <optional>
 #include <string>
 #include <unordered_map>
 #include <unordered_set>
@@ -612,168 +613,199 @@ private:
                 ++p_;
             }
             if (p_ >= e_) {
-                if (!in_runs_) {  // the header's last line is done: runs start on the next
-                    in_runs_ = true;
-                    ++line_;
-                }
-                std::string_view text;
-                if (piece_) {
-                    if (!nextPieceLines(text)) return Stop::Eof;
-                    p_ = text.data();
-                    e_ = text.data() + text.size();
-                    continue;
-                }
-                auto st = src_->nextLines(text, line_);
-                if (st == TextSource::Status::Eof) return Stop::Eof;
-                if (st == TextSource::Status::NoData) return Stop::NoData;
-                p_ = text.data();
-                e_ = text.data() + text.size();
+                if (const std::optional<Stop> why = refill()) return *why;
                 continue;
             }
             if (block && seen_time_ && !in_block_) {
                 fastRun(*block);
                 if (p_ >= e_ || kSeparator[static_cast<unsigned char>(*p_)]) continue;
             }
-            if (in_block_) {  // inside $comment ... $end
-                const char* q = tokenEnd(p_);
-                if (q == p_) ++q;  // a control byte inside a comment
-                if (std::string_view(p_, std::size_t(q - p_)) == "$end") in_block_ = false;
-                p_ = q;
+            if (in_block_) {
+                skipCommentToken();
                 continue;
             }
             if (block && block->edges.size() + max_targets_ > kEdgeBlockSize) return Stop::Full;
-            const char c = *p_;
-            switch (c) {
-                case '#': {
-                    const DecimalScan num = scanDecimal(p_ + 1, e_);
-                    const char* q = num.end;
-                    const std::uint64_t t = num.value;
-                    const bool overflow = num.overflow;
-                    if (q == p_ + 1 || (q < e_ && !kSeparator[static_cast<unsigned char>(*q)]))
-                        fail(fmt::format(
-                            "expected a time after '#', found '{}'",
-                            printable(std::string_view(p_, std::size_t(tokenEnd(p_) - p_)))));
-                    // What an Edge holds (core/edge.h), which also leaves decoders room to
-                    // add durations to edge times: 10 hours at 1 ps. Times of up to 15
-                    // digits, the fast loop's, are below it.
-                    if (overflow || t > std::uint64_t(kMaxEdgeTick))
-                        fail("time beyond 2^55 - 1 ticks (36028797018963967)");
-                    p_ = q;
-                    const Tick tt = Tick(t);
-                    if (!seen_time_) {
-                        seen_time_ = true;
-                        start_ = cur_ = tt;
-                    } else if (tt < cur_) {
-                        fail(fmt::format("time going backwards (#{} after #{})", tt, cur_));
-                    } else if (tt > cur_) {
-                        cur_ = tt;
-                        if (!block) return Stop::FirstDone;
-                    }
-                    break;
-                }
-                case '0':  // the bulk of these go through fastRun()
-                case '1':
-                case 'x':
-                case 'X':
-                case 'z':
-                case 'Z':
-                case 'u':  // VHDL's (GHDL, NVC) nine states
-                case 'U':
-                case 'w':
-                case 'W':
-                case 'l':
-                case 'L':
-                case 'h':
-                case 'H':
-                case '-': {
-                    const char* id = p_ + 1;
-                    const char* q = tokenEnd(id);
-                    if (q == id) {  // tolerate `1 !`
-                        while (q < e_ && isSpace(*q))
-                            ++q;
-                        id = q;
-                        q = tokenEnd(q);
-                    }
-                    if (!std::strchr("01xXzZ", c) && lookup(id, std::size_t(q - id)) < 0)
-                        fail(fmt::format(  // "hello": a stray word, not h on 'ello'
-                            "expected a value change, #time or $keyword, found '{}'",
-                            printable(std::string_view(p_, std::size_t(tokenEnd(p_) - p_)))));
-                    const Code& code = codeFor(id, q);
-                    p_ = q;
-                    const std::uint8_t level = kStateLevel[static_cast<unsigned char>(c)];
-                    if (code.tbegin != code.tend && level != kKeepLevel) {
-                        for (std::uint32_t k = code.tbegin; k < code.tend; ++k)
-                            set(targets_[k].line, targets_[k].bit == 0 ? level : 0, block);
-                    } else if (level == kKeepLevel) {
-                        unknown_states_ += code.tend - code.tbegin;
-                    }
-                    break;
-                }
-                case 'b':
-                case 'B':
-                case 'r':
-                case 'R': {
-                    const char* v = p_ + 1;
-                    const char* ve = tokenEnd(v);
-                    const char* id = ve;
-                    while (id < e_ && isSpace(*id))
-                        ++id;
-                    const char* q = tokenEnd(id);
-                    if (id == q)
-                        fail(fmt::format("expected an identifier after the value '{}'",
-                                         printable(std::string_view(p_, std::size_t(ve - p_)))));
-                    const Code& code = codeFor(id, q);
-                    p_ = q;
-                    if (code.tbegin == code.tend) break;
-                    if (c == 'r' || c == 'R') {
-                        double d = 0;
-                        auto [ptr, ec] = std::from_chars(v, ve, d);
-                        if (ec != std::errc() || ptr != ve)
-                            fail(fmt::format("expected a real number, found '{}'",
-                                             printable(std::string_view(v, std::size_t(ve - v)))));
-                        for (std::uint32_t k = code.tbegin; k < code.tend; ++k)
-                            set(targets_[k].line, d != 0, block);
-                    } else {
-                        const std::size_t len = std::size_t(ve - v);
-                        if (len == 0) fail("expected binary digits after 'b'");
-                        for (std::uint32_t k = code.tbegin; k < code.tend; ++k) {
-                            const std::size_t bit = std::size_t(targets_[k].bit);
-                            // Extended the VCD way: a known leading level by 0, else itself.
-                            const std::uint8_t lead = kStateLevel[static_cast<unsigned char>(v[0])];
-                            const std::uint8_t level =
-                                bit < len
-                                    ? kStateLevel[static_cast<unsigned char>(v[len - 1 - bit])]
-                                : lead <= 1 ? 0
-                                            : kKeepLevel;
-                            if (level <= 1)
-                                set(targets_[k].line, level, block);
-                            else
-                                ++unknown_states_;
-                        }
-                    }
-                    break;
-                }
-                case '$': {
-                    const char* q = tokenEnd(p_);
-                    std::string_view kw(p_, std::size_t(q - p_));
-                    p_ = q;
-                    if (kw == "$end" || kw == "$dumpvars" || kw == "$dumpon" || kw == "$dumpoff" ||
-                        kw == "$dumpall")
-                        break;
-                    in_block_ = true;  // $comment and anything else: skip to its $end
-                    break;
-                }
-                default: {
-                    const unsigned char u = static_cast<unsigned char>(c);
-                    if (u < 0x20 || u >= 0x7f)
-                        fail(fmt::format(
-                            "binary data (byte 0x{:02x}) where a value change was expected", u));
-                    fail(fmt::format(
-                        "expected a value change, #time or $keyword, found '{}'",
-                        printable(std::string_view(p_, std::size_t(tokenEnd(p_) - p_)))));
-                }
+            if (!takeToken(block)) return Stop::FirstDone;
+        }
+    }
+
+    // The next lines into p_..e_ once these are parsed; why not, when there are none.
+    std::optional<Stop> refill() {
+        if (!in_runs_) {  // the header's last line is done: runs start on the next
+            in_runs_ = true;
+            ++line_;
+        }
+        std::string_view text;
+        if (piece_) {
+            if (!nextPieceLines(text)) return Stop::Eof;
+        } else {
+            auto st = src_->nextLines(text, line_);
+            if (st == TextSource::Status::Eof) return Stop::Eof;
+            if (st == TextSource::Status::NoData) return Stop::NoData;
+        }
+        p_ = text.data();
+        e_ = text.data() + text.size();
+        return std::nullopt;
+    }
+
+    // One token inside $comment ... $end.
+    void skipCommentToken() {
+        const char* q = tokenEnd(p_);
+        if (q == p_) ++q;  // a control byte inside a comment
+        if (std::string_view(p_, std::size_t(q - p_)) == "$end") in_block_ = false;
+        p_ = q;
+    }
+
+    // The token at p_, its value changes written to `block` (null: levels only). False
+    // when the initial phase is done: a time after the start, with no block.
+    bool takeToken(EdgeBlock* block) {
+        const char c = *p_;
+        switch (c) {
+            case '#':
+                return takeTime(block);
+            case '0':  // the bulk of these go through fastRun()
+            case '1':
+            case 'x':
+            case 'X':
+            case 'z':
+            case 'Z':
+            case 'u':  // VHDL's (GHDL, NVC) nine states
+            case 'U':
+            case 'w':
+            case 'W':
+            case 'l':
+            case 'L':
+            case 'h':
+            case 'H':
+            case '-':
+                takeScalarChange(c, block);
+                return true;
+            case 'b':
+            case 'B':
+            case 'r':
+            case 'R':
+                takeVectorChange(c, block);
+                return true;
+            case '$':
+                takeKeyword();
+                return true;
+            default:
+                failUnexpectedToken(c);
+        }
+    }
+
+    // `#time`: false when it ends the initial phase (block == nullptr).
+    bool takeTime(EdgeBlock* block) {
+        const DecimalScan num = scanDecimal(p_ + 1, e_);
+        const char* q = num.end;
+        const std::uint64_t t = num.value;
+        const bool overflow = num.overflow;
+        if (q == p_ + 1 || (q < e_ && !kSeparator[static_cast<unsigned char>(*q)]))
+            fail(fmt::format("expected a time after '#', found '{}'",
+                             printable(std::string_view(p_, std::size_t(tokenEnd(p_) - p_)))));
+        // What an Edge holds (core/edge.h), which also leaves decoders room to
+        // add durations to edge times: 10 hours at 1 ps. Times of up to 15
+        // digits, the fast loop's, are below it.
+        if (overflow || t > std::uint64_t(kMaxEdgeTick))
+            fail("time beyond 2^55 - 1 ticks (36028797018963967)");
+        p_ = q;
+        const Tick tt = Tick(t);
+        if (!seen_time_) {
+            seen_time_ = true;
+            start_ = cur_ = tt;
+        } else if (tt < cur_) {
+            fail(fmt::format("time going backwards (#{} after #{})", tt, cur_));
+        } else if (tt > cur_) {
+            cur_ = tt;
+            if (!block) return false;
+        }
+        return true;
+    }
+
+    // A scalar value change: a level and an identifier.
+    void takeScalarChange(char c, EdgeBlock* block) {
+        const char* id = p_ + 1;
+        const char* q = tokenEnd(id);
+        if (q == id) {  // tolerate `1 !`
+            while (q < e_ && isSpace(*q))
+                ++q;
+            id = q;
+            q = tokenEnd(q);
+        }
+        if (!std::strchr("01xXzZ", c) && lookup(id, std::size_t(q - id)) < 0)
+            fail(fmt::format(  // "hello": a stray word, not h on 'ello'
+                "expected a value change, #time or $keyword, found '{}'",
+                printable(std::string_view(p_, std::size_t(tokenEnd(p_) - p_)))));
+        const Code& code = codeFor(id, q);
+        p_ = q;
+        const std::uint8_t level = kStateLevel[static_cast<unsigned char>(c)];
+        if (code.tbegin != code.tend && level != kKeepLevel) {
+            for (std::uint32_t k = code.tbegin; k < code.tend; ++k)
+                set(targets_[k].line, targets_[k].bit == 0 ? level : 0, block);
+        } else if (level == kKeepLevel) {
+            unknown_states_ += code.tend - code.tbegin;
+        }
+    }
+
+    // A vector (b...) or real (r...) value change, each of its bits a line.
+    void takeVectorChange(char c, EdgeBlock* block) {
+        const char* v = p_ + 1;
+        const char* ve = tokenEnd(v);
+        const char* id = ve;
+        while (id < e_ && isSpace(*id))
+            ++id;
+        const char* q = tokenEnd(id);
+        if (id == q)
+            fail(fmt::format("expected an identifier after the value '{}'",
+                             printable(std::string_view(p_, std::size_t(ve - p_)))));
+        const Code& code = codeFor(id, q);
+        p_ = q;
+        if (code.tbegin == code.tend) return;
+        if (c == 'r' || c == 'R') {
+            double d = 0;
+            auto [ptr, ec] = std::from_chars(v, ve, d);
+            if (ec != std::errc() || ptr != ve)
+                fail(fmt::format("expected a real number, found '{}'",
+                                 printable(std::string_view(v, std::size_t(ve - v)))));
+            for (std::uint32_t k = code.tbegin; k < code.tend; ++k)
+                set(targets_[k].line, d != 0, block);
+        } else {
+            const std::size_t len = std::size_t(ve - v);
+            if (len == 0) fail("expected binary digits after 'b'");
+            for (std::uint32_t k = code.tbegin; k < code.tend; ++k) {
+                const std::size_t bit = std::size_t(targets_[k].bit);
+                // Extended the VCD way: a known leading level by 0, else itself.
+                const std::uint8_t lead = kStateLevel[static_cast<unsigned char>(v[0])];
+                const std::uint8_t level =
+                    bit < len   ? kStateLevel[static_cast<unsigned char>(v[len - 1 - bit])]
+                    : lead <= 1 ? 0
+                                : kKeepLevel;
+                if (level <= 1)
+                    set(targets_[k].line, level, block);
+                else
+                    ++unknown_states_;
             }
         }
+    }
+
+    // `$keyword`: those that mark value changes are passed over, any other opens a block
+    // skipped to its $end.
+    void takeKeyword() {
+        const char* q = tokenEnd(p_);
+        std::string_view kw(p_, std::size_t(q - p_));
+        p_ = q;
+        if (kw == "$end" || kw == "$dumpvars" || kw == "$dumpon" || kw == "$dumpoff" ||
+            kw == "$dumpall")
+            return;
+        in_block_ = true;  // $comment and anything else: skip to its $end
+    }
+
+    [[noreturn]] void failUnexpectedToken(char c) {
+        const unsigned char u = static_cast<unsigned char>(c);
+        if (u < 0x20 || u >= 0x7f)
+            fail(fmt::format("binary data (byte 0x{:02x}) where a value change was expected", u));
+        fail(fmt::format("expected a value change, #time or $keyword, found '{}'",
+                         printable(std::string_view(p_, std::size_t(tokenEnd(p_) - p_)))));
     }
 
     // fastRun()'s state, handed from the loop for one length of the times to the next.
