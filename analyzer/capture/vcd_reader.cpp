@@ -26,6 +26,7 @@
 #include <charconv>
 #include <cstring>
 #include <memory>
+#include <optional>
 #include <string>
 #include <unordered_map>
 #include <unordered_set>
@@ -612,168 +613,199 @@ private:
                 ++p_;
             }
             if (p_ >= e_) {
-                if (!in_runs_) {  // the header's last line is done: runs start on the next
-                    in_runs_ = true;
-                    ++line_;
-                }
-                std::string_view text;
-                if (piece_) {
-                    if (!nextPieceLines(text)) return Stop::Eof;
-                    p_ = text.data();
-                    e_ = text.data() + text.size();
-                    continue;
-                }
-                auto st = src_->nextLines(text, line_);
-                if (st == TextSource::Status::Eof) return Stop::Eof;
-                if (st == TextSource::Status::NoData) return Stop::NoData;
-                p_ = text.data();
-                e_ = text.data() + text.size();
+                if (const std::optional<Stop> why = refill()) return *why;
                 continue;
             }
             if (block && seen_time_ && !in_block_) {
                 fastRun(*block);
                 if (p_ >= e_ || kSeparator[static_cast<unsigned char>(*p_)]) continue;
             }
-            if (in_block_) {  // inside $comment ... $end
-                const char* q = tokenEnd(p_);
-                if (q == p_) ++q;  // a control byte inside a comment
-                if (std::string_view(p_, std::size_t(q - p_)) == "$end") in_block_ = false;
-                p_ = q;
+            if (in_block_) {
+                skipCommentToken();
                 continue;
             }
             if (block && block->edges.size() + max_targets_ > kEdgeBlockSize) return Stop::Full;
-            const char c = *p_;
-            switch (c) {
-                case '#': {
-                    const DecimalScan num = scanDecimal(p_ + 1, e_);
-                    const char* q = num.end;
-                    const std::uint64_t t = num.value;
-                    const bool overflow = num.overflow;
-                    if (q == p_ + 1 || (q < e_ && !kSeparator[static_cast<unsigned char>(*q)]))
-                        fail(fmt::format(
-                            "expected a time after '#', found '{}'",
-                            printable(std::string_view(p_, std::size_t(tokenEnd(p_) - p_)))));
-                    // What an Edge holds (core/edge.h), which also leaves decoders room to
-                    // add durations to edge times: 10 hours at 1 ps. Times of up to 15
-                    // digits, the fast loop's, are below it.
-                    if (overflow || t > std::uint64_t(kMaxEdgeTick))
-                        fail("time beyond 2^55 - 1 ticks (36028797018963967)");
-                    p_ = q;
-                    const Tick tt = Tick(t);
-                    if (!seen_time_) {
-                        seen_time_ = true;
-                        start_ = cur_ = tt;
-                    } else if (tt < cur_) {
-                        fail(fmt::format("time going backwards (#{} after #{})", tt, cur_));
-                    } else if (tt > cur_) {
-                        cur_ = tt;
-                        if (!block) return Stop::FirstDone;
-                    }
-                    break;
-                }
-                case '0':  // the bulk of these go through fastRun()
-                case '1':
-                case 'x':
-                case 'X':
-                case 'z':
-                case 'Z':
-                case 'u':  // VHDL's (GHDL, NVC) nine states
-                case 'U':
-                case 'w':
-                case 'W':
-                case 'l':
-                case 'L':
-                case 'h':
-                case 'H':
-                case '-': {
-                    const char* id = p_ + 1;
-                    const char* q = tokenEnd(id);
-                    if (q == id) {  // tolerate `1 !`
-                        while (q < e_ && isSpace(*q))
-                            ++q;
-                        id = q;
-                        q = tokenEnd(q);
-                    }
-                    if (!std::strchr("01xXzZ", c) && lookup(id, std::size_t(q - id)) < 0)
-                        fail(fmt::format(  // "hello": a stray word, not h on 'ello'
-                            "expected a value change, #time or $keyword, found '{}'",
-                            printable(std::string_view(p_, std::size_t(tokenEnd(p_) - p_)))));
-                    const Code& code = codeFor(id, q);
-                    p_ = q;
-                    const std::uint8_t level = kStateLevel[static_cast<unsigned char>(c)];
-                    if (code.tbegin != code.tend && level != kKeepLevel) {
-                        for (std::uint32_t k = code.tbegin; k < code.tend; ++k)
-                            set(targets_[k].line, targets_[k].bit == 0 ? level : 0, block);
-                    } else if (level == kKeepLevel) {
-                        unknown_states_ += code.tend - code.tbegin;
-                    }
-                    break;
-                }
-                case 'b':
-                case 'B':
-                case 'r':
-                case 'R': {
-                    const char* v = p_ + 1;
-                    const char* ve = tokenEnd(v);
-                    const char* id = ve;
-                    while (id < e_ && isSpace(*id))
-                        ++id;
-                    const char* q = tokenEnd(id);
-                    if (id == q)
-                        fail(fmt::format("expected an identifier after the value '{}'",
-                                         printable(std::string_view(p_, std::size_t(ve - p_)))));
-                    const Code& code = codeFor(id, q);
-                    p_ = q;
-                    if (code.tbegin == code.tend) break;
-                    if (c == 'r' || c == 'R') {
-                        double d = 0;
-                        auto [ptr, ec] = std::from_chars(v, ve, d);
-                        if (ec != std::errc() || ptr != ve)
-                            fail(fmt::format("expected a real number, found '{}'",
-                                             printable(std::string_view(v, std::size_t(ve - v)))));
-                        for (std::uint32_t k = code.tbegin; k < code.tend; ++k)
-                            set(targets_[k].line, d != 0, block);
-                    } else {
-                        const std::size_t len = std::size_t(ve - v);
-                        if (len == 0) fail("expected binary digits after 'b'");
-                        for (std::uint32_t k = code.tbegin; k < code.tend; ++k) {
-                            const std::size_t bit = std::size_t(targets_[k].bit);
-                            // Extended the VCD way: a known leading level by 0, else itself.
-                            const std::uint8_t lead = kStateLevel[static_cast<unsigned char>(v[0])];
-                            const std::uint8_t level =
-                                bit < len
-                                    ? kStateLevel[static_cast<unsigned char>(v[len - 1 - bit])]
-                                : lead <= 1 ? 0
-                                            : kKeepLevel;
-                            if (level <= 1)
-                                set(targets_[k].line, level, block);
-                            else
-                                ++unknown_states_;
-                        }
-                    }
-                    break;
-                }
-                case '$': {
-                    const char* q = tokenEnd(p_);
-                    std::string_view kw(p_, std::size_t(q - p_));
-                    p_ = q;
-                    if (kw == "$end" || kw == "$dumpvars" || kw == "$dumpon" || kw == "$dumpoff" ||
-                        kw == "$dumpall")
-                        break;
-                    in_block_ = true;  // $comment and anything else: skip to its $end
-                    break;
-                }
-                default: {
-                    const unsigned char u = static_cast<unsigned char>(c);
-                    if (u < 0x20 || u >= 0x7f)
-                        fail(fmt::format(
-                            "binary data (byte 0x{:02x}) where a value change was expected", u));
-                    fail(fmt::format(
-                        "expected a value change, #time or $keyword, found '{}'",
-                        printable(std::string_view(p_, std::size_t(tokenEnd(p_) - p_)))));
-                }
+            if (!takeToken(block)) return Stop::FirstDone;
+        }
+    }
+
+    // The next lines into p_..e_ once these are parsed; why not, when there are none.
+    std::optional<Stop> refill() {
+        if (!in_runs_) {  // the header's last line is done: runs start on the next
+            in_runs_ = true;
+            ++line_;
+        }
+        std::string_view text;
+        if (piece_) {
+            if (!nextPieceLines(text)) return Stop::Eof;
+        } else {
+            auto st = src_->nextLines(text, line_);
+            if (st == TextSource::Status::Eof) return Stop::Eof;
+            if (st == TextSource::Status::NoData) return Stop::NoData;
+        }
+        p_ = text.data();
+        e_ = text.data() + text.size();
+        return std::nullopt;
+    }
+
+    // One token inside $comment ... $end.
+    void skipCommentToken() {
+        const char* q = tokenEnd(p_);
+        if (q == p_) ++q;  // a control byte inside a comment
+        if (std::string_view(p_, std::size_t(q - p_)) == "$end") in_block_ = false;
+        p_ = q;
+    }
+
+    // The token at p_, its value changes written to `block` (null: levels only). False
+    // when the initial phase is done: a time after the start, with no block.
+    bool takeToken(EdgeBlock* block) {
+        const char c = *p_;
+        switch (c) {
+            case '#':
+                return takeTime(block);
+            case '0':  // the bulk of these go through fastRun()
+            case '1':
+            case 'x':
+            case 'X':
+            case 'z':
+            case 'Z':
+            case 'u':  // VHDL's (GHDL, NVC) nine states
+            case 'U':
+            case 'w':
+            case 'W':
+            case 'l':
+            case 'L':
+            case 'h':
+            case 'H':
+            case '-':
+                takeScalarChange(c, block);
+                return true;
+            case 'b':
+            case 'B':
+            case 'r':
+            case 'R':
+                takeVectorChange(c, block);
+                return true;
+            case '$':
+                takeKeyword();
+                return true;
+            default:
+                failUnexpectedToken(c);
+        }
+    }
+
+    // `#time`: false when it ends the initial phase (block == nullptr).
+    bool takeTime(EdgeBlock* block) {
+        const DecimalScan num = scanDecimal(p_ + 1, e_);
+        const char* q = num.end;
+        const std::uint64_t t = num.value;
+        const bool overflow = num.overflow;
+        if (q == p_ + 1 || (q < e_ && !kSeparator[static_cast<unsigned char>(*q)]))
+            fail(fmt::format("expected a time after '#', found '{}'",
+                             printable(std::string_view(p_, std::size_t(tokenEnd(p_) - p_)))));
+        // What an Edge holds (core/edge.h), which also leaves decoders room to
+        // add durations to edge times: 10 hours at 1 ps. Times of up to 15
+        // digits, the fast loop's, are below it.
+        if (overflow || t > std::uint64_t(kMaxEdgeTick))
+            fail("time beyond 2^55 - 1 ticks (36028797018963967)");
+        p_ = q;
+        const Tick tt = Tick(t);
+        if (!seen_time_) {
+            seen_time_ = true;
+            start_ = cur_ = tt;
+        } else if (tt < cur_) {
+            fail(fmt::format("time going backwards (#{} after #{})", tt, cur_));
+        } else if (tt > cur_) {
+            cur_ = tt;
+            if (!block) return false;
+        }
+        return true;
+    }
+
+    // A scalar value change: a level and an identifier.
+    void takeScalarChange(char c, EdgeBlock* block) {
+        const char* id = p_ + 1;
+        const char* q = tokenEnd(id);
+        if (q == id) {  // tolerate `1 !`
+            while (q < e_ && isSpace(*q))
+                ++q;
+            id = q;
+            q = tokenEnd(q);
+        }
+        if (!std::strchr("01xXzZ", c) && lookup(id, std::size_t(q - id)) < 0)
+            fail(fmt::format(  // "hello": a stray word, not h on 'ello'
+                "expected a value change, #time or $keyword, found '{}'",
+                printable(std::string_view(p_, std::size_t(tokenEnd(p_) - p_)))));
+        const Code& code = codeFor(id, q);
+        p_ = q;
+        const std::uint8_t level = kStateLevel[static_cast<unsigned char>(c)];
+        if (code.tbegin != code.tend && level != kKeepLevel) {
+            for (std::uint32_t k = code.tbegin; k < code.tend; ++k)
+                set(targets_[k].line, targets_[k].bit == 0 ? level : 0, block);
+        } else if (level == kKeepLevel) {
+            unknown_states_ += code.tend - code.tbegin;
+        }
+    }
+
+    // A vector (b...) or real (r...) value change, each of its bits a line.
+    void takeVectorChange(char c, EdgeBlock* block) {
+        const char* v = p_ + 1;
+        const char* ve = tokenEnd(v);
+        const char* id = ve;
+        while (id < e_ && isSpace(*id))
+            ++id;
+        const char* q = tokenEnd(id);
+        if (id == q)
+            fail(fmt::format("expected an identifier after the value '{}'",
+                             printable(std::string_view(p_, std::size_t(ve - p_)))));
+        const Code& code = codeFor(id, q);
+        p_ = q;
+        if (code.tbegin == code.tend) return;
+        if (c == 'r' || c == 'R') {
+            double d = 0;
+            auto [ptr, ec] = std::from_chars(v, ve, d);
+            if (ec != std::errc() || ptr != ve)
+                fail(fmt::format("expected a real number, found '{}'",
+                                 printable(std::string_view(v, std::size_t(ve - v)))));
+            for (std::uint32_t k = code.tbegin; k < code.tend; ++k)
+                set(targets_[k].line, d != 0, block);
+        } else {
+            const std::size_t len = std::size_t(ve - v);
+            if (len == 0) fail("expected binary digits after 'b'");
+            for (std::uint32_t k = code.tbegin; k < code.tend; ++k) {
+                const std::size_t bit = std::size_t(targets_[k].bit);
+                // Extended the VCD way: a known leading level by 0, else itself.
+                const std::uint8_t lead = kStateLevel[static_cast<unsigned char>(v[0])];
+                const std::uint8_t level =
+                    bit < len   ? kStateLevel[static_cast<unsigned char>(v[len - 1 - bit])]
+                    : lead <= 1 ? 0
+                                : kKeepLevel;
+                if (level <= 1)
+                    set(targets_[k].line, level, block);
+                else
+                    ++unknown_states_;
             }
         }
+    }
+
+    // `$keyword`: those that mark value changes are passed over, any other opens a block
+    // skipped to its $end.
+    void takeKeyword() {
+        const char* q = tokenEnd(p_);
+        std::string_view kw(p_, std::size_t(q - p_));
+        p_ = q;
+        if (kw == "$end" || kw == "$dumpvars" || kw == "$dumpon" || kw == "$dumpoff" ||
+            kw == "$dumpall")
+            return;
+        in_block_ = true;  // $comment and anything else: skip to its $end
+    }
+
+    [[noreturn]] void failUnexpectedToken(char c) {
+        const unsigned char u = static_cast<unsigned char>(c);
+        if (u < 0x20 || u >= 0x7f)
+            fail(fmt::format("binary data (byte 0x{:02x}) where a value change was expected", u));
+        fail(fmt::format("expected a value change, #time or $keyword, found '{}'",
+                         printable(std::string_view(p_, std::size_t(tokenEnd(p_) - p_)))));
     }
 
     // fastRun()'s state, handed from the loop for one length of the times to the next.
@@ -786,121 +818,142 @@ private:
         Tick cur;
     };
 
+    // What runTimesOf() reads its tokens with, hoisted out of `this`: a level written
+    // through a byte pointer could be any member, and would make them be reloaded.
+    struct FastTables {
+        const std::int32_t* scalar;
+        const std::int32_t* scalar2;
+        std::uint8_t* level;
+    };
+    // What runTimesOf() does after a token: go on with the next, stop, or take the value
+    // change right after a time.
+    enum class FastStep { Next, Stop, ValueChange };
+
     // fastRun()'s loop for times of N digits. Returns the digit count of a time of
     // another length (1 to 15), for the loop of that length to take it, or 0 to stop.
     template <int N>
     int runTimesOf(FastCursor& at) {
-        const char* p = at.p;
-        const char* const stop = at.stop;
-        Edge* out = at.out;
-        Edge* const full = at.full;
-        std::uint64_t line = at.line;
-        Tick cur = at.cur;
-        const std::int32_t* const scalar = scalar1_.data();
-        const std::int32_t* const scalar2 = scalar2_.data();
-        std::uint8_t* const level = level_.data();
+        FastCursor c = at;  // a local: the edges written through c.out cannot alias it
+        const FastTables tables{scalar1_.data(), scalar2_.data(), level_.data()};
         int next = 0;
-        while (p < stop && out <= full) {
-            char c = *p;
+        while (c.p < c.stop && c.out <= c.full) {
             // Each token is taken only if a separator follows it, so that pump() sees
             // any faulty token whole and words its error as it always has.
-            if (c == '#') {
-                // Where the time ends is known before its digits are read: the next
-                // token's loads need not wait for them.
-                std::uint64_t t;
-                const TimeLineShape shape = shapeOfTimeLine<N>(p + 1, t);
-                // A change of a whole line taken below: a selected or unselected scalar's
-                // value (its time already in force).
-                const auto take = [&](std::int32_t sel, char value) {
-                    if (sel < 0) return;
-                    const std::uint8_t v = std::uint8_t(value - '0');
-                    if (level[sel] != v) {
-                        level[sel] = v;
-                        *out++ = Edge(cur, std::uint32_t(sel), v);
-                    }
-                };
-                if (shape == TimeLineShape::OneChange) {
-                    // `#time v!` and a newline, the whole line known good but for its
-                    // identifier and its time going forward; otherwise it is taken token
-                    // by token below.
-                    const std::int32_t sel = scalar[static_cast<unsigned char>(p[N + 3])];
-                    if (sel != kNotScalar && Tick(t) >= cur) [[likely]] {
-                        cur = Tick(t);
-                        take(sel, p[N + 2]);
-                        ++line;
-                        p += N + 5;
-                        continue;
-                    }
-                } else if (shape == TimeLineShape::TwoChanges && out < full) {
-                    // `#time v! v"` and a newline, likewise; room for two edges (for
-                    // one, out <= full promises room).
-                    const std::int32_t s1 = scalar[static_cast<unsigned char>(p[N + 3])];
-                    const std::int32_t s2 = scalar[static_cast<unsigned char>(p[N + 6])];
-                    if (s1 != kNotScalar && s2 != kNotScalar && Tick(t) >= cur) [[likely]] {
-                        cur = Tick(t);
-                        take(s1, p[N + 2]);
-                        take(s2, p[N + 5]);
-                        ++line;
-                        p += N + 8;
-                        continue;
-                    }
-                }
-                const std::uint8_t k = kSeparator[static_cast<unsigned char>(p[1 + N])];
-                if (shape == TimeLineShape::NotDigits || !k) [[unlikely]] {
-                    // A time of another length goes to its own loop. No digits, 16 or
-                    // more, or no separator after them: pump() reports it, or checks the
-                    // range.
-                    const DecimalScan num = scanDecimal16(p + 1);
-                    if (num.digits >= 1 && num.digits <= 15 && num.digits != N) next = num.digits;
-                    break;
-                }
-                const Tick tt = Tick(t);
-                if (tt < cur) break;  // pump() reports a time going backwards
-                cur = tt;
-                line += k >> 1;
-                p += 2 + N;
-                // A value change follows nearly every time: the token after the time is
-                // taken below without the loop's tests (nothing was written, and p is at
-                // most 17 bytes past stop, well inside the 32 its 4-byte read may use).
-                c = *p;
+            if (*c.p == '#') {
+                const FastStep step = takeFastTime<N>(c, tables, next);
+                if (step == FastStep::Next) continue;
+                if (step == FastStep::Stop) break;
             }
-            if (unsigned(c - '0') < 2) {
-                std::uint8_t k = kSeparator[static_cast<unsigned char>(p[2])];
-                std::int32_t sel;
-                int len = 1;  // of the identifier
-                if (k) {
-                    sel = scalar[static_cast<unsigned char>(p[1])];
-                } else {
-                    k = kSeparator[static_cast<unsigned char>(p[3])];
-                    const unsigned i = static_cast<unsigned char>(p[1]) - 33u;
-                    const unsigned j = static_cast<unsigned char>(p[2]) - 33u;
-                    if (!k || i >= 94 || j >= 94) break;
-                    sel = scalar2[i * 94 + j];
-                    len = 2;
-                }
-                if (sel >= 0) [[likely]] {
-                    const std::uint8_t v = std::uint8_t(c - '0');
-                    if (level[sel] != v) {
-                        level[sel] = v;
-                        *out++ = Edge(cur, std::uint32_t(sel), v);
-                    }
-                } else if (sel == kNotScalar) {
-                    break;
-                }
-                line += k >> 1;
-                p += 2 + len;
-            } else if (const std::uint8_t k = kSeparator[static_cast<unsigned char>(c)]) {
-                line += k >> 1;  // more separators: CRLF, blank lines, a second blank
-                ++p;
+            const char ch = *c.p;
+            if (unsigned(ch - '0') < 2) {
+                if (!takeFastScalar(c, tables, ch)) break;
+            } else if (const std::uint8_t k = kSeparator[static_cast<unsigned char>(ch)]) {
+                c.line += k >> 1;  // more separators: CRLF, blank lines, a second blank
+                ++c.p;
             } else {
                 break;  // anything else
             }
         }
-        at.p = p;
-        at.out = out;
-        at.line = line;
-        at.cur = cur;
+        at.p = c.p;
+        at.out = c.out;
+        at.line = c.line;
+        at.cur = c.cur;
         return next;
+    }
+
+    // A change of a selected scalar (sel >= 0) to `value`, its time already in force.
+    [[gnu::always_inline]] static void takeFastChange(FastCursor& c, const FastTables& tables,
+                                                      std::int32_t sel, std::uint8_t value) {
+        if (tables.level[sel] != value) {
+            tables.level[sel] = value;
+            *c.out++ = Edge(c.cur, std::uint32_t(sel), value);
+        }
+    }
+
+    // `#time` at c.p: a whole line of one or two changes taken at once (Next), or the time
+    // alone (ValueChange: a value change follows nearly every time, taken without the
+    // loop's tests; nothing was written, and c.p is at most 17 bytes past c.stop, well
+    // inside the 32 its 4-byte read may use). Stop, with `next` set, for a time of
+    // another length; Stop for one pump() must see.
+    template <int N>
+    [[gnu::always_inline]] FastStep takeFastTime(FastCursor& c, const FastTables& tables,
+                                                 int& next) {
+        const char* const p = c.p;
+        // Where the time ends is known before its digits are read: the next token's loads
+        // need not wait for them.
+        std::uint64_t t;
+        const TimeLineShape shape = shapeOfTimeLine<N>(p + 1, t);
+        // A change of a whole line: a selected or unselected scalar's value.
+        const auto take = [&](std::int32_t sel, char value) {
+            if (sel >= 0) takeFastChange(c, tables, sel, std::uint8_t(value - '0'));
+        };
+        if (shape == TimeLineShape::OneChange) {
+            // `#time v!` and a newline, the whole line known good but for its identifier
+            // and its time going forward; otherwise it is taken token by token below.
+            const std::int32_t sel = tables.scalar[static_cast<unsigned char>(p[N + 3])];
+            if (sel != kNotScalar && Tick(t) >= c.cur) [[likely]] {
+                c.cur = Tick(t);
+                take(sel, p[N + 2]);
+                ++c.line;
+                c.p = p + N + 5;
+                return FastStep::Next;
+            }
+        } else if (shape == TimeLineShape::TwoChanges && c.out < c.full) {
+            // `#time v! v"` and a newline, likewise; room for two edges (for one,
+            // out <= full promises room).
+            const std::int32_t s1 = tables.scalar[static_cast<unsigned char>(p[N + 3])];
+            const std::int32_t s2 = tables.scalar[static_cast<unsigned char>(p[N + 6])];
+            if (s1 != kNotScalar && s2 != kNotScalar && Tick(t) >= c.cur) [[likely]] {
+                c.cur = Tick(t);
+                take(s1, p[N + 2]);
+                take(s2, p[N + 5]);
+                ++c.line;
+                c.p = p + N + 8;
+                return FastStep::Next;
+            }
+        }
+        const std::uint8_t k = kSeparator[static_cast<unsigned char>(p[1 + N])];
+        if (shape == TimeLineShape::NotDigits || !k) [[unlikely]] {
+            // A time of another length goes to its own loop. No digits, 16 or more, or no
+            // separator after them: pump() reports it, or checks the range.
+            const DecimalScan num = scanDecimal16(p + 1);
+            if (num.digits >= 1 && num.digits <= 15 && num.digits != N) next = num.digits;
+            return FastStep::Stop;
+        }
+        const Tick tt = Tick(t);
+        if (tt < c.cur) return FastStep::Stop;  // pump() reports a time going backwards
+        c.cur = tt;
+        c.line += k >> 1;
+        c.p = p + 2 + N;
+        return FastStep::ValueChange;
+    }
+
+    // `0!` or `1!"` (an identifier of one or two bytes) at c.p, its level `ch`: false for
+    // one pump() must take.
+    [[gnu::always_inline]] static bool takeFastScalar(FastCursor& c, const FastTables& tables,
+                                                      char ch) {
+        const char* const p = c.p;
+        std::uint8_t k = kSeparator[static_cast<unsigned char>(p[2])];
+        std::int32_t sel;
+        int len = 1;  // of the identifier
+        if (k) {
+            sel = tables.scalar[static_cast<unsigned char>(p[1])];
+        } else {
+            k = kSeparator[static_cast<unsigned char>(p[3])];
+            const unsigned i = static_cast<unsigned char>(p[1]) - 33u;
+            const unsigned j = static_cast<unsigned char>(p[2]) - 33u;
+            if (!k || i >= 94 || j >= 94) return false;
+            sel = tables.scalar2[i * 94 + j];
+            len = 2;
+        }
+        if (sel >= 0) [[likely]] {
+            takeFastChange(c, tables, sel, std::uint8_t(ch - '0'));
+        } else if (sel == kNotScalar) {
+            return false;
+        }
+        c.line += k >> 1;
+        c.p = p + 2 + len;
+        return true;
     }
 
     // runTimesOf<N> by N, 1 to 15 (0 stands for 1).

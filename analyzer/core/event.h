@@ -13,6 +13,8 @@
 
 namespace busdecode {
 
+class EventHome;
+
 struct Field {
     Field() = default;
     template <class V>
@@ -33,10 +35,6 @@ struct Event {
     // Ask the session to call Decoder::correlate() on this event before it is output,
     // once every other decoder's events up to `end` are known.
     bool wants_correlation = false;
-    // Whose storage this is, for the session to give it back to once output: 0, the
-    // decoding thread's; 1, a reader thread's (event_pool.h, RecycledEvents::sendHome()).
-    // Not part of what was decoded: reset() keeps it.
-    std::uint8_t home = 0;
 
     Event& set(std::string key, Value v);  // replaces an existing key
     // Appends a key the event does not have yet, without searching: for decoders filling
@@ -56,6 +54,12 @@ struct Event {
     // Back to a fresh Event's contents, keeping the storage of its strings and vectors
     // (the session hands released events back to decoders: no allocation per event).
     void reset();
+
+private:
+    // The event pools' bookkeeping, not part of what was decoded (event_pool.h, EventHome):
+    // whose storage this is. reset() keeps it.
+    friend class EventHome;
+    std::uint8_t home_ = 0;
 };
 
 // An event in storage of its own: handed from decoder to session to sink by pointer, so

@@ -15,6 +15,16 @@
 
 namespace busdecode {
 
+// Whose storage an event is, for the session to give it back to once output: 0, the
+// decoding thread's; 1, a reader thread's (RecycledEvents::sendHome()). Kept in the event
+// (a side table would cost a look-up per event, shared between threads), out of its
+// interface.
+class EventHome {
+public:
+    static std::uint8_t of(const Event& e) { return e.home_; }
+    static void set(Event& e, std::uint8_t home) { e.home_ = home; }
+};
+
 class EventPool {
 public:
     // Events held at most: about 2 MB. Beyond that, what is given back is freed.
@@ -29,7 +39,7 @@ public:
             held_.pop_back();
         }
     }
-    // Takes the events in `in` (emptied by reset(), or with Event::home 1, to be emptied
+    // Takes the events in `in` (emptied by reset(), or with EventHome 1, to be emptied
     // by the store that takes them), leaving `in` empty; those beyond kMaxHeld are freed.
     void give(std::vector<EventPtr>& in) {
         {
@@ -52,7 +62,7 @@ private:
 // `keep`; with a shared pool, it takes from it when it has none and gives it what it
 // cannot hold, kBatch at a time, and gives back what it holds at the end.
 //
-// Events another thread filled (Event::home 1) can go back to that thread's pool as
+// Events another thread filled (EventHome 1) can go back to that thread's pool as
 // they are, not emptied (sendHome()): that thread empties them when it takes them
 // (fresh()). Then this thread only reads their storage. Storage written on one
 // core and then on the other must cross between them each time, and on a VM whose two
@@ -83,7 +93,7 @@ public:
         if (held_.empty()) return std::make_unique<Event>();
         EventPtr e = std::move(held_.back());
         held_.pop_back();
-        if (e->home == 1) e->reset();  // perhaps given back as it was (sendHome())
+        if (EventHome::of(*e) == 1) e->reset();  // perhaps given back as it was (sendHome())
         return e;
     }
     // `e`'s contents in an event of this store's.
@@ -94,7 +104,7 @@ public:
     }
     // An event done with: emptied and kept, handed on, or freed.
     void recycle(EventPtr e) {
-        if (e->home == 1 && home_) {
+        if (EventHome::of(*e) == 1 && home_) {
             to_home_.push_back(std::move(e));
             if (to_home_.size() >= kBatch) home_->give(to_home_);
         } else if (held_.size() < keep_) {

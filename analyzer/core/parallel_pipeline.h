@@ -51,7 +51,7 @@ public:
 private:
     PieceReader& pieces_;
     // The pools the session's recycled events go back to: the decoding thread's pieces'
-    // and the other reader thread's (Event::home 1). They outlive `spare` (the session
+    // and the other reader thread's (EventHome 1). They outlive `spare` (the session
     // keeps this object declared before it).
     std::shared_ptr<EventPool> pool_, other_pool_;
     SpeculationSplicer splicer_;

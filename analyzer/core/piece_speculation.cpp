@@ -18,7 +18,7 @@ public:
         : events_(events), store_(0, pool), home_(home), instance_(instance) {}
     void onEvent(Event&& e) override { onOwnedEvent(store_.adopt(std::move(e))); }
     void onOwnedEvent(EventPtr e) override {
-        e->home = home_;
+        EventHome::set(*e, home_);
         e->instance = instance_;
         events_.push_back(std::move(e));
     }

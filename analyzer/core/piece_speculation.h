@@ -50,7 +50,7 @@ public:
     // the session's, line -> role; decoding_pool: where the session gives back the events
     // it is done with (or null), for pieces run on the decoding thread (Piece::thread 0);
     // other_pool: where it gives back those of pieces run on the other thread, marked
-    // Event::home 1 (or null: they use decoding_pool too); instance: what the session
+    // EventHome 1 (or null: they use decoding_pool too); instance: what the session
     // sets Event::instance to, set here already.
     PieceSpeculator(const DecoderFactory& factory, Options options, DecoderContext ctx,
                     FastPathHints hints, std::vector<int> role_of_line,

@@ -71,13 +71,7 @@ void BisscControlReassembler::startAccess(const ControlBits& frame) {
 
 void BisscControlReassembler::push(const ControlBits& frame) {
     if (phase_ == Phase::Idle) {
-        if (frame.cdm < 0) {
-            zeros_ = 0;  // a lost frame: the preamble must be seen again
-        } else if (frame.cdm == 1 && zeros_ >= kPreambleZeros) {
-            startAccess(frame);
-        } else {
-            zeros_ = frame.cdm ? 0 : zeros_ + 1;
-        }
+        pushIdle(frame);
         return;
     }
 
@@ -99,26 +93,7 @@ void BisscControlReassembler::push(const ControlBits& frame) {
         case Phase::Idle:
             break;
         case Phase::Header:
-            if (f == 1) cts_ = frame.cdm;
-            if (cts_ == 1 && f == kMasterStartFrame) {
-                parseRegisterHeader();
-                if (frame.cdm != 1) {  // the master never sent its start bit
-                    emitRegister(false, "abandoned");
-                    toIdle(1);
-                    return;
-                }
-                phase_ = Phase::WaitSlaveStart;
-                s_from_ = f;
-                busy_ = 0;
-            } else if (cts_ == 0 && f == kCommandStartFrame) {
-                if (frame.cdm != 1) {
-                    emitCommand(false, "abandoned");
-                    toIdle(1);
-                    return;
-                }
-                phase_ = Phase::Command;
-                command_zero_run_ = 0;
-            }
+            pushHeader(frame, f);
             break;
         case Phase::WaitSlaveStart:
             if (frame.cds == 1) {
@@ -153,6 +128,39 @@ void BisscControlReassembler::push(const ControlBits& frame) {
                 toIdle(command_zero_run_);
             }
             break;
+    }
+}
+
+void BisscControlReassembler::pushIdle(const ControlBits& frame) {
+    if (frame.cdm < 0) {
+        zeros_ = 0;  // a lost frame: the preamble must be seen again
+    } else if (frame.cdm == 1 && zeros_ >= kPreambleZeros) {
+        startAccess(frame);
+    } else {
+        zeros_ = frame.cdm ? 0 : zeros_ + 1;
+    }
+}
+
+void BisscControlReassembler::pushHeader(const ControlBits& frame, int f) {
+    if (f == 1) cts_ = frame.cdm;
+    if (cts_ == 1 && f == kMasterStartFrame) {
+        parseRegisterHeader();
+        if (frame.cdm != 1) {  // the master never sent its start bit
+            emitRegister(false, "abandoned");
+            toIdle(1);
+            return;
+        }
+        phase_ = Phase::WaitSlaveStart;
+        s_from_ = f;
+        busy_ = 0;
+    } else if (cts_ == 0 && f == kCommandStartFrame) {
+        if (frame.cdm != 1) {
+            emitCommand(false, "abandoned");
+            toIdle(1);
+            return;
+        }
+        phase_ = Phase::Command;
+        command_zero_run_ = 0;
     }
 }
 
@@ -197,40 +205,7 @@ void BisscControlReassembler::emitRegister(bool complete, const char* error) {
     Value data = Null{};
     bool refused = false;
     if (complete) {
-        const int fs = slave_start_;
-        const bool write = rw_ == 0b01;
-        if (write) {
-            const std::uint32_t d = cdmBits(fs, 8);
-            const bool master_crc_ok = bissCrc4(d, 8) == cdmBits(fs + 8, 4);
-            const std::uint32_t echo = cdsBits(fs + 1, 8);
-            const bool echo_crc_ok = bissCrc4(echo, 8) == cdsBits(fs + 9, 4);
-            crc_ok = crc_ok && master_crc_ok && echo_crc_ok;
-            if (!master_crc_ok || !echo_crc_ok) e.error("control_crc");
-            if (echo != d) e.error("echo");
-            if (frames_[fs + 12].cdm != 0) e.error("stop_bit");
-            data = std::int64_t(d);
-            e.set("echo", std::int64_t(echo));
-        } else {
-            const std::uint32_t d = cdsBits(fs + 1, 8);
-            const bool slave_crc_ok = bissCrc4(d, 8) == cdsBits(fs + 9, 4);
-            crc_ok = crc_ok && slave_crc_ok;
-            if (!slave_crc_ok) e.error("control_crc");
-            data = std::int64_t(d);
-        }
-        // Refusal: the slave inverts the returned W bit (write -> 00, read -> 11); in a
-        // sequential access it returns P = 1 instead (S1 p.13, S2 p.16).
-        if (header_parsed_ && (rw_ == 0b10 || rw_ == 0b01)) {
-            if (rw_echo_ == (rw_ ^ 0b01))
-                refused = true;
-            else if (rw_echo_ != rw_)
-                e.error("echo");
-        }
-        if (frames_[fs + 13].cds == 1) {
-            if (byte_index_ > 0)
-                refused = true;
-            else
-                e.error("stop_bit");
-        }
+        data = checkRegisterPayload(e, crc_ok, refused);
     } else {
         crc_ok = false;
         if (error) e.error(error);
@@ -244,14 +219,58 @@ void BisscControlReassembler::emitRegister(bool complete, const char* error) {
     if (header_parsed_) e.set("idl", std::int64_t(idl_));
     e.set("frames", std::int64_t(frames_.size() - std::size_t(first)));
 
+    e.summary = registerSummary(op, data, refused, crc_ok);
+    emit_(std::move(e));
+}
+
+Value BisscControlReassembler::checkRegisterPayload(Event& e, bool& crc_ok, bool& refused) const {
+    Value data = Null{};
+    const int fs = slave_start_;
+    const bool write = rw_ == 0b01;
+    if (write) {
+        const std::uint32_t d = cdmBits(fs, 8);
+        const bool master_crc_ok = bissCrc4(d, 8) == cdmBits(fs + 8, 4);
+        const std::uint32_t echo = cdsBits(fs + 1, 8);
+        const bool echo_crc_ok = bissCrc4(echo, 8) == cdsBits(fs + 9, 4);
+        crc_ok = crc_ok && master_crc_ok && echo_crc_ok;
+        if (!master_crc_ok || !echo_crc_ok) e.error("control_crc");
+        if (echo != d) e.error("echo");
+        if (frames_[fs + 12].cdm != 0) e.error("stop_bit");
+        data = std::int64_t(d);
+        e.set("echo", std::int64_t(echo));
+    } else {
+        const std::uint32_t d = cdsBits(fs + 1, 8);
+        const bool slave_crc_ok = bissCrc4(d, 8) == cdsBits(fs + 9, 4);
+        crc_ok = crc_ok && slave_crc_ok;
+        if (!slave_crc_ok) e.error("control_crc");
+        data = std::int64_t(d);
+    }
+    // Refusal: the slave inverts the returned W bit (write -> 00, read -> 11); in a
+    // sequential access it returns P = 1 instead (S1 p.13, S2 p.16).
+    if (header_parsed_ && (rw_ == 0b10 || rw_ == 0b01)) {
+        if (rw_echo_ == (rw_ ^ 0b01))
+            refused = true;
+        else if (rw_echo_ != rw_)
+            e.error("echo");
+    }
+    if (frames_[fs + 13].cds == 1) {
+        if (byte_index_ > 0)
+            refused = true;
+        else
+            e.error("stop_bit");
+    }
+    return data;
+}
+
+std::string BisscControlReassembler::registerSummary(const char* op, const Value& data,
+                                                     bool refused, bool crc_ok) const {
     std::string text = fmt::format("{} id={}", op, header_parsed_ ? std::to_string(id_) : "?");
     if (header_parsed_) text += fmt::format(" addr=0x{:02X}", (address_ + byte_index_) & 0x7F);
     if (!isNull(data)) text += fmt::format(" data=0x{:02X}", asInt(data));
     if (refused) text += " refused";
     if (busy_ > 0) text += fmt::format(" busy={}", busy_);
     text += crc_ok ? " crc ok" : " crc bad";
-    e.summary = std::move(text);
-    emit_(std::move(e));
+    return text;
 }
 
 void BisscControlReassembler::emitCommand(bool executed, const char* error) {

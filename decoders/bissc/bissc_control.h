@@ -13,6 +13,7 @@
 // (or 14 zeros: cancelled).
 #include <cstdint>
 #include <functional>
+#include <string>
 #include <vector>
 
 #include "core/event.h"
@@ -53,8 +54,16 @@ private:
     enum class Phase { Idle, Header, WaitSlaveStart, Payload, Command };
 
     void startAccess(const ControlBits& frame);
+    // push()'s steps: outside an access (the preamble, an access's start), and in its
+    // header (a register access or a command).
+    void pushIdle(const ControlBits& frame);
+    void pushHeader(const ControlBits& frame, int f);
     void parseRegisterHeader();
     void emitRegister(bool complete, const char* error);
+    // emitRegister()'s steps: a complete access's data byte, its CRCs, echo and stop bits
+    // checked (faults added to `e`); and its summary.
+    Value checkRegisterPayload(Event& e, bool& crc_ok, bool& refused) const;
+    std::string registerSummary(const char* op, const Value& data, bool refused, bool crc_ok) const;
     void emitCommand(bool executed, const char* error);
     void toIdle(int zeros);
     std::uint32_t cdmBits(int from, int n) const;  // n CDM bits from frame `from`, MSB first

@@ -33,13 +33,13 @@ BisscDecoder::BisscDecoder(const Options& options)
 void BisscDecoder::start(const DecoderContext& ctx) {
     Decoder::start(ctx);
     min_quiet_ = tb().fromNs(kMinQuietNs);
-    f_.delay = 0;
+    run_.delay = 0;
     updateQuietTicks();
-    ma_ = ctx.initial_levels.size() > kMa ? ctx.initial_levels[kMa] != 0 : true;
-    sl_ = ctx.initial_levels.size() > kSl ? ctx.initial_levels[kSl] != 0 : true;
-    sampler_.reset(sl_);
+    run_.ma = ctx.initial_levels.size() > kMa ? ctx.initial_levels[kMa] != 0 : true;
+    run_.sl = ctx.initial_levels.size() > kSl ? ctx.initial_levels[kSl] != 0 : true;
+    sampler_.reset(run_.sl);
     // A capture that starts with SL low starts inside a frame or a timeout.
-    state_ = sl_ ? State::Idle : State::WaitSlaveIdle;
+    state_ = run_.sl ? State::Idle : State::WaitSlaveIdle;
 }
 
 Tick BisscDecoder::watermark(Tick now) const {
@@ -73,24 +73,24 @@ void BisscDecoder::addError(const std::string& e) {
 double BisscDecoder::quietLimit() const {
     // Or the slave's timeout as seen before: a clock paused that long has reset the slave
     // (its next clocks are a new request, even if the pause was short of kMinQuietNs).
-    return std::min(std::max(min_quiet_, 3.0 * meanPeriod()) + f_.delay, slave_timeout_);
+    return std::min(std::max(min_quiet_, 3.0 * meanPeriod()) + run_.delay, slave_timeout_);
 }
 
 void BisscDecoder::checkQuietSlow(Tick now) {
     if (state_ == State::TimeoutEnded) {
         // The clock did not go on within a clock phase of its last edge: frame over.
-        if (!isClockPhase(double(now - last_ma_edge_), !ma_) && now >= f_.timeout_end) {
+        if (!isClockPhase(double(now - run_.last_ma_edge), !run_.ma) && now >= f_.timeout_end) {
             // After clocks past an early slave timeout, CDM is where the master left MA.
-            if (f_.retriggered) f_.ma_at_timeout_end = ma_;
+            if (f_.retriggered) f_.ma_at_timeout_end = run_.ma;
             closeFrame(f_.timeout_end, f_.timeout_end, nullptr, true);
-            state_ = sl_ ? State::Idle : State::WaitSlaveIdle;
+            state_ = run_.sl ? State::Idle : State::WaitSlaveIdle;
         }
         return;
     }
     // checkQuiet() only calls this in WaitAck / Data with a clock edge seen. The frame
     // ends once the clock has been quiet past quietLimit() or, before the ACK, once the
     // master gave up (never for a lone rise from low: that case is next).
-    if (double(now - last_ma_edge_) <= quietLimit() &&
+    if (double(now - run_.last_ma_edge) <= quietLimit() &&
         !(state_ == State::WaitAck && masterGaveUp(now)))
         return;
     if (state_ == State::WaitAck && f_.from_hold && f_.rises.size() == 1) {
@@ -99,18 +99,18 @@ void BisscDecoder::checkQuietSlow(Tick now) {
         idle();
         return;
     }
-    const char* why = state_ == State::WaitAck ? "no_ack"
-                      : f_.slot == Slot::Busy  ? "no_start"
-                                               : "short_frame";
-    closeFrame(last_ma_edge_, kNoTick, why, true);
-    state_ = sl_ ? State::Idle : State::WaitSlaveIdle;
+    const char* why = state_ == State::WaitAck  ? "no_ack"
+                      : run_.slot == Slot::Busy ? "no_start"
+                                                : "short_frame";
+    closeFrame(run_.last_ma_edge, kNoTick, why, true);
+    state_ = run_.sl ? State::Idle : State::WaitSlaveIdle;
 }
 
 bool BisscDecoder::isClockPhase(double length, bool level) const {
     // A rising edge ends a low phase. BiSS keeps clock phases well below the slave's
     // timeout, so a phase much longer than any in the frame is not clocking.
     constexpr double kPhaseTolerance = 1.25;
-    const double longest = double(level ? f_.max_low : f_.max_high);
+    const double longest = double(level ? run_.max_low : run_.max_high);
     return longest > 0 && length <= kPhaseTolerance * longest;
 }
 
@@ -149,11 +149,11 @@ void BisscDecoder::beginFrame(Tick start, bool from_hold) {
     f_ = Frame{};
     f_.rises = std::move(rises);
     f_.errors = std::move(errors);
+    run_ = RunFields{.last_ma_edge = run_.last_ma_edge, .ma = run_.ma, .sl = run_.sl};
     updatePeriod();  // no rises yet: the previous frame's period
-    f_.delay = 0;
     f_.start = start;
     f_.from_hold = from_hold;
-    sampler_.reset(sl_);
+    sampler_.reset(run_.sl);
     state_ = State::WaitAck;
     setBusyFrom(start);
     if (glitch_pending_) {
@@ -165,8 +165,8 @@ void BisscDecoder::beginFrame(Tick start, bool from_hold) {
 void BisscDecoder::edge(Tick t, int role, bool level) {
     if (dataEdgesNow()) {
         f_.rises.reserve(f_.rises.size() + 1);
-        MemberRefs members = memberRefs();
-        if (takeDataEdge(members, t, edgeKey(role, level))) {
+        RunRoom<std::size_t&> room = runRoom<std::size_t&>();
+        if (takeDataEdge(run_, room, t, edgeKey(role, level))) {
             if (role == kSl) sampler_.setLevel(level);  // (empty)
             return;
         }
@@ -203,64 +203,63 @@ void BisscDecoder::edgeReference(Tick t, int role, bool level) {
         onSl(t, level);
 }
 
-template <class DataState>
-bool BisscDecoder::takeDataEdge(DataState& s, Tick t, unsigned key) {
+template <class Count>
+bool BisscDecoder::takeDataEdge(RunFields& s, RunRoom<Count>& r, Tick t, unsigned key) {
     // One case per role and level, each with its level a constant: no branch on the level
     // after the one on the role.
     switch (key) {
         case kMa * 2 + 0:
-            return takeMaEdge<false, DataState>(s, t);
+            return takeMaEdge<false>(s, r, t);
         case kMa * 2 + 1:
-            return takeMaEdge<true, DataState>(s, t);
+            return takeMaEdge<true>(s, r, t);
         case kSl * 2 + 0:
-            return takeSlEdge(s, t, false);
+            return takeSlEdge(s, r, t, false);
         case kSl * 2 + 1:
-            return takeSlEdge(s, t, true);
+            return takeSlEdge(s, r, t, true);
         default:
             return false;
     }
 }
 
-template <bool kLevel, class DataState>
-bool BisscDecoder::takeMaEdge(DataState& s, Tick t) {
-    if (t - s.last_ma_edge > s.quiet_ticks) return false;  // a clock pause: checkQuiet()
+template <bool kLevel, class Count>
+bool BisscDecoder::takeMaEdge(RunFields& s, RunRoom<Count>& r, Tick t) {
+    if (t - s.last_ma_edge > r.quiet_ticks) return false;  // a clock pause: checkQuiet()
     // Every sample due before t sees SL's level now (scheduleUpTo() and
     // LineSampler::advanceTo() would resolve it so), taken in order, its time pushed
     // past the last sample's as scheduleUpTo() does.
     const double now = double(t);
-    while (s.scheduled < s.nrises) {
-        double at = sampleAt(s.rises[s.scheduled], s.delay, s.half_period);
+    while (s.scheduled < r.nrises) {
+        double at = sampleAt(r.rises[s.scheduled], s.delay, r.half_period);
         if (at >= now) break;
         at = std::max(at, s.last_sample_t);
         if (at >= now) return false;  // pushed to t or later: the sampler holds it
         if (s.slot == Slot::Data)
-            takeDataBitOf(s.data, s.data_count, s.slot, s.sl);
-        else if (!takePlainSlot(s.slot, int(s.scheduled), s.sl != 0))
+            takeDataBitOf(s, s.sl);
+        else if (!takePlainSlot(s.slot, int(s.scheduled), s.sl))
             return false;  // takeSample() takes it
         s.last_sample_t = at;
         ++s.scheduled;
     }
-    recordMaEdgeOf(t, kLevel, true, s.last_ma_edge, s.max_high, s.max_low, s.ma);
-    if constexpr (kLevel) {  // addRise(), with the divisor kept as a double
-        s.rises[s.nrises++] = t;
-        s.gaps += 1.0;
-        s.period = periodOver(s.rises[0], t, s.gaps);
-        s.half_period = s.period / 2.0;
+    recordMaEdgeOf(s, t, kLevel, true);
+    if constexpr (kLevel) {  // addRise()
+        r.rises[r.nrises++] = t;
+        r.gaps += 1.0;
+        s.period = periodOver(r.rises[0], t, r.gaps);
+        r.half_period = s.period / 2.0;
     }
     return true;
 }
 
-template <class DataState>
-bool BisscDecoder::takeSlEdge(DataState& s, Tick t, bool level) {
-    if (t - s.last_ma_edge > s.quiet_ticks) return false;
+template <class Count>
+bool BisscDecoder::takeSlEdge(RunFields& s, RunRoom<Count>& r, Tick t, bool level) {
+    if (t - s.last_ma_edge > r.quiet_ticks) return false;
     // An SL change before the next sample is due answers that sample's rise; otherwise
     // onSl() checks whether the slave gave up.
-    if (s.scheduled >= s.nrises ||
-        sampleAt(s.rises[s.scheduled], s.delay, s.half_period) < double(t))
+    if (s.scheduled >= r.nrises ||
+        sampleAt(r.rises[s.scheduled], s.delay, r.half_period) < double(t))
         return false;
     s.sl = level;
-    refineDelayOf(double(t - s.rises[s.scheduled]), s.period, s.half_period, s.delay, s.delay_sum,
-                  s.delay_edges);
+    refineDelayOf(s, double(t - r.rises[s.scheduled]), r.half_period);
     return true;
 }
 
@@ -270,7 +269,7 @@ bool BisscDecoder::takeAckWaitEdge(Tick t, int role, bool level) {
     // finding nothing to do, then onMaAfterSamples()'s WaitAck case.
     if (quietMayEnd(t)) return false;
     ++slow_ma_edges_;
-    recordMaEdge(t, level, !f_.rises.empty() && last_ma_edge_ != kNoTick);
+    recordMaEdge(t, level, !f_.rises.empty() && run_.last_ma_edge != kNoTick);
     clockBeforeAck(t, level);
     return true;
 }
@@ -281,13 +280,17 @@ const Edge* BisscDecoder::dataRun(const Edge* e, const Edge* last, const int* ro
     // rises and falls alternate, as edges()'s callers promise; the room must not depend
     // on a promise: a rise past it would be written past the storage.)
     f_.rises.reserve(f_.rises.size() + std::size_t(last - e));
-    RunState s = loadRun();
+    static_assert(splice_detail::kPaddingFree<RunFields>, "RunFields: keep it without padding");
+    RunFields s = run_;
+    RunRoom<std::size_t> r = runRoom<std::size_t>();
     for (; e != last; ++e) {
         const unsigned key =
             kLinesAreRoles ? e->lineAndLevel() : edgeKey(role_of_line[e->line], e->level != 0);
-        if (!takeDataEdge(s, e->t, key)) break;
+        if (!takeDataEdge(s, r, e->t, key)) break;
     }
-    storeRun(s);
+    run_ = s;
+    f_.rises.setSize(r.nrises);
+    sampler_.setLevel(run_.sl);  // (empty throughout)
     return e;
 }
 
@@ -303,7 +306,7 @@ void BisscDecoder::onMaAfterSamples(Tick t, bool level) {
     checkQuiet(t);
     recordMaEdge(t, level,
                  (state_ == State::WaitAck || state_ == State::Data) && !f_.rises.empty() &&
-                     last_ma_edge_ != kNoTick);
+                     run_.last_ma_edge != kNoTick);
 
     switch (state_) {
         case State::WaitSlaveIdle:
@@ -339,7 +342,7 @@ void BisscDecoder::onSl(Tick t, bool level) {
     ++slow_sl_edges_;
     scheduleUpTo(double(t));
     sampler_.lineEdge(t, level);
-    sl_ = level;
+    run_.sl = level;
     drainSamples();
     checkQuiet(t);
 
@@ -368,19 +371,19 @@ void BisscDecoder::onSl(Tick t, bool level) {
             f_.ack = t;
             // The clock phases from here on (isClockPhase()); a pause before the ACK
             // is not one.
-            f_.max_high = f_.max_low = 0;
+            run_.max_high = run_.max_low = 0;
             startDelayEstimate(double(t - f_.rises[1]));
             state_ = State::Data;
             break;
         case State::Data: {
             const double late =
-                double(f_.rises.back()) + f_.delay + kLateSlEdgePeriods * meanPeriod();
-            if (f_.scheduled == f_.rises.size() && sampler_.pending() == 0 && double(t) > late) {
+                double(f_.rises.back()) + run_.delay + kLateSlEdgePeriods * meanPeriod();
+            if (run_.scheduled == f_.rises.size() && sampler_.pending() == 0 && double(t) > late) {
                 // SL moved long after the last clocked slot: the master stopped early and
                 // the slave timed out (or gave up).
-                closeFrame(t, kNoTick, f_.slot == Slot::Busy ? "no_start" : "short_frame", true);
+                closeFrame(t, kNoTick, run_.slot == Slot::Busy ? "no_start" : "short_frame", true);
                 state_ = level ? State::Idle : State::WaitSlaveIdle;
-            } else if (f_.slot != Slot::Done) {
+            } else if (run_.slot != Slot::Done) {
                 refineDelay(t);
             }
             break;
@@ -389,7 +392,7 @@ void BisscDecoder::onSl(Tick t, bool level) {
             if (level) {
                 // Decided at the next MA edge or when the clock has been quiet a period.
                 f_.timeout_end = t;
-                f_.ma_at_timeout_end = ma_;
+                f_.ma_at_timeout_end = run_.ma;
                 state_ = State::TimeoutEnded;
                 checkQuiet(t);
             }
@@ -411,13 +414,13 @@ void BisscDecoder::scheduleUpTo(double t) {
     // Samples are scheduled just before the sampled line could pass them, so each uses
     // the line delay estimated from every SL edge seen until then.
     if (state_ != State::Data) return;
-    while (f_.scheduled < f_.rises.size()) {
-        double at = sampleTime(f_.scheduled);
+    while (run_.scheduled < f_.rises.size()) {
+        double at = sampleTime(run_.scheduled);
         if (at >= t) break;
-        at = std::max(at, f_.last_sample_t);
-        f_.last_sample_t = at;
-        sampler_.schedule(at, std::uint32_t(f_.scheduled));
-        ++f_.scheduled;
+        at = std::max(at, run_.last_sample_t);
+        run_.last_sample_t = at;
+        sampler_.schedule(at, std::uint32_t(run_.scheduled));
+        ++run_.scheduled;
     }
 }
 
@@ -426,15 +429,15 @@ void BisscDecoder::startDelayEstimate(double ack_delay) {
     // not change between frames: when this ACK agrees with the previous frame's refined
     // delay, that estimate (worth a few edges) steadies the samples taken before the
     // frame's own data edges refine it, i.e. in the processing-time slots.
-    f_.delay_sum = ack_delay;
-    f_.delay_edges = 1;
+    run_.delay_sum = ack_delay;
+    run_.delay_edges = 1;
     const double tolerance = std::max(2.0, 0.25 * meanPeriod());
     if (last_delay_ >= 0 && std::fabs(ack_delay - last_delay_) <= tolerance) {
         constexpr int kPriorWeight = 8;
-        f_.delay_sum += kPriorWeight * last_delay_;
-        f_.delay_edges += kPriorWeight;
+        run_.delay_sum += kPriorWeight * last_delay_;
+        run_.delay_edges += kPriorWeight;
     }
-    f_.delay = f_.delay_sum / f_.delay_edges;
+    run_.delay = run_.delay_sum / run_.delay_edges;
     f_.ack_delay = ack_delay;
 }
 
@@ -446,24 +449,24 @@ void BisscDecoder::drainSamples() {
 }
 
 void BisscDecoder::takeSample(int index, bool level, double t) {
-    if (takePlainSlot(f_.slot, index, level)) return;
-    switch (f_.slot) {
+    if (takePlainSlot(run_.slot, index, level)) return;
+    switch (run_.slot) {
         case Slot::Ack:  // high: no ACK in its slot
             addError("ack");
-            f_.slot = Slot::Busy;
+            run_.slot = Slot::Busy;
             break;
         case Slot::Data:
             takeDataBit(level);
             break;
         case Slot::Stop:
             f_.stop_index = index;
-            f_.slot = Slot::Done;
+            run_.slot = Slot::Done;
             sampler_.cancelAll();
             if (level) {
                 // No low stop bit, so no timeout to wait for: the frame ends here.
                 addError("stop_bit");
                 closeFrame(Tick(std::ceil(t)), kNoTick, nullptr, true);
-                state_ = sl_ ? State::Idle : State::WaitSlaveIdle;
+                state_ = run_.sl ? State::Idle : State::WaitSlaveIdle;
             } else {
                 state_ = State::Timeout;
             }
@@ -493,22 +496,22 @@ void BisscDecoder::closeFrame(Tick end, Tick timeout_end, const char* error, boo
 
     emit(std::move(owned));
     sampler_.cancelAll();
-    f_.slot = Slot::Done;
+    run_.slot = Slot::Done;
     idle();
     if (feed_control) control_.push(bits);
 }
 
 BisscDecoder::FrameOutcome BisscDecoder::checkFrame(Event& e, Tick timeout_end) {
     FrameOutcome out;
-    out.complete = f_.slot == Slot::Done;
+    out.complete = run_.slot == Slot::Done;
     const int pos_bits = std::min(s_.bits, s_.st_bits + s_.mt_bits);
     if (out.complete) {
-        out.pos = lowBits(f_.data, pos_bits);
+        out.pos = lowBits(run_.data, pos_bits);
         if (s_.crc_bits > 0) {
             // The message: the data bits, then nE and nW (66 bits at most).
             const std::uint64_t low =
-                (f_.data << 2) | std::uint64_t((f_.ne & 1) << 1) | std::uint64_t(f_.nw & 1);
-            out.crc_good = crc_.of(low, f_.data >> 62) == f_.crc_rx;
+                (run_.data << 2) | std::uint64_t((f_.ne & 1) << 1) | std::uint64_t(f_.nw & 1);
+            out.crc_good = crc_.of(low, run_.data >> 62) == f_.crc_rx;
             if (!out.crc_good) e.error("crc");
         }
         if (f_.ne == 0) e.error("error_bit");
@@ -532,9 +535,9 @@ BisscDecoder::FrameOutcome BisscDecoder::checkFrame(Event& e, Tick timeout_end) 
     out.period = meanPeriod();
     out.clocked = f_.rises.size() >= 2 && out.period > 0;
     if (out.clocked) last_period_ = out.period;
-    if (f_.ack != kNoTick) last_delay_ = f_.delay;
+    if (f_.ack != kNoTick) last_delay_ = run_.delay;
     out.acked = f_.ack != kNoTick;
-    out.delay_ns = out.acked ? std::llround(tb().toNsF(f_.delay)) : 0;
+    out.delay_ns = out.acked ? std::llround(tb().toNsF(run_.delay)) : 0;
     return out;
 }
 

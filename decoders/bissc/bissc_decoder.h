@@ -22,6 +22,7 @@
 #include "core/crc.h"
 #include "core/line_sampler.h"
 #include "core/registry.h"
+#include "core/splice_words.h"
 #include "core/splicing.h"
 #include "rise_list.h"
 
@@ -79,25 +80,64 @@ private:
     // Where the slot parser is within the frame.
     enum class Slot { Ack, Busy, Cds, Data, NE, NW, Crc, Stop, Done };
 
-    struct Frame {
+    // The state a frame's usual data edge reads and writes (takeDataEdge()), declared
+    // once: a run of edges copies it whole into a local, which the compiler keeps in
+    // registers, and back (dataRun()); a single edge works on the member (edge()). The
+    // line levels carry over from frame to frame, the rest is the frame's (beginFrame()).
+    // Laid out without padding and with no two doubles side by side: GCC copies a struct
+    // with padding through memory, and packs two adjacent doubles of a copied struct into
+    // one vector register, unpacked again at every edge (dataRun() checks the padding).
+    struct RunFields {
+        Tick last_ma_edge = kNoTick;
+        double delay = 0;           // line delay in ticks: mean over the SL edges so far
+        std::size_t scheduled = 1;  // rises with a scheduled sample (index 0 = LAT has none)
+        double delay_sum = 0;
+        // Longest MA clock phases (ticks) after LAT until the ACK (masterGaveUp()), then
+        // from the ACK on: the clock as it really runs, which a pause before the ACK (a
+        // frame whose start was missed) cannot stretch (isClockPhase()).
+        Tick max_high = 0;
+        double delay_edges = 0;  // a count, held as the divisor it is used as
+        Tick max_low = 0;
+        double last_sample_t = -1e300;
+        std::uint64_t data = 0;
+        // Mean clock period (ticks) over the frame's rises; the previous frame's until
+        // there are two. Kept up to date wherever the rises change (updatePeriod()).
+        double period = 0;
+        // The lines' levels, 0 or 1, as words: sl is shifted into `data` as it is.
+        std::uint64_t ma = 1, sl = 1;
+        int data_count = 0;
+        Slot slot = Slot::Ack;
+    };
+    // What takeDataEdge() needs beside RunFields, none of it state of its own: the rises'
+    // storage, with room reserved, and their count, a local for a run (dataRun() sets it
+    // back) or the list's own for one edge (Count = std::size_t&); two values derived
+    // from RunFields, kept up to date rather than worked out at every edge; and the quiet
+    // limit, read once.
+    template <class Count>
+    struct RunRoom {
+        Tick* rises;
+        Count nrises;
+        double gaps;         // nrises - 1: the period's divisor (periodOver())
+        double half_period;  // period / 2.0, as sampleAt() adds it
+        Tick quiet_ticks;
+    };
+    template <class Count>
+    RunRoom<Count> runRoom() {
+        return {f_.rises.data(), Count(f_.rises.sizeRef()), double(f_.rises.size() - 1),
+                run_.period / 2.0, quiet_ticks_};
+    }
+    // The rest of a frame: plain fields (compared whole by spliceState()), its rises and
+    // its errors.
+    struct FrameFields {
         Tick start = 0;
         bool from_hold = false;    // started from MA low (Hold-CDM)
         Tick hold_fall = kNoTick;  // first MA fall after a start from MA low
-        RiseList rises;            // MA rising edges; rises[0] = LAT
         Tick ack = kNoTick;
-        double delay = 0;      // line delay in ticks: mean over the SL edges so far
         double ack_delay = 0;  // 2nd MA rising edge -> ACK, as measured
-        double delay_sum = 0;
-        int delay_edges = 0;
-        std::size_t scheduled = 1;  // rises with a scheduled sample (index 0 = LAT has none)
-        double last_sample_t = -1e300;
-        Slot slot = Slot::Ack;
         int proc_cycles = 0;
         int start_index = -1;  // rise index of the start bit
         int stop_index = -1;
         int cds = -1;
-        std::uint64_t data = 0;
-        int data_count = 0;
         int ne = -1, nw = -1;
         std::uint32_t crc_rx = 0;
         int crc_count = 0;
@@ -106,126 +146,12 @@ private:
         // The slave timed out while the master was still clocking past the stop bit, and
         // took the remaining clocks for a new request (the MB5U with a RESOLUTE does this).
         bool retriggered = false;
-        // Longest MA clock phases (ticks) after LAT until the ACK (masterGaveUp()), then
-        // from the ACK on: the clock as it really runs, which a pause before the ACK (a
-        // frame whose start was missed) cannot stretch (isClockPhase()).
-        Tick max_high = 0, max_low = 0;
-        // Mean clock period (ticks) over `rises`; the previous frame's until there are
-        // two. Kept up to date wherever `rises` changes (updatePeriod()).
-        double period = 0;
+    };
+    struct Frame : FrameFields {
+        RiseList rises;  // MA rising edges; rises[0] = LAT
         std::vector<std::string> errors;
     };
 
-    // The state a frame's usual data edge reads and writes, copied from the members
-    // (loadRun()) into locals, which the compiler keeps in registers, and back
-    // (storeRun()), for a run of edges (dataRun()). As members, they would be reloaded
-    // after every store that might alias them.
-    struct RunState {
-        std::size_t scheduled;  // f_.scheduled
-        Tick* rises;            // f_.rises' storage, with room reserved for the run's rises
-        std::size_t nrises;     // f_.rises.size()
-        double gaps;            // nrises - 1: the period's divisor (periodOver())
-        double delay;
-        double period;
-        double half_period;  // period / 2.0, as sampleTimeWith() adds it
-        double last_sample_t;
-        double delay_sum;
-        double delay_edges;  // f_.delay_edges, converted once, not at every division
-        Tick quiet_ticks;    // (only read)
-        Tick last_ma_edge;
-        Tick max_high, max_low;  // f_.max_high, f_.max_low
-        bool ma;
-        std::uint64_t sl;  // 0 or 1: shifted into the data as it is
-        Slot slot;
-        std::uint64_t data;
-        int data_count;
-    };
-    RunState loadRun() {
-        const std::size_t n = f_.rises.size();
-        return RunState{.scheduled = f_.scheduled,
-                        .rises = f_.rises.data(),
-                        .nrises = n,
-                        .gaps = double(n - 1),
-                        .delay = f_.delay,
-                        .period = f_.period,
-                        .half_period = f_.period / 2.0,
-                        .last_sample_t = f_.last_sample_t,
-                        .delay_sum = f_.delay_sum,
-                        .delay_edges = double(f_.delay_edges),
-                        .quiet_ticks = quiet_ticks_,
-                        .last_ma_edge = last_ma_edge_,
-                        .max_high = f_.max_high,
-                        .max_low = f_.max_low,
-                        .ma = ma_,
-                        .sl = std::uint64_t(sl_),
-                        .slot = f_.slot,
-                        .data = f_.data,
-                        .data_count = f_.data_count};
-    }
-    void storeRun(const RunState& s) {
-        f_.scheduled = s.scheduled;
-        f_.rises.setSize(s.nrises);
-        f_.delay = s.delay;
-        f_.period = s.period;
-        f_.last_sample_t = s.last_sample_t;
-        f_.delay_sum = s.delay_sum;
-        f_.delay_edges = int(s.delay_edges);
-        f_.max_high = s.max_high;
-        f_.max_low = s.max_low;
-        f_.slot = s.slot;
-        f_.data = s.data;
-        f_.data_count = s.data_count;
-        last_ma_edge_ = s.last_ma_edge;
-        ma_ = s.ma;
-        sl_ = s.sl != 0;
-        sampler_.setLevel(sl_);  // (empty throughout)
-    }
-    // The same state bound to the members, for one edge (edge()): copying a RunState in
-    // and out for each edge would cost more than the edge (the glitch filter's path,
-    // where the session hands over one edge at a time). Only the two values derived from
-    // others are copies: the period's divisor and half the period.
-    struct MemberRefs {
-        std::size_t& scheduled;
-        Tick* rises;  // with room reserved for one more
-        std::size_t& nrises;
-        double gaps;
-        double& delay;
-        double& period;
-        double half_period;
-        double& last_sample_t;
-        double& delay_sum;
-        int& delay_edges;
-        Tick quiet_ticks;
-        Tick& last_ma_edge;
-        Tick& max_high;
-        Tick& max_low;
-        bool& ma;
-        bool& sl;
-        Slot& slot;
-        std::uint64_t& data;
-        int& data_count;
-    };
-    MemberRefs memberRefs() {
-        return MemberRefs{.scheduled = f_.scheduled,
-                          .rises = f_.rises.data(),
-                          .nrises = f_.rises.sizeRef(),
-                          .gaps = double(f_.rises.size() - 1),
-                          .delay = f_.delay,
-                          .period = f_.period,
-                          .half_period = f_.period / 2.0,
-                          .last_sample_t = f_.last_sample_t,
-                          .delay_sum = f_.delay_sum,
-                          .delay_edges = f_.delay_edges,
-                          .quiet_ticks = quiet_ticks_,
-                          .last_ma_edge = last_ma_edge_,
-                          .max_high = f_.max_high,
-                          .max_low = f_.max_low,
-                          .ma = ma_,
-                          .sl = sl_,
-                          .slot = f_.slot,
-                          .data = f_.data,
-                          .data_count = f_.data_count};
-    }
     // Only in State::Data with the sampler empty (and two rises, a period, seen).
     bool dataEdgesNow() const {
         return state_ == State::Data && sampler_.empty() && f_.rises.size() >= 2;
@@ -236,17 +162,19 @@ private:
     // fall due instead of through the LineSampler's buffer. False for any other edge
     // (a clock pause, a sample pushed past its edge, a high ACK, the stop bit, an SL
     // change after a sample due): the samples due before it that it could take are
-    // taken, and the general path goes on from there (after storeRun()). `key`: edgeKey().
-    // DataState: a RunState or MemberRefs.
-    template <class DataState>
-    [[gnu::always_inline]] inline bool takeDataEdge(DataState& s, Tick t, unsigned key);
+    // taken, and the general path goes on from there (after dataRun() stores its locals).
+    // `key`: edgeKey().
+    template <class Count>
+    [[gnu::always_inline]] inline bool takeDataEdge(RunFields& s, RunRoom<Count>& r, Tick t,
+                                                    unsigned key);
     // takeDataEdge()'s key: role * 2 + level, the low byte of an Edge whose line is its
     // role (FastPathHints::lines_are_roles); beyond kSl * 2 + 1 for any other role.
     static unsigned edgeKey(int role, bool level) { return unsigned(role) * 2u + unsigned(level); }
-    template <bool kLevel, class DataState>
-    [[gnu::always_inline]] inline bool takeMaEdge(DataState& s, Tick t);
-    template <class DataState>
-    [[gnu::always_inline]] inline bool takeSlEdge(DataState& s, Tick t, bool level);
+    template <bool kLevel, class Count>
+    [[gnu::always_inline]] inline bool takeMaEdge(RunFields& s, RunRoom<Count>& r, Tick t);
+    template <class Count>
+    [[gnu::always_inline]] inline bool takeSlEdge(RunFields& s, RunRoom<Count>& r, Tick t,
+                                                  bool level);
     // Before the ACK (State::WaitAck) with the sampler empty: an MA edge that onMa() would
     // only record (a clock phase, a rise), taken without the sampler and the state switch:
     // three edges of a usual frame. False for any other edge (an SL edge, a pause that
@@ -275,22 +203,21 @@ private:
     // frame, and counts towards its longest (masterGaveUp() before the ACK,
     // isClockPhase() from it on).
     [[gnu::always_inline]] void recordMaEdge(Tick t, bool level, bool in_frame) {
-        recordMaEdgeOf(t, level, in_frame, last_ma_edge_, f_.max_high, f_.max_low, ma_);
+        recordMaEdgeOf(run_, t, level, in_frame);
     }
-    // recordMaEdge()'s work on the state given (the members, or a RunState's). A branch
-    // on the level, not a reference chosen by it: a RunState whose field had its address
-    // taken would live in memory, not in registers.
-    [[gnu::always_inline]] static void recordMaEdgeOf(Tick t, bool level, bool in_frame,
-                                                      Tick& last_ma_edge, Tick& max_high,
-                                                      Tick& max_low, bool& ma) {
+    // recordMaEdge()'s work on the state given (the member, or a run's local copy). A
+    // branch on the level, not a reference chosen by it: a local whose field had its
+    // address taken would live in memory, not in registers.
+    [[gnu::always_inline]] static void recordMaEdgeOf(RunFields& s, Tick t, bool level,
+                                                      bool in_frame) {
         if (in_frame) {
             if (level)
-                max_low = std::max(max_low, t - last_ma_edge);
+                s.max_low = std::max(s.max_low, t - s.last_ma_edge);
             else
-                max_high = std::max(max_high, t - last_ma_edge);
+                s.max_high = std::max(s.max_high, t - s.last_ma_edge);
         }
-        last_ma_edge = t;
-        ma = level;
+        s.last_ma_edge = t;
+        s.ma = level;
     }
     void onSl(Tick t, bool level);
     void beginFrame(Tick start, bool from_hold);
@@ -309,13 +236,10 @@ private:
     [[gnu::always_inline]] inline void scheduleUpTo(double t);
     void startDelayEstimate(double ack_delay);
     void refineDelay(Tick t);
-    // refineDelay()'s work on the state given (the members, or a RunState): an SL edge
-    // `offset` ticks after the rise it answers. Count: the members' int, or the
-    // RunState's double (the same quotient).
-    template <class Count>
-    [[gnu::always_inline]] static inline void refineDelayOf(double offset, double period,
-                                                            double half_period, double& delay,
-                                                            double& delay_sum, Count& delay_edges);
+    // refineDelay()'s work on the state given (the member, or a run's local copy): an SL
+    // edge `offset` ticks after the rise it answers.
+    [[gnu::always_inline]] static inline void refineDelayOf(RunFields& s, double offset,
+                                                            double half_period);
     [[gnu::always_inline]] inline void drainSamples();
     void takeSample(int index, bool level, double t);
     // The samples that only set a field of the frame and move `slot` on: a low ACK, the
@@ -356,19 +280,16 @@ private:
         }
     }
     // A position bit (Slot::Data), the bulk of a frame's samples.
-    [[gnu::always_inline]] void takeDataBit(bool level) {
-        takeDataBitOf(f_.data, f_.data_count, f_.slot, level);
-    }
-    [[gnu::always_inline]] void takeDataBitOf(std::uint64_t& data, int& data_count, Slot& slot,
-                                              std::uint64_t level) const {
-        data = (data << 1) | level;
-        if (++data_count == s_.bits) slot = Slot::NE;
+    [[gnu::always_inline]] void takeDataBit(bool level) { takeDataBitOf(run_, level); }
+    [[gnu::always_inline]] void takeDataBitOf(RunFields& s, std::uint64_t level) const {
+        s.data = (s.data << 1) | level;
+        if (++s.data_count == s_.bits) s.slot = Slot::NE;
     }
     // Ticks, over the frame's rising edges so far. Asked several times per edge, worked
     // out once per rising edge.
-    double meanPeriod() const { return f_.period; }
+    double meanPeriod() const { return run_.period; }
     [[gnu::always_inline]] void updatePeriod() {
-        f_.period = f_.rises.size() < 2 ? last_period_ : periodOfRises();
+        run_.period = f_.rises.size() < 2 ? last_period_ : periodOfRises();
     }
     // The mean period over rises[] (two or more).
     [[gnu::always_inline]] double periodOfRises() const {
@@ -376,8 +297,8 @@ private:
         return periodOver(r.front(), r.back(), double(r.size() - 1));
     }
     // The mean period from the first rise to the last, `gaps` periods apart: the one
-    // formula of the general path (periodOfRises()) and the runs (takeMaEdge(), which keep
-    // the divisor as a double), so that both give the same period bit for bit.
+    // formula of the general path (periodOfRises()) and the runs (takeMaEdge()), so that
+    // both give the same period bit for bit.
     [[gnu::always_inline]] static double periodOver(Tick first, Tick last, double gaps) {
         return double(last - first) / gaps;
     }
@@ -416,8 +337,9 @@ private:
     // do nothing (takeAckWaitEdge() asks it too).
     bool quietMayEnd(Tick now) const {
         return state_ == State::TimeoutEnded ||
-               ((state_ == State::WaitAck || state_ == State::Data) && last_ma_edge_ != kNoTick &&
-                (now - last_ma_edge_ > quiet_ticks_ ||
+               ((state_ == State::WaitAck || state_ == State::Data) &&
+                run_.last_ma_edge != kNoTick &&
+                (now - run_.last_ma_edge > quiet_ticks_ ||
                  (state_ == State::WaitAck && masterGaveUp(now))));
     }
     // In WaitAck: has MA stayed high for many of the frame's clock phases (or, none
@@ -428,10 +350,10 @@ private:
     // (checkQuietSlow()). Neither phase known (a first frame, only LAT seen): the rule
     // of quietLimit() decides alone.
     bool masterGaveUp(Tick now) const {
-        if (!ma_ || (f_.from_hold && f_.rises.size() == 1)) return false;
-        const Tick phase = std::max(f_.max_high, f_.max_low);
+        if (!run_.ma || (f_.from_hold && f_.rises.size() == 1)) return false;
+        const Tick phase = std::max(run_.max_high, run_.max_low);
         const double limit = kGaveUpPhases * (phase > 0 ? double(phase) : last_period_ / 2);
-        return limit > 0 && double(now - last_ma_edge_) > limit;
+        return limit > 0 && double(now - run_.last_ma_edge) > limit;
     }
     // MA high this many of the frame's longest clock phases before the ACK: the master
     // gave up. Far above a clock's jitter or an uneven duty cycle, far below the pause
@@ -449,9 +371,8 @@ private:
     BisscControlReassembler control_;
     LineSampler sampler_;
     State state_ = State::Idle;
+    RunFields run_;
     Frame f_;
-    bool ma_ = true, sl_ = true;
-    Tick last_ma_edge_ = kNoTick;
     double last_delay_ = -1;  // line delay of the previous frame (ticks), -1 unknown
     bool glitch_pending_ = false;
     double last_period_ = 0;  // mean clock period of the previous frame (ticks)
@@ -485,29 +406,26 @@ inline void BisscDecoder::refineDelay(Tick t) {
     // Every SL change in the frame is the slave answering an MA rising edge: the one
     // whose slot has not been sampled yet (all samples before t are scheduled, the next
     // slot's is after t).
-    if (f_.scheduled < f_.rises.size())
-        refineDelayOf(double(t - f_.rises[f_.scheduled]), meanPeriod(), meanPeriod() / 2.0,
-                      f_.delay, f_.delay_sum, f_.delay_edges);
+    if (run_.scheduled < f_.rises.size())
+        refineDelayOf(run_, double(t - f_.rises[run_.scheduled]), meanPeriod() / 2.0);
 }
 
-template <class Count>
-inline void BisscDecoder::refineDelayOf(double offset, double period, double half_period,
-                                        double& delay, double& delay_sum, Count& delay_edges) {
+inline void BisscDecoder::refineDelayOf(RunFields& s, double offset, double half_period) {
     // The offset is one more measurement of the line delay; the mean resolves the delay
     // to a fraction of a capture sample (the ACK edge alone is quantised to a whole
     // sample, 0.4 bit at 2.4 samples per bit).
-    if (period <= 0) return;
-    if (std::fabs(offset - delay) >= half_period) return;
-    delay_sum += offset;
-    ++delay_edges;
-    delay = delay_sum / delay_edges;
+    if (s.period <= 0) return;
+    if (std::fabs(offset - s.delay) >= half_period) return;
+    s.delay_sum += offset;
+    ++s.delay_edges;
+    s.delay = s.delay_sum / s.delay_edges;
 }
 
 double BisscDecoder::sampleTime(std::size_t k) const {
     // Slot k (k >= 1; 1 = ACK) is driven after rising edge k and valid from r_k + d to
     // r_{k+1} + d: sample its middle. T is the frame's mean period, which smooths the
     // quantisation of a capture sampled at only a few samples per bit.
-    return sampleTimeWith(k, f_.delay, meanPeriod());
+    return sampleTimeWith(k, run_.delay, meanPeriod());
 }
 
 std::shared_ptr<const DecoderFactory> makeBisscFactory();

@@ -16,15 +16,11 @@ bool BisscDecoder::spliceState(SpliceState& out) const {
     out.counts.clear();
     if (!control_.appendSpliceWords(out.words)) return false;
     SpliceWords w(out.words);
-    w << state_ << ma_ << sl_ << last_ma_edge_ << last_delay_ << glitch_pending_ << last_period_
-      << min_quiet_ << slave_timeout_ << quiet_ticks_ << busySince() << sampler_.level();
-    // The frame: just begun (most fields still as Frame{} left them), or the last one
+    w << state_ << last_delay_ << glitch_pending_ << last_period_ << min_quiet_ << slave_timeout_
+      << quiet_ticks_ << busySince() << sampler_.level();
+    // The frame: just begun (most fields still as beginFrame() left them), or the last one
     // when idle, which a new frame resets; compared whole either way, not reasoned about.
-    w << f_.start << f_.from_hold << f_.hold_fall << f_.ack << f_.delay << f_.ack_delay
-      << f_.delay_sum << f_.delay_edges << f_.scheduled << f_.last_sample_t << f_.slot
-      << f_.proc_cycles << f_.start_index << f_.stop_index << f_.cds << f_.data << f_.data_count
-      << f_.ne << f_.nw << f_.crc_rx << f_.crc_count << f_.timeout_end << f_.ma_at_timeout_end
-      << f_.retriggered << f_.max_high << f_.max_low << f_.period << f_.rises.size();
+    w.fields(run_).fields(static_cast<const FrameFields&>(f_)) << f_.rises.size();
     for (std::size_t i = 0; i < f_.rises.size(); ++i)
         w << f_.rises[i];
     w << f_.errors.size();

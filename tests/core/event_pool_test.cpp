@@ -1,5 +1,5 @@
 // Where recycled events go: back to the store that output them, or, filled on the other
-// reader thread (Event::home 1), back to that thread's pool as they are, to be emptied
+// reader thread (EventHome 1), back to that thread's pool as they are, to be emptied
 // there when taken (event_pool.h).
 #include <gtest/gtest.h>
 
@@ -17,7 +17,7 @@ EventPtr used(std::uint8_t home, const char* summary) {
     e->add("pos", std::int64_t(42));
     e->error("crc");
     e->summary = summary;
-    e->home = home;
+    EventHome::set(*e, home);
     return e;
 }
 
@@ -34,14 +34,14 @@ TEST(RecycledEvents, EventsFromTheOtherThreadGoHomeAsTheyAre) {
         EventPtr mine = store.fresh();
         EXPECT_TRUE(mine->summary.empty());
         EXPECT_TRUE(mine->fields.empty());
-        EXPECT_EQ(mine->home, 0);
+        EXPECT_EQ(EventHome::of(*mine), 0);
     }  // the store gives what it holds for the other thread to that thread's pool
     std::vector<EventPtr> got;
     other.take(got, 10);
     ASSERT_EQ(got.size(), 1u);
     // Not emptied on the way: the thread it goes home to does that.
     EXPECT_EQ(got[0]->summary, "from the other thread");
-    EXPECT_EQ(got[0]->home, 1);
+    EXPECT_EQ(EventHome::of(*got[0]), 1);
     std::vector<EventPtr> none;
     own.take(none, 10);
     EXPECT_TRUE(none.empty());
@@ -61,7 +61,7 @@ TEST(RecycledEvents, EventsGivenBackAsTheyWereAreEmptiedWhenTaken) {
         EXPECT_TRUE(e->errors.empty()) << i;
         EXPECT_TRUE(e->summary.empty()) << i;
         EXPECT_EQ(e->start, 0) << i;
-        EXPECT_EQ(e->home, 1) << i;  // reset() keeps whose storage it is
+        EXPECT_EQ(EventHome::of(*e), 1) << i;  // reset() keeps whose storage it is
     }
 }
 
