@@ -32,6 +32,7 @@ thread_local MessageSink tls_messages;
 
 constexpr std::uint64_t kHeaderBlockBytes = 329;  // the header block's length field
 constexpr int kBlockHeader = 0, kBlockGzipWrapper = 254, kBlockUnfinished = 255;
+constexpr std::uint64_t kWrappingLength = std::uint64_t(1) << 62;
 
 std::uint64_t bigEndian64(const unsigned char* p) {
     std::uint64_t v = 0;
@@ -148,7 +149,15 @@ ChainFacts walkBlocks(BlockInput& in, const std::string& name, const char* where
             if (n == 0)
                 throw InputError(
                     fmt::format("{}: unfinished FST file (its writer never closed it)", name));
-            return facts;  // fstapi stops at a block still being written, and so do we
+            // fstapi steps over a block still being written by its length: one that runs
+            // past the end stops it, one of 2^62 or more wraps its position back for ever.
+            if (length >= kWrappingLength)
+                throw InputError(
+                    fmt::format("{}: FST block {} at byte {}{}: an unfinished block "
+                                "of {} bytes (corrupt)",
+                                name, n, at, where, length));
+            if (length < 8 || !in.skip(length - 8)) return facts;
+            continue;
         }
         if ((type > FST_BL_VCDATA_DYN_ALIAS2 && type != kBlockGzipWrapper) || length < 8)
             throw InputError(

@@ -3,7 +3,6 @@
 
 #include <fcntl.h>
 #include <signal.h>
-#include <sys/prctl.h>
 #include <sys/resource.h>
 #include <sys/socket.h>
 #include <sys/wait.h>
@@ -67,9 +66,9 @@ std::uint64_t addressSpaceNow() {
     return std::uint64_t(kb) * 1024;
 }
 
-// The child's setup: no crash reports of its own, no output, bounded memory.
+// The child's setup: no crash reports of its own, no output, bounded memory. (It ends
+// when the parent does: its socket closes, and sending fails without a SIGPIPE.)
 void becomeChild(std::uint64_t budget) {
-    ::prctl(PR_SET_PDEATHSIG, SIGKILL);
     if (__sanitizer_set_death_callback) __sanitizer_set_death_callback(nullptr);
     for (int sig : {SIGSEGV, SIGBUS, SIGABRT, SIGFPE, SIGILL, SIGPIPE})
         ::signal(sig, sig == SIGPIPE ? SIG_IGN : SIG_DFL);
@@ -132,7 +131,6 @@ FstChild::FstChild(const std::string& name, std::uint64_t budget,
     if (::socketpair(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0, fds) != 0)
         throw InputError(
             fmt::format("{}: cannot start the FST reader: {}", name, std::strerror(errno)));
-    std::fflush(nullptr);  // (buffered output is the parent's alone; the child never flushes)
     pid_ = ::fork();
     if (pid_ < 0) {
         const int e = errno;
@@ -144,7 +142,7 @@ FstChild::FstChild(const std::string& name, std::uint64_t budget,
     if (pid_ == 0) {
         ::close(fds[0]);
         becomeChild(budget);
-        ChildChannel out(fds[1]);
+        ChildChannel out(fds[1]);  // (the parent's buffered output is never flushed here)
         try {
             body(out);
         } catch (...) {  // the parent went away, or memory ran out: nothing left to tell

@@ -1,6 +1,7 @@
-// FST files with corrupt value-change blocks (regressions/fst/, des.fst with bytes changed:
-// a chain table that made fstapi free an invalid pointer, a block asking for a terabyte, a
-// time table of 2^27 items): decode exits 2 with one line naming the file and the block.
+// FST files with corrupt blocks (regressions/fst/: des.fst with bytes changed, a chain
+// table that made fstapi free an invalid pointer, a block asking for a terabyte, a time
+// table of 2^27 items; the fuzzer's unfinished block whose length wrapped fstapi's walk
+// round for ever): decode exits 2 with one line naming the file and the block.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -27,8 +28,16 @@ TEST(FstCorruptBlocks, EachExitsTwoWithOneLineNamingFileAndBlock) {
         SCOPED_TRACE(f);
         const std::string err =
             oneLineFailure({"--proto", "uart", "--map", "rx=top.clk", "--opt", "baud=1", f});
-        EXPECT_EQ(err.rfind("decode: " + f + ": FST block 1 at byte 330", 0), 0u) << err;
+        EXPECT_EQ(err.rfind("decode: " + f + ": FST block ", 0), 0u) << err;
     }
+}
+
+TEST(FstCorruptBlocks, TheInvalidFreeIsInTheBlockItCorrupts) {
+    const std::string f =
+        (fs::path(ROBUSTNESS_REGRESSIONS_DIR) / "fst" / "invalid_free_chain_table").string();
+    const std::string err =
+        oneLineFailure({"--proto", "uart", "--map", "rx=top.clk", "--opt", "baud=1", f});
+    EXPECT_EQ(err.rfind("decode: " + f + ": FST block 1 at byte 330: ", 0), 0u) << err;
 }
 
 TEST(FstCorruptBlocks, TheHeapCorruptionEndsOnlyFstapisProcess) {
