@@ -26,6 +26,7 @@
 #include "core/options.h"
 #include "core/own_cache_lines.h"
 #include "core/sample_rate.h"
+#include "csv_fields.h"
 #include "decimal_scan.h"
 #include "readers.h"
 #include "wall_clock.h"
@@ -34,22 +35,6 @@ namespace busdecode {
 
 namespace {
 
-std::string_view trimView(std::string_view s) {
-    while (!s.empty() && (s.front() == ' ' || s.front() == '\t'))
-        s.remove_prefix(1);
-    while (!s.empty() && (s.back() == ' ' || s.back() == '\t'))
-        s.remove_suffix(1);
-    if (s.size() >= 2 && s.front() == '"' && s.back() == '"') s = s.substr(1, s.size() - 2);
-    return s;
-}
-
-std::string lower(std::string_view s) {
-    std::string out(s);
-    for (auto& c : out)
-        c = char(std::tolower(static_cast<unsigned char>(c)));
-    return out;
-}
-
 // Splits at `sep` into `out` (views into `line`); no allocation once `out` has grown.
 void split(std::string_view line, char sep, std::vector<std::string_view>& out) {
     out.clear();
@@ -57,10 +42,10 @@ void split(std::string_view line, char sep, std::vector<std::string_view>& out) 
     for (;;) {
         std::size_t e = line.find(sep, b);
         if (e == std::string_view::npos) {
-            out.push_back(trimView(line.substr(b)));
+            out.push_back(trimField(line.substr(b)));
             return;
         }
-        out.push_back(trimView(line.substr(b, e - b)));
+        out.push_back(trimField(line.substr(b, e - b)));
         b = e + 1;
     }
 }
@@ -242,7 +227,7 @@ private:
             line_no_ = src_->lineNo();
             // The usual row starts with its time or value: no trimming to look at it.
             if (!line.empty() && (unsigned(line[0] - '0') < 10 || line[0] == '-')) return st;
-            std::string_view t = trimView(line);
+            std::string_view t = trimField(line);
             if (t.empty() || t.front() == ';' || t.front() == '#') continue;
             return st;
         }
@@ -269,14 +254,14 @@ private:
                 throw InputError(src_->name() + ": no CSV header (only comment lines)");
             }
             line_no_ = src_->lineNo();
-            std::string_view t = trimView(line);
+            std::string_view t = trimField(line);
             if (t.empty()) continue;
             if (t.front() == ';' || t.front() == '#') {
                 ++(t.size() > 1 && t[0] == '#' && unsigned(t[1] - '0') < 10 ? vcd_times
                                                                             : other_comments);
                 // sigrok: "; Channels (2/8): MA, SLO" and "; Samplerate: 24 MHz"
-                std::string_view body = trimView(t.substr(1));
-                const std::string lb = lower(body);
+                std::string_view body = trimField(t.substr(1));
+                const std::string lb = asciiLower(body);
                 auto colon = body.find(':');
                 if (lb.rfind("channels", 0) == 0 && colon != std::string_view::npos) {
                     std::vector<std::string_view> parts;
@@ -311,11 +296,11 @@ private:
         // ",0,0,0,0" in memory order, with this file's separator.
         sep_zero_ =
             std::uint64_t(std::uint8_t(sep_)) * 0x0001000100010001ULL + 0x3000300030003000ULL;
-        const std::string first = lower(f[0]);
+        const std::string first = asciiLower(f[0]);
         std::vector<std::string> names;
         // sigrok's header form: a row of channel types, the names only in the comment
         auto isType = [](std::string_view s) {
-            const std::string l = lower(s);
+            const std::string l = asciiLower(s);
             return l == "logic" || l == "analog";
         };
         const bool all_logic = std::all_of(f.begin(), f.end(), isType);
@@ -360,7 +345,7 @@ private:
     }
 
     static bool looksLikeVcdChange(std::string_view line) {
-        const std::string_view t = trimView(line);
+        const std::string_view t = trimField(line);
         return t.size() >= 2 && (t[0] == '0' || t[0] == '1' || t[0] == 'x' || t[0] == 'b') &&
                t.find_first_of(",;\t") == std::string_view::npos;
     }
@@ -392,8 +377,8 @@ private:
         if (sp != std::string::npos && title.size() > 2 && (title[0] == 'C' || title[0] == 'c') &&
             (title[1] == 'H' || title[1] == 'h') &&
             std::isdigit(static_cast<unsigned char>(title[2]))) {
-            std::string rest(trimView(std::string_view(title).substr(sp + 1)));
-            std::string lr = lower(rest);
+            std::string rest(trimField(std::string_view(title).substr(sp + 1)));
+            std::string lr = asciiLower(rest);
             s.name = lr.rfind("ch ", 0) == 0 || lr.empty() ? title.substr(0, sp) : rest;
         }
         return s;
@@ -435,10 +420,10 @@ private:
                 }
                 break;
             }
-            std::string_view t = trimView(line);
+            std::string_view t = trimField(line);
             if (t.empty() || t.front() == ';' || t.front() == '#') continue;
             held_.emplace_back(src_->lineNo(), std::string(line));
-            std::string_view tf = trimView(t.substr(0, t.find(sep_)));
+            std::string_view tf = trimField(t.substr(0, t.find(sep_)));
             Decimal d;
             if (parseTime(tf, d)) finest = std::max(finest, -d.exp10);
         }

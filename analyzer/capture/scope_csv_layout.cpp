@@ -11,26 +11,11 @@
 #include <fmt/format.h>
 
 #include "core/options.h"
+#include "csv_fields.h"
 
 namespace busdecode {
 
 namespace {
-
-std::string_view trim(std::string_view s) {
-    while (!s.empty() && (s.front() == ' ' || s.front() == '\t'))
-        s.remove_prefix(1);
-    while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r'))
-        s.remove_suffix(1);
-    if (s.size() >= 2 && s.front() == '"' && s.back() == '"') s = s.substr(1, s.size() - 2);
-    return s;
-}
-
-std::string lower(std::string_view s) {
-    std::string out(s);
-    for (auto& c : out)
-        c = char(std::tolower(static_cast<unsigned char>(c)));
-    return out;
-}
 
 bool startsWith(std::string_view s, std::string_view p) {
     return s.substr(0, p.size()) == p;
@@ -43,18 +28,10 @@ Fields splitFields(std::string_view line, char sep) {
     std::size_t b = 0;
     for (;;) {
         const std::size_t e = line.find(sep, b);
-        out.push_back(trim(line.substr(b, e == std::string_view::npos ? e : e - b)));
+        out.push_back(trimField(line.substr(b, e == std::string_view::npos ? e : e - b)));
         if (e == std::string_view::npos) return out;
         b = e + 1;
     }
-}
-
-std::string_view trimBlanks(std::string_view s) {
-    while (!s.empty() && (s.front() == ' ' || s.front() == '\t'))
-        s.remove_prefix(1);
-    while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r'))
-        s.remove_suffix(1);
-    return s;
 }
 
 // The complete lines of the head (the last, cut off by the peek, left out).
@@ -72,9 +49,10 @@ std::string channelName(std::string_view title) {
     std::string_view t = title;
     if (const auto open = t.find('('); open != std::string_view::npos && t.back() == ')') {
         const std::string_view inner = t.substr(open + 1, t.size() - open - 2);
-        t = lower(inner) == "v" || lower(inner) == "mv" ? trim(t.substr(0, open)) : inner;
+        t = asciiLower(inner) == "v" || asciiLower(inner) == "mv" ? trimField(t.substr(0, open))
+                                                                  : inner;
     }
-    if (startsWith(lower(t), "channel ")) return std::string(trim(t.substr(8)));
+    if (startsWith(asciiLower(t), "channel ")) return std::string(trimField(t.substr(8)));
     std::string out;
     for (char c : t)
         if (c != ' ') out += c;
@@ -138,9 +116,10 @@ std::optional<ScopeLayout> rigolIndexed(const std::vector<std::string_view>& lin
 std::optional<ScopeLayout> timeAndUnits(const std::vector<std::string_view>& lines,
                                         const std::string& name) {
     const Fields f = splitFields(lines[0], ',');
-    const std::string first = lower(f[0]);
+    const std::string first = asciiLower(f[0]);
     const bool keysight = first == "x-axis";
-    const bool second_row = lines.size() > 1 && lower(splitFields(lines[1], ',')[0]) == "second";
+    const bool second_row =
+        lines.size() > 1 && asciiLower(splitFields(lines[1], ',')[0]) == "second";
     if (!keysight && !((first == "x" || first == "time" || first.empty()) && second_row) &&
         !(f[0] == "X" && f.size() > 1 && startsWith(f[1], "CH")))
         return std::nullopt;
@@ -249,7 +228,7 @@ std::optional<ScopeLayout> picoscope(const std::vector<std::string_view>& lines,
     const Fields u = lines.size() > 1 ? splitFields(lines[1], sep) : Fields{};
     if (u.empty() || u[0].size() < 3 || u[0].front() != '(' || u[0].back() != ')')
         broken(name, 2, "expected PicoScope's units row '(ms);(V);...' after 'Time;Channel A;...'");
-    const std::string unit = lower(u[0].substr(1, u[0].size() - 2));
+    const std::string unit = asciiLower(u[0].substr(1, u[0].size() - 2));
     ScopeLayout l;
     l.format = "picoscope-csv";
     l.sep = sep;

@@ -10,6 +10,7 @@
 #include "bissc_generator.h"
 #include "bissc_test_util.h"
 #include "capture/capture_reader.h"
+#include "support/decode_events.h"
 
 using namespace busdecode;
 using namespace busdecode::test;
@@ -41,20 +42,15 @@ std::vector<std::string> adviceFor(const Waveform& w,
                                    const std::string& ma = "MA", const std::string& sl = "SLO",
                                    std::vector<Event>* events = nullptr) {
     registerBissc();
-    struct Collect : OutputSink {
-        std::vector<Event> events;
-        void onEvent(const Event& e, const CaptureFacts&) override { events.push_back(e); }
-    } sink;
     auto reader = memoryReader(w);
     DecoderRequest r;
     r.proto = "bissc";
     r.map = {{"ma", ma}, {"sl", sl}};
     r.options = options;
-    Session s({r}, *reader, "memory");
-    s.addSink(&sink);
-    s.run();
-    if (events) *events = sink.events;
-    return s.facts().advice;
+    CaptureFacts facts;
+    auto decoded = test::decodeEvents(*reader, {r}, &facts);
+    if (events) *events = std::move(decoded);
+    return facts.advice;
 }
 
 bool has(const std::string& text, const std::string& part) {

@@ -10,6 +10,7 @@
 
 #include "bissc_test_util.h"
 #include "capture/capture_reader.h"
+#include "support/decode_events.h"
 #include "support/paths.h"
 
 using namespace busdecode;
@@ -67,24 +68,14 @@ std::vector<RefFrame> referenceFor(const std::string& suffix) {
     return out;
 }
 
-struct Collect : OutputSink {
-    std::vector<Event> events;
-    void onEvent(const Event& e, const CaptureFacts&) override { events.push_back(e); }
-};
-
 std::vector<Event> decodeFile(const std::string& path, std::map<std::string, std::string> map = {},
                               const std::string& bits = "32") {
     registerBissc();
-    auto reader = openCapture(path, OpenOptions{});
     DecoderRequest r;
     r.proto = "bissc";
     r.map = std::move(map);
     r.options = {{"bits", bits}};
-    Session s({r}, *reader, path);
-    Collect sink;
-    s.addSink(&sink);
-    s.run();
-    return ofType(sink.events, "frame");
+    return ofType(test::decodeEvents(path, {r}), "frame");
 }
 
 void expectFrames(const std::vector<Event>& frames, const std::vector<RefFrame>& ref,

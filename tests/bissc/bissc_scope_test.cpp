@@ -14,26 +14,17 @@
 #include "capture/capture_reader.h"
 #include "capture/scope_csv_writer.h"
 #include "core/session.h"
+#include "support/decode_events.h"
 #include "support/paths.h"
 
 namespace busdecode {
 namespace {
 
-struct Collect : OutputSink {
-    std::vector<Event> frames;
-    void onEvent(const Event& e, const CaptureFacts&) override {
-        if (e.type == "frame") frames.push_back(e);
-    }
-};
-
 std::vector<Event> decodeFile(const std::string& path, const std::string& bits) {
     test::registerBissc();
-    auto reader = openCapture(path, OpenOptions{});
-    Session s({{"bissc", {{"ma", "MA"}, {"sl", "SLO"}}, {{"bits", bits}}}}, *reader, path);
-    Collect sink;
-    s.addSink(&sink);
-    s.run();
-    return sink.frames;
+    return test::eventsOfType(
+        test::decodeEvents(path, {{"bissc", {{"ma", "MA"}, {"sl", "SLO"}}, {{"bits", bits}}}}),
+        "frame");
 }
 
 TEST(BisscScope, EveryDialectDecodesEveryFrameWithItsLineDelay) {

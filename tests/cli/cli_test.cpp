@@ -14,16 +14,8 @@ using namespace busdecode::test;
 
 namespace {
 
-std::vector<std::string> lines(const std::string& s) {
-    std::vector<std::string> out;
-    std::istringstream in(s);
-    for (std::string l; std::getline(in, l);)
-        out.push_back(l);
-    return out;
-}
-
 int countLines(const std::string& s) {
-    return int(lines(s).size());
+    return int(splitLines(s).size());
 }
 
 // One SPI word (mode 3) and, on separate lines, two UART bytes at 115200 baud.
@@ -63,7 +55,7 @@ std::vector<std::string> pluginsLoaded(const std::vector<std::string>& args, int
     const RunResult r = runCommand(cmd);
     EXPECT_EQ(r.status, status) << r.err;
     std::vector<std::string> ids;
-    for (const auto& l : lines(r.err)) {
+    for (const auto& l : splitLines(r.err)) {
         const auto so = l.find(".so\" loaded library");
         const auto name = l.rfind("busdecode_", so);
         if (so != std::string::npos && name != std::string::npos)
@@ -106,7 +98,7 @@ TEST(Cli, JsonlHasTheContractKeysInTimeOrderAcrossTwoBuses) {
     ASSERT_EQ(r.status, 0) << r.err;
     double last = -1;
     int spi = 0, uart = 0;
-    for (const auto& l : lines(r.out)) {
+    for (const auto& l : splitLines(r.out)) {
         QJsonParseError err;
         auto doc = QJsonDocument::fromJson(QByteArray::fromStdString(l), &err);
         ASSERT_EQ(err.error, QJsonParseError::NoError) << l;
@@ -162,7 +154,7 @@ TEST(Cli, AHintEndsTheTextWhenNoFrameIsCleanAndGoesToStderrWithJsonl) {
         "bits=26: check the data width (--opt bits=auto finds it from the traffic)";
     auto r = runDecode({csv, "--proto", "bissc"});
     ASSERT_EQ(r.status, 0) << r.err;
-    const auto text = lines(r.out);
+    const auto text = splitLines(r.out);
     ASSERT_FALSE(text.empty());
     EXPECT_EQ(text.back().rfind("# hint: " + hint, 0), 0u) << r.out;
     EXPECT_EQ(r.err, "");

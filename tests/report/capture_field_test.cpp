@@ -16,14 +16,6 @@
 namespace busdecode {
 namespace {
 
-std::vector<std::string> lines(const std::string& s) {
-    std::vector<std::string> out;
-    std::istringstream in(s);
-    for (std::string l; std::getline(in, l);)
-        out.push_back(l);
-    return out;
-}
-
 // The SSI capture with a recording date in its header.
 std::string datedCopy(const std::string& capture) {
     const std::string path = test::tempDir() + "/dated.vcd";
@@ -128,7 +120,7 @@ TEST(WallClock, LecroyCsvGivesItsFirstSegmentsTriggerTime) {
 TEST(CaptureField, OneCaptureKeepsItsLinesAsTheyWere) {
     const auto r = test::runDecode({ssiCapture(), "--proto", "ssi", "--format", "jsonl"});
     ASSERT_EQ(r.status, 0) << r.err;
-    const auto out = lines(r.out);
+    const auto out = test::splitLines(r.out);
     ASSERT_FALSE(out.empty());
     EXPECT_EQ(out[0].rfind("{\"proto\":\"ssi\",\"type\":\"frame\",\"start_ns\":", 0), 0u) << out[0];
     EXPECT_EQ(r.out.find("\"capture"), std::string::npos);
@@ -138,7 +130,7 @@ TEST(CaptureField, SeveralCapturesNameTheirsAndTheirStart) {
     const std::string plain = ssiCapture(), dated = datedCopy(plain);
     const auto r = test::runDecode({plain, dated, "--proto", "ssi", "--format", "jsonl"});
     ASSERT_EQ(r.status, 0) << r.err;
-    const auto out = lines(r.out);
+    const auto out = test::splitLines(r.out);
     ASSERT_EQ(out.size() % 2, 0u);
     const std::size_t half = out.size() / 2;
     const std::string first =

@@ -37,14 +37,6 @@ std::string rulesFile(const std::string& name, const char* text) {
     return path;
 }
 
-std::vector<std::string> lines(const std::string& s) {
-    std::vector<std::string> out;
-    std::istringstream in(s);
-    for (std::string l; std::getline(in, l);)
-        out.push_back(l);
-    return out;
-}
-
 double toNs(double v, const std::string& unit) {
     if (unit == "s") return v * 1e9;
     if (unit == "ms") return v * 1e6;
@@ -79,7 +71,7 @@ std::vector<std::string> verifyArgs(const std::vector<FaultCapture>& caps,
 void expectRightRulesFail(const std::vector<FaultCapture>& caps, const std::string& rules) {
     const auto r = test::runDecode(verifyArgs(caps, rules));
     EXPECT_EQ(r.status, 1) << r.out << r.err;
-    const auto out = lines(r.out);
+    const auto out = test::splitLines(r.out);
     ASSERT_EQ(out.size(), caps.size() + 1) << r.out << r.err;
     for (std::size_t i = 0; i < caps.size(); ++i) {
         const auto& c = caps[i];
@@ -135,13 +127,13 @@ TEST(VerifyCli, HintsGoToStderrAndJunitNotBetweenTheVerdictLines) {
                                     rulesFile("bissc.toml", test::kBisscRules), "--opt", "bits=20",
                                     "--junit", junit});
     EXPECT_EQ(r.status, 1) << r.out << r.err;
-    EXPECT_EQ(lines(r.out).size(), 2u) << r.out;  // the verdict and the summary
+    EXPECT_EQ(test::splitLines(r.out).size(), 2u) << r.out;  // the verdict and the summary
     const std::string hint = "decode: " + caps[0].path + ": hint: bissc: none of the ";
     EXPECT_EQ(r.err.rfind(hint, 0), 0u) << r.err;
     EXPECT_NE(r.err.find(" answered frames came out clean (CRC right, stop bit low) with bits=20"),
               std::string::npos)
         << r.err;
-    EXPECT_EQ(lines(r.err).size(), 1u) << r.err;
+    EXPECT_EQ(test::splitLines(r.err).size(), 1u) << r.err;
     EXPECT_NE(test::readFile(junit).find("<system-err>" + r.err), std::string::npos);
 
     const auto clean = test::runDecode(

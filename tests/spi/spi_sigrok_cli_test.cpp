@@ -17,6 +17,7 @@
 #include "core/session.h"
 #include "spi_generator.h"
 #include "spi_info.h"
+#include "support/decode_events.h"
 #include "support/paths.h"
 
 using namespace busdecode;
@@ -27,11 +28,6 @@ namespace {
 bool haveSigrokCli() {
     return runCommand("command -v sigrok-cli >/dev/null 2>&1").status == 0;
 }
-
-struct Collect : OutputSink {
-    std::vector<Event> events;
-    void onEvent(const Event& e, const CaptureFacts&) override { events.push_back(e); }
-};
 
 struct Word {
     Tick ss, es;
@@ -86,22 +82,18 @@ std::vector<Word> sigrokWords(const std::string& file, const BusSetup& s) {
 
 std::vector<Word> ourWords(const std::string& file, const BusSetup& s) {
     Registry::instance().add(makeSpiFactory());
-    auto reader = openCapture(file, OpenOptions{});
     std::map<std::string, std::string> opts = {
         {"cpol", std::to_string(s.cpol)},
         {"cpha", std::to_string(s.cpha)},
         {"bits", std::to_string(s.bits)},
         {"lsb_first", s.lsb ? "1" : "0"},
         {"cs_polarity", s.cs_high ? "active-high" : "active-low"}};
-    Session session(
+    const auto events = decodeEvents(
+        file,
         {DecoderRequest{
-            "spi", {{"cs", s.cs}, {"sclk", s.sclk}, {"mosi", s.mosi}, {"miso", s.miso}}, opts}},
-        *reader, file);
-    Collect c;
-    session.addSink(&c);
-    session.run();
+            "spi", {{"cs", s.cs}, {"sclk", s.sclk}, {"mosi", s.mosi}, {"miso", s.miso}}, opts}});
     std::vector<Word> out;
-    for (const auto& e : c.events) {
+    for (const auto& e : events) {
         if (e.hasError("short_frame")) continue;  // sigrok drops words cut short silently
         out.push_back({e.start, e.end, std::get<std::uint64_t>(*e.get("mosi")),
                        std::get<std::uint64_t>(*e.get("miso"))});
@@ -185,17 +177,16 @@ TEST(SpiVsSigrokCli, SrAndItsVcdAndCsvExportsDecodeIdentically) {
     ASSERT_EQ(
         runCommand("sigrok-cli -i " + shellQuote(sr) + " -O csv -o " + shellQuote(csv)).status, 0);
     auto decodeNs = [](const std::string& file) {
-        auto reader = openCapture(file, OpenOptions{});
-        const Timebase tb = reader->timebase();
-        Session s({DecoderRequest{"spi",
-                                  {{"cs", "CS#"}, {"sclk", "CLK"}, {"mosi", "MOSI"}},
-                                  {{"cpol", "0"}, {"cpha", "0"}}}},
-                  *reader, file);
-        Collect c;
-        s.addSink(&c);
-        s.run();
+        CaptureFacts facts;
+        const auto events =
+            decodeEvents(file,
+                         {DecoderRequest{"spi",
+                                         {{"cs", "CS#"}, {"sclk", "CLK"}, {"mosi", "MOSI"}},
+                                         {{"cpol", "0"}, {"cpha", "0"}}}},
+                         {}, &facts);
+        const Timebase tb = facts.timebase;
         std::vector<std::string> out;
-        for (const auto& e : c.events)
+        for (const auto& e : events)
             out.push_back(std::to_string(tb.toNs(e.start)) + "-" + std::to_string(tb.toNs(e.end)) +
                           " " + e.summary);
         return out;

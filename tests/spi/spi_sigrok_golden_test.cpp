@@ -11,6 +11,7 @@
 #include "core/registry.h"
 #include "core/session.h"
 #include "spi_info.h"
+#include "support/decode_events.h"
 #include "support/paths.h"
 
 using namespace busdecode;
@@ -18,21 +19,11 @@ using namespace busdecode::test;
 
 namespace {
 
-struct Collect : OutputSink {
-    std::vector<Event> events;
-    void onEvent(const Event& e, const CaptureFacts&) override { events.push_back(e); }
-};
-
 std::vector<Event> decodeSr(const std::string& rel, std::map<std::string, std::string> map,
                             std::map<std::string, std::string> opts) {
     Registry::instance().add(makeSpiFactory());
     const std::string path = realCaptures() + "/sigrok-dumps/spi/" + rel;
-    auto reader = openCapture(path, OpenOptions{});
-    Session s({DecoderRequest{"spi", std::move(map), std::move(opts)}}, *reader, path);
-    Collect c;
-    s.addSink(&c);
-    s.run();
-    return c.events;
+    return decodeEvents(path, {DecoderRequest{"spi", std::move(map), std::move(opts)}});
 }
 
 // One expected word: sample range and the hex texts of sigrok's data annotations.

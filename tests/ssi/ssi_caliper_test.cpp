@@ -14,6 +14,7 @@
 #include "capture/capture_reader.h"
 #include "core/session.h"
 #include "ssi_test_util.h"
+#include "support/decode_events.h"
 #include "support/paths.h"
 
 using namespace busdecode;
@@ -32,21 +33,11 @@ std::string caliperDir() {
 
 std::vector<Event> decodeFile(const std::string& path) {
     registerSsi();
-    auto reader = openCapture(path, {});
     DecoderRequest r;
     r.proto = "ssi";
     r.map = {{"clk", "CLK"}, {"data", "DATA"}};
     r.options = kCaliperOptions;
-    Session s({r}, *reader, path);
-    struct Collect : OutputSink {
-        std::vector<Event> frames;
-        void onEvent(const Event& e, const CaptureFacts&) override {
-            if (e.type == "frame") frames.push_back(e);
-        }
-    } sink;
-    s.addSink(&sink);
-    s.run();
-    return sink.frames;
+    return test::eventsOfType(test::decodeEvents(path, {r}), "frame");
 }
 
 // The word a caliper sends for the value in its file name: 20-bit magnitude in 1/100 mm

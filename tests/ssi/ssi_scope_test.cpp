@@ -11,17 +11,11 @@
 #include "capture/scope_csv_writer.h"
 #include "core/session.h"
 #include "ssi_test_util.h"
+#include "support/decode_events.h"
 #include "support/paths.h"
 
 namespace busdecode {
 namespace {
-
-struct Collect : OutputSink {
-    std::vector<Event> frames;
-    void onEvent(const Event& e, const CaptureFacts&) override {
-        if (e.type == "frame") frames.push_back(e);
-    }
-};
 
 TEST(SsiScope, EveryDialectDecodesEveryFrameWithItsCableDelay) {
     SsiGenConfig cfg;
@@ -53,18 +47,15 @@ TEST(SsiScope, EveryDialectDecodesEveryFrameWithItsCableDelay) {
             const std::string p =
                 test::tempDir() + fmt::format("/ssi_{}_{}.csv", scopeDialectName(d), snr);
             writeScopeCsv(g.wave, p, d, s);
-            auto reader = openCapture(p, OpenOptions{});
-            Session session({{"ssi",
-                              {{"clk", "clk"}, {"data", "data"}},
-                              {{"bits", "25"}, {"delay_ns", "auto"}}}},
-                            *reader, p);
-            Collect sink;
-            session.addSink(&sink);
-            session.run();
-            ASSERT_EQ(sink.frames.size(), g.frames.size());
+            const auto decoded = test::eventsOfType(
+                test::decodeEvents(p, {{"ssi",
+                                        {{"clk", "clk"}, {"data", "data"}},
+                                        {{"bits", "25"}, {"delay_ns", "auto"}}}}),
+                "frame");
+            ASSERT_EQ(decoded.size(), g.frames.size());
             std::vector<double> delays;
-            for (std::size_t i = 0; i < sink.frames.size(); ++i) {
-                const Event& e = sink.frames[i];
+            for (std::size_t i = 0; i < decoded.size(); ++i) {
+                const Event& e = decoded[i];
                 SCOPED_TRACE(fmt::format("frame {}: {}", i, e.summary));
                 EXPECT_TRUE(e.errors.empty());
                 EXPECT_EQ(ssitest::u64(e, "raw"), g.frames[i].raw);

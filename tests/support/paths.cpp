@@ -75,6 +75,14 @@ RunResult runCommand(const std::string& cmdline) {
     return r;
 }
 
+std::vector<std::string> splitLines(const std::string& text) {
+    std::vector<std::string> out;
+    std::istringstream in(text);
+    for (std::string l; std::getline(in, l);)
+        out.push_back(l);
+    return out;
+}
+
 RunResult runDecode(const std::vector<std::string>& args) {
     std::string cmd = shellQuote(binDir() + "/decode");
     for (const auto& a : args)

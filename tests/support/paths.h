@@ -12,6 +12,8 @@ std::string binDir();        // build/bin (decode, plugins/)
 std::string tempDir();       // a fresh directory for this test process
 std::string readFile(const std::string& path);
 void writeFile(const std::string& path, const std::string& text);
+// The lines of a text (a CLI's output), without their newlines.
+std::vector<std::string> splitLines(const std::string& text);
 
 struct RunResult {
     int status = -1;  // exit status, or -1 if it did not exit normally

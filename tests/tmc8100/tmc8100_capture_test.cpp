@@ -7,25 +7,16 @@
 #include "capture/capture_reader.h"
 #include "core/session.h"
 #include "event_expect.h"
+#include "support/decode_events.h"
 #include "support/paths.h"
 
 using namespace busdecode;
 using namespace busdecode::test;
 
 namespace {
-struct Collect : OutputSink {
-    std::vector<Event> events;
-    void onEvent(const Event& e, const CaptureFacts&) override { events.push_back(e); }
-};
-
 std::vector<Event> decodeFile(const std::string& path, std::vector<DecoderRequest> req) {
     registerDecoders();
-    auto reader = openCapture(path, OpenOptions{});
-    Session s(std::move(req), *reader, path);
-    Collect c;
-    s.addSink(&c);
-    s.run();
-    return c.events;
+    return test::decodeEvents(path, std::move(req));
 }
 }  // namespace
 

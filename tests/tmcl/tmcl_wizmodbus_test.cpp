@@ -5,6 +5,7 @@
 #include "capture/capture_reader.h"
 #include "core/registry.h"
 #include "core/session.h"
+#include "support/decode_events.h"
 #include "support/paths.h"
 #include "tmcl_decoder.h"
 #include "uart_decoder.h"
@@ -12,23 +13,12 @@
 namespace busdecode {
 namespace {
 
-class Collect : public OutputSink {
-public:
-    std::vector<Event> events;
-    void onEvent(const Event& e, const CaptureFacts&) override { events.push_back(e); }
-};
-
 std::vector<Event> decodeWiz(std::map<std::string, std::string> map) {
     Registry::instance().add(makeUartFactory());
     Registry::instance().add(makeTmclFactory());
     const std::string path =
         test::realCaptures() + "/sigrok-dumps/uart/modbus_rtu/wizmodbus/wizmodbus.sr";
-    auto reader = openCapture(path, OpenOptions{});
-    Session session({{"tmcl", std::move(map), {{"baud", "9600"}}}}, *reader, path);
-    Collect sink;
-    session.addSink(&sink);
-    session.run();
-    return sink.events;
+    return test::decodeEvents(path, {{"tmcl", std::move(map), {{"baud", "9600"}}}});
 }
 
 void expectNotTmcl(const std::vector<Event>& events, const std::string& what) {

@@ -10,37 +10,29 @@
 #include "capture/capture_reader.h"
 #include "core/registry.h"
 #include "core/session.h"
+#include "support/decode_events.h"
 #include "support/paths.h"
 #include "uart_decoder.h"
 
 namespace busdecode {
 namespace {
 
-class Collect : public OutputSink {
-public:
-    std::vector<std::string> lines;
-    Timebase tb;
-    void begin(const CaptureFacts& f) override { tb = f.timebase; }
-    void onEvent(const Event& e, const CaptureFacts&) override {
-        lines.push_back(fmt::format("{} {} {} {}", tb.toNs(e.start),
-                                    std::get<std::string>(*e.get("line")), asInt(*e.get("value")),
-                                    e.errors.size()));
-    }
-};
-
 std::vector<std::string> decodeFile(const std::string& path) {
     Registry::instance().add(makeUartFactory());
-    auto reader = openCapture(path, OpenOptions{});
-    Session session({{"uart", {{"rx", "RX"}, {"tx", "TX"}}, {{"baud", "115200"}}}}, *reader, path);
-    Collect sink;
-    session.addSink(&sink);
-    session.run();
-    return sink.lines;
+    CaptureFacts facts;
+    const auto events = test::decodeEvents(
+        path, {{"uart", {{"rx", "RX"}, {"tx", "TX"}}, {{"baud", "115200"}}}}, {}, &facts);
+    std::vector<std::string> lines;
+    for (const Event& e : events)
+        lines.push_back(fmt::format("{} {} {} {}", facts.timebase.toNs(e.start),
+                                    std::get<std::string>(*e.get("line")), asInt(*e.get("value")),
+                                    e.errors.size()));
+    return lines;
 }
 
 TEST(UartDifferential, SessionVcdAndCsvOfOneCaptureDecodeAlike) {
-    const auto sr = decodeFile(test::realCaptures() +
-                               "/sigrok-dumps/uart/rxtx_overlapped/rxtx_overlapped.sr");
+    const auto sr =
+        decodeFile(test::realCaptures() + "/sigrok-dumps/uart/rxtx_overlapped/rxtx_overlapped.sr");
     ASSERT_EQ(sr.size(), 17u);  // 10 on rx, 7 on tx (sigrok-test's expected outputs)
     EXPECT_EQ(decodeFile(test::sourceDir() + "/captures/uart_rxtx_overlapped_sigrok-cli.vcd"), sr);
     EXPECT_EQ(decodeFile(test::sourceDir() + "/captures/uart_rxtx_overlapped_sigrok-cli.csv"), sr);

@@ -12,19 +12,13 @@
 #include "capture/scope_csv_writer.h"
 #include "core/registry.h"
 #include "core/session.h"
+#include "support/decode_events.h"
 #include "support/paths.h"
 #include "uart_decoder.h"
 #include "uart_generator.h"
 
 namespace busdecode {
 namespace {
-
-struct Collect : OutputSink {
-    std::vector<Event> bytes;
-    void onEvent(const Event& e, const CaptureFacts&) override {
-        if (e.type == "byte") bytes.push_back(e);
-    }
-};
 
 TEST(UartRs422Scope, AnOpenWireDecodesEveryCharacterAndIsReported) {
     Registry::instance().add(makeUartFactory());
@@ -55,16 +49,14 @@ TEST(UartRs422Scope, AnOpenWireDecodesEveryCharacterAndIsReported) {
     OpenOptions o;
     o.pairs = {"TX+,TX-"};
     auto reader = openCapture(p, o);
-    Session session({{"uart", {{"rx", "TX+,TX-"}}, {{"baud", "115200"}}}}, *reader, p);
-    Collect sink;
-    session.addSink(&sink);
-    session.run();
-    ASSERT_EQ(sink.bytes.size(), text.size());
+    const auto bytes = test::eventsOfType(
+        test::decodeEvents(*reader, {{"uart", {{"rx", "TX+,TX-"}}, {{"baud", "115200"}}}}), "byte");
+    ASSERT_EQ(bytes.size(), text.size());
     // Every character decodes; those after the wire opened carry the pair fault.
     for (std::size_t i = 0; i < text.size(); ++i) {
-        EXPECT_EQ(asInt(*sink.bytes[i].get("value")), std::uint8_t(text[i])) << i;
-        const bool after = double(sink.bytes[i].end) > open_ns;
-        EXPECT_EQ(sink.bytes[i].errors,
+        EXPECT_EQ(asInt(*bytes[i].get("value")), std::uint8_t(text[i])) << i;
+        const bool after = double(bytes[i].end) > open_ns;
+        EXPECT_EQ(bytes[i].errors,
                   after ? std::vector<std::string>{"pair_fault"} : std::vector<std::string>{})
             << i;
     }

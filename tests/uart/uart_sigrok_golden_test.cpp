@@ -12,6 +12,7 @@
 #include "core/crc.h"
 #include "core/registry.h"
 #include "core/session.h"
+#include "support/decode_events.h"
 #include "support/paths.h"
 #include "uart_decoder.h"
 
@@ -29,12 +30,6 @@ struct Decoded {
     std::vector<Event> events;
 };
 
-class Collect : public OutputSink {
-public:
-    std::vector<Event>* out;
-    void onEvent(const Event& e, const CaptureFacts&) override { out->push_back(e); }
-};
-
 std::string dumps() {
     return test::realCaptures() + "/sigrok-dumps/";
 }
@@ -48,14 +43,10 @@ std::string expected() {
 Decoded decode(const std::string& path, std::map<std::string, std::string> map,
                std::map<std::string, std::string> options) {
     Registry::instance().add(makeUartFactory());
-    auto reader = openCapture(path, OpenOptions{});
-    const double rate = reader->timebase().sampleRateHz();
-    Session session({{"uart", std::move(map), options}}, *reader, path);
     Decoded d;
-    Collect sink;
-    sink.out = &d.events;
-    session.addSink(&sink);
-    session.run();
+    CaptureFacts facts;
+    d.events = test::decodeEvents(path, {{"uart", std::move(map), options}}, {}, &facts);
+    const double rate = facts.timebase.sampleRateHz();
     double baud = options.at("baud") == "auto" ? 0 : std::stod(options.at("baud"));
     for (const auto& e : d.events)
         if (e.type == "baud") baud = asDouble(*e.get("baud"));  // baud=auto: the detected rate
