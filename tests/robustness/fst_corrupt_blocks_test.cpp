@@ -16,7 +16,7 @@ namespace fs = std::filesystem;
 std::vector<std::string> corruptFstFiles() {
     std::vector<std::string> out;
     for (const auto& f : fs::directory_iterator(fs::path(ROBUSTNESS_REGRESSIONS_DIR) / "fst"))
-        out.push_back(f.path().string());
+        if (f.path().filename().string().front() != '.') out.push_back(f.path().string());
     std::sort(out.begin(), out.end());
     return out;
 }
