@@ -3,28 +3,27 @@
 #
 #   bench/formats_bench.sh [-b BUILD_DIR] [-s SAMPLES_M] [-v VCD_MB]
 #
-# - DSView .dsl: SAMPLES_M million samples (default 1000) of 4 probes (an SPI-like clock
-#   every 20 samples, chip select, two data lines), decoded as SPI; goal 300 M samples/s.
+# - DSView .dsl and sigrok .sr: SAMPLES_M million samples (default 1000) of 4 probes (an
+#   SPI-like clock every 20 samples, chip select, two data lines), decoded as SPI; goal
+#   300 M samples/s.
 # - Compressed VCD: a VCD of about VCD_MB MB (default 200) of the same kind, compressed
 #   with gzip -1 and zstd -3, `decode f.vcd.zst` against `zstdcat f.vcd.zst | decode -`
 #   (and gzip alike); goal: no slower.
-# Peak memory from /usr/bin/time -v; goal under 64 MB. Needs python3, hyperfine, zstd.
+# Peak memory from GNU time; goal under 64 MB. Needs python3, hyperfine, zstd, jq.
 set -euo pipefail
-src="$(cd "$(dirname "$0")/.." && pwd)"
-build="$src/build"
 samples_m=1000
 vcd_mb=200
-while getopts "b:s:v:" o; do
-    case $o in
-        b) build="$(cd "$OPTARG" && pwd)" ;;
-        s) samples_m="$OPTARG" ;;
-        v) vcd_mb="$OPTARG" ;;
-        *) exit 2 ;;
+usage="[-s SAMPLES_M] [-v VCD_MB]"
+bench_option() {
+    case $1 in
+    s) samples_m=$2 ;;
+    v) vcd_mb=$2 ;;
     esac
-done
-decode="$build/bin/decode"
-tmp="$(mktemp -d)"
-trap 'rm -rf "$tmp"' EXIT
+}
+. "$(dirname "$0")/common.sh"
+bench_parse "s:v:" "$@"
+bench_need python3 hyperfine zstd zstdcat gzip zcat jq
+tmp=$dir
 spi=(--proto spi --map sclk=clk --map mosi=mosi --map miso=miso --map cs=cs)
 
 python3 - "$tmp/bench.dsl" "$samples_m" <<'PY'
@@ -47,13 +46,33 @@ with zipfile.ZipFile(path, "w", zipfile.ZIP_DEFLATED, compresslevel=1) as z:
             size = min(block, n - b * block) // 8
             z.writestr(f"L-{i}/{b}", pat[b * block // 8 % 5120: b * block // 8 % 5120 + size])
 PY
-echo "== .dsl: ${samples_m} M samples, 4 probes, decoded as SPI"
-/usr/bin/time -v "$decode" "$tmp/bench.dsl" "${spi[@]}" 2>"$tmp/time.txt" >/dev/null
-wall=$(grep -o 'Elapsed (wall clock) time.*' "$tmp/time.txt" | awk '{print $NF}')
-rss=$(grep -o 'Maximum resident set size (kbytes): [0-9]*' "$tmp/time.txt" | grep -o '[0-9]*$')
-python3 -c "
-w='$wall'.split(':'); s=sum(float(x)*60**i for i,x in enumerate(reversed(w)))
-print(f'wall {s:.2f} s, {${samples_m}/s:.0f} M samples/s, peak RSS {int($rss)/1024:.1f} MB')"
+python3 - "$tmp/bench.sr" "$samples_m" <<'PY'
+import sys, zipfile
+path, n = sys.argv[1], int(float(sys.argv[2]) * 1e6)
+n -= n % 64
+chunk = 4 << 20  # samples (one byte each) per logic-1-N member, as sigrok writes them
+def unit(k):  # clk every 20 samples, mosi 40, miso 80, cs 5120: bits 0..3
+    return (((k // 10) & 1) | (((k + 5) // 20) & 1) << 1 | (((k + 15) // 40) & 1) << 2
+            | (((k + 100) // 2560) & 1) << 3)
+period = bytes(unit(k) for k in range(5120))
+pattern = period * (chunk // 5120 + 2)
+with zipfile.ZipFile(path, "w", zipfile.ZIP_DEFLATED, compresslevel=1) as z:
+    z.writestr("version", "2")
+    z.writestr("metadata", "[global]\nsigrok version=0.5.2\n[device 1]\ncapturefile=logic-1\n"
+               "total probes=4\nsamplerate=100 MHz\ntotal analog=0\nprobe1=clk\nprobe2=mosi\n"
+               "probe3=miso\nprobe4=cs\nunitsize=1\n")
+    for i, at in enumerate(range(0, n, chunk)):
+        off = at % 5120
+        z.writestr(f"logic-1-{i + 1}", pattern[off: off + min(chunk, n - at)])
+PY
+for f in bench.dsl bench.sr; do
+    echo "== $f: ${samples_m} M samples, 4 probes, decoded as SPI"
+    bench_time "$tmp/time" "$decode" "$tmp/$f" "${spi[@]}"
+    read -r wall user sys kb <"$tmp/time"
+    echo "$wall $user $sys $kb" | awk -v m="$samples_m" '{
+        printf "wall %.2f s (CPU %.2f s), %.0f M samples/s, peak RSS %.1f MB\n",
+               $1, $2 + $3, m / $1, $4 / 1024 }'
+done
 
 python3 - "$tmp/bench.vcd" "$vcd_mb" <<'PY'
 import sys
@@ -83,7 +102,7 @@ hyperfine -N -w 1 -r 3 --export-json "$tmp/h.json" \
 jq -r '.results[] | "\(.median * 1000 | floor) ms  \(.command)"' "$tmp/h.json" |
     sed "s|$tmp/||g; s|$decode|decode|g"
 for f in bench.vcd.zst bench.vcd.gz; do
-    /usr/bin/time -v "$decode" "$tmp/$f" "${spi[@]}" 2>"$tmp/time.txt" >/dev/null
-    rss=$(grep -o 'Maximum resident set size (kbytes): [0-9]*' "$tmp/time.txt" | grep -o '[0-9]*$')
-    echo "$f: peak RSS $((rss / 1024)) MB"
+    bench_time "$tmp/time" "$decode" "$tmp/$f" "${spi[@]}"
+    read -r _ _ _ kb <"$tmp/time"
+    echo "$f: peak RSS $((kb / 1024)) MB"
 done

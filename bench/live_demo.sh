@@ -8,24 +8,20 @@
 #   bench/live_demo.sh [-b BUILD_DIR] [-d SECONDS] [-s SWEEP_SECONDS] [-r "RATES..."]
 #   (defaults: build, 600, 5, "50M 20M 10M 5M 2M 1M")
 set -eu
-build=build
 duration=600
 sweep=5
 rates="50M 20M 10M 5M 2M 1M"
-while getopts b:d:s:r: opt; do
-    case $opt in
-    b) build=$OPTARG ;;
-    d) duration=$OPTARG ;;
-    s) sweep=$OPTARG ;;
-    r) rates=$OPTARG ;;
-    *) echo "usage: $0 [-b BUILD_DIR] [-d SECONDS] [-s SWEEP_SECONDS] [-r RATES]" >&2; exit 2 ;;
+usage="[-d SECONDS] [-s SWEEP_SECONDS] [-r RATES]"
+bench_option() {
+    case $1 in
+    d) duration=$2 ;;
+    s) sweep=$2 ;;
+    r) rates=$2 ;;
     esac
-done
-decode=$build/bin/decode
-[ -x "$decode" ] || { echo "$0: no $decode (build first)" >&2; exit 2; }
-command -v /usr/bin/time >/dev/null || { echo "$0: needs GNU time (apt-get install time)" >&2; exit 2; }
-dir=$(mktemp -d)
-trap 'rm -rf "$dir"' EXIT
+}
+. "$(dirname "$0")/common.sh"
+bench_parse "d:s:r:" "$@"
+bench_need bc pgrep
 
 hz() { echo "$1" | sed 's/k$/000/; s/M$/000000/; s/G$/000000000/'; }
 

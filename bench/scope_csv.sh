@@ -5,20 +5,12 @@
 # 64 MB on a 1 GB file.
 #   bench/scope_csv.sh [-b BUILD_DIR] [-s SIZE_MB]     (defaults: build, 1000)
 set -eu
-build=build
 size=1000
-while getopts b:s: opt; do
-    case $opt in
-    b) build=$OPTARG ;;
-    s) size=$OPTARG ;;
-    *) echo "usage: $0 [-b BUILD_DIR] [-s SIZE_MB]" >&2; exit 2 ;;
-    esac
-done
-decode=$build/bin/decode
-[ -x "$decode" ] || { echo "$0: no $decode (build first)" >&2; exit 2; }
-command -v /usr/bin/time >/dev/null || { echo "$0: needs GNU time (apt-get install time)" >&2; exit 2; }
-dir=$(mktemp -d)
-trap 'rm -rf "$dir"' EXIT
+usage="[-s SIZE_MB]"
+bench_option() { size=$2; }
+. "$(dirname "$0")/common.sh"
+bench_parse "s:" "$@"
+bench_need awk
 csv=$dir/scope.csv
 # About 31 bytes a row.
 rows=$((size * 1000000 / 31))
@@ -32,9 +24,9 @@ awk -v rows="$rows" 'BEGIN {
 }' >"$csv"
 bytes=$(stat -c %s "$csv")
 for threads in 1 2; do
-    /usr/bin/time -f "%U %S %M" -o "$dir/time" "$decode" "$csv" --proto uart --map rx=CH1 --map tx=CH2 \
-        --opt baud=1000000 --threads $threads --format jsonl >/dev/null 2>&1
-    read -r user sys kb <"$dir/time"
+    bench_time "$dir/time" "$decode" "$csv" --proto uart --map rx=CH1 --map tx=CH2 \
+        --opt baud=1000000 --threads $threads --format jsonl
+    read -r _ user sys kb <"$dir/time"
     echo "$bytes $user $sys $kb $threads" | awk '{
         cpu = $2 + $3
         printf "scope CSV %.0f MB, --threads %d: %.2f CPU s, %.0f MB per CPU second, peak %.1f MB\n",

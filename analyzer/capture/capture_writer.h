@@ -67,9 +67,10 @@ void writeSampleRows(const Waveform& w, const std::string& path, SampleRowsDiale
 
 // Saleae Logic 2's binary export of the lines: `dir`/digital_N.bin, version 0 or 1.
 void writeSaleaeBin(const Waveform& w, const std::string& dir, int version);
-// The lines as Saleae's analog export (version 0), `dir`/analog_N.bin: one float sample
-// per tick (a timebase of one sample per tick), `volts` for a high level, 0 for a low.
-void writeSaleaeAnalogBin(const Waveform& w, const std::string& dir, double volts);
+// The lines as Saleae's analog export, `dir`/analog_N.bin: one float sample per tick (a
+// timebase of one sample per tick), `volts` for a high level, 0 for a low; version 1
+// splits the samples into two waveforms, the second beginning where the first ends.
+void writeSaleaeAnalogBin(const Waveform& w, const std::string& dir, double volts, int version = 0);
 
 // An FST file (fstapi's writer): the lines as 1-bit wires, ticks exact in a power-of-ten
 // timescale where one holds them (an 80 ns tick: 10 ns units), else rounded to 1 fs.

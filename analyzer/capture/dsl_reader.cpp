@@ -3,8 +3,8 @@
 // samples a block, sample k in bit k % 8 of byte k / 8 (LSB first); every block but the
 // last is full. Only the selected probes' planes are read, a window at a time, so memory
 // stays flat; edges are where a plane's bit differs from the one before it. One tick is
-// one sample. DSO (`O-<ch>/0`) and analog (`A-0/<block>`) sessions are refused: they hold
-// voltages, not logic levels.
+// one sample. DSO (`O-<ch>/0`) and analog (`A-0/<block>`) sessions hold voltages: they go
+// to dsl_reader_analog.cpp.
 #include <algorithm>
 #include <bit>
 #include <charconv>
@@ -15,6 +15,7 @@
 #include <fmt/format.h>
 
 #include "core/options.h"
+#include "dsl_reader_header.h"
 #include "readers.h"
 #include "wall_clock.h"
 #include "zip_archive.h"
@@ -50,15 +51,6 @@ bool parseTime(const std::string& text, std::int64_t& out) {
     return ec == std::errc() && p == end;
 }
 
-struct DslHeader {
-    int version = 0;
-    int mode = -1;
-    std::uint64_t samples = 0, blocks = 0;
-    std::int64_t rate = 0;
-    std::map<int, std::string> probes;  // hardware index -> name
-    std::string wall_clock;             // "trigger time" less "trigger pos" samples
-};
-
 DslHeader parseHeader(const std::string& file, const std::string& text) {
     DslHeader h;
     std::string section, rate_text;
@@ -72,9 +64,13 @@ DslHeader parseHeader(const std::string& file, const std::string& text) {
         const std::string_view raw(text.data() + at, nl - at);
         at = nl + 1;
         ++line_no;
-        if (!raw.empty() && (raw.front() == ' ' || raw.front() == '\t'))
-            continue;  // a DSO/analog probe's settings
         const std::string_view line = trimmed(raw);
+        if (!raw.empty() && (raw.front() == ' ' || raw.front() == '\t')) {
+            if (const auto eq = line.find('='); eq != std::string_view::npos)
+                h.probe_settings[std::string(trimmed(line.substr(0, eq)))] =
+                    std::string(trimmed(line.substr(eq + 1)));
+            continue;  // a DSO/analog probe's settings
+        }
         if (line.empty() || line.front() == ';' || line.front() == '#') continue;
         if (line.front() == '[') {
             section = std::string(line);
@@ -89,6 +85,8 @@ DslHeader parseHeader(const std::string& file, const std::string& text) {
             h.version = int(number(file, key, value));
         } else if (section != "[header]") {
             continue;
+        } else if (key == "bits") {
+            h.bits = int(number(file, key, value));
         } else if (key == "device mode") {
             h.mode = int(number(file, key, value));
         } else if (key == "total samples") {
@@ -134,10 +132,10 @@ DslHeader parseHeader(const std::string& file, const std::string& text) {
 
 class DslReader : public CaptureReader {
 public:
-    DslReader(std::unique_ptr<ZipArchive> zip, const OpenOptions& opts)
+    DslReader(std::unique_ptr<ZipArchive> zip, const DslHeader& header, const OpenOptions& opts)
         : zip_(std::move(zip)), opts_(opts) {
         const std::string& file = zip_->name();
-        const DslHeader h = parseHeader(file, *zip_->readText("header"));
+        const DslHeader& h = header;
         checkMode(h);
         samples_ = h.samples;
         wall_clock_ = h.wall_clock;
@@ -226,11 +224,6 @@ private:
 
     void checkMode(const DslHeader& h) const {
         const std::string& file = zip_->name();
-        if (h.mode == 1 || h.mode == 2)
-            throw InputError(fmt::format(
-                "{}: a DSView {} session (device mode {}) holds voltages, not logic levels: "
-                "only logic sessions (device mode 0) are read",
-                file, h.mode == 1 ? "oscilloscope (DSO)" : "analog", h.mode));
         if (h.mode != 0)
             throw InputError(
                 fmt::format("{}: header: device mode {} is not a DSView mode", file, h.mode));
@@ -366,7 +359,9 @@ private:
 }  // namespace
 
 std::unique_ptr<CaptureReader> openDsl(std::unique_ptr<ZipArchive> zip, const OpenOptions& opts) {
-    return std::make_unique<DslReader>(std::move(zip), opts);
+    const DslHeader h = parseHeader(zip->name(), *zip->readText("header"));
+    if (h.mode == 1 || h.mode == 2) return openDslAnalog(std::move(zip), h, opts);
+    return std::make_unique<DslReader>(std::move(zip), h, opts);
 }
 
 }  // namespace busdecode

@@ -32,6 +32,7 @@ thread_local MessageSink tls_messages;
 
 constexpr std::uint64_t kHeaderBlockBytes = 329;  // the header block's length field
 constexpr int kBlockHeader = 0, kBlockGzipWrapper = 254, kBlockUnfinished = 255;
+constexpr std::uint64_t kWrappingLength = std::uint64_t(1) << 62;
 
 std::uint64_t bigEndian64(const unsigned char* p) {
     std::uint64_t v = 0;
@@ -100,7 +101,33 @@ private:
 
 struct ChainFacts {
     bool header = false, geometry = false, hierarchy = false;
+    std::vector<FstValueBlock> value_blocks;
 };
+
+bool isValueBlock(int type) {
+    return type == FST_BL_VCDATA || type == FST_BL_VCDATA_DYN_ALIAS ||
+           type == FST_BL_VCDATA_DYN_ALIAS2;
+}
+
+// A value block's first fields: its times and the memory fstapi takes to unpack it (it
+// allocates that much before reading a byte of the block's contents).
+FstValueBlock readValueBlockHead(BlockInput& in, const std::string& name, int n, std::uint64_t at,
+                                 std::uint64_t length, const char* where) {
+    unsigned char head[24];
+    if (length < 8 + sizeof head || !in.read(head, sizeof head))
+        throw InputError(
+            fmt::format("{}: FST block {} at byte {}{}: a value-change block "
+                        "too short for its times",
+                        name, n, at, where));
+    const std::uint64_t unpacked = bigEndian64(head + 16);
+    if (unpacked > kFstBlockBudget)
+        throw InputError(
+            fmt::format("{}: FST block {} at byte {}{} needs {} MB to unpack, more "
+                        "than the {} MB the FST reader allows (corrupt, or written "
+                        "with blocks too large)",
+                        name, n, at, where, (unpacked >> 20) + 1, kFstBlockBudget >> 20));
+    return {n, at, bigEndian64(head), bigEndian64(head + 8)};
+}
 
 // Walks blocks until the end of `in`; returns what it saw. `where` names the stream.
 ChainFacts walkBlocks(BlockInput& in, const std::string& name, const char* where) {
@@ -122,7 +149,15 @@ ChainFacts walkBlocks(BlockInput& in, const std::string& name, const char* where
             if (n == 0)
                 throw InputError(
                     fmt::format("{}: unfinished FST file (its writer never closed it)", name));
-            return facts;  // fstapi stops at a block still being written, and so do we
+            // fstapi steps over a block still being written by its length: one that runs
+            // past the end stops it, one of 2^62 or more wraps its position back for ever.
+            if (length >= kWrappingLength)
+                throw InputError(
+                    fmt::format("{}: FST block {} at byte {}{}: an unfinished block "
+                                "of {} bytes (corrupt)",
+                                name, n, at, where, length));
+            if (length < 8 || !in.skip(length - 8)) return facts;
+            continue;
         }
         if ((type > FST_BL_VCDATA_DYN_ALIAS2 && type != kBlockGzipWrapper) || length < 8)
             throw InputError(
@@ -136,7 +171,12 @@ ChainFacts walkBlocks(BlockInput& in, const std::string& name, const char* where
                 fmt::format("{}: FST block {} at byte {}{}: a header block of {} "
                             "bytes where only the first, of 329, belongs",
                             name, n, at, where, length));
-        if (!in.skip(length - 8))
+        std::uint64_t read = 8;
+        if (isValueBlock(type)) {
+            facts.value_blocks.push_back(readValueBlockHead(in, name, n, at, length, where));
+            read += 24;
+        }
+        if (!in.skip(length - read))
             throw InputError(
                 fmt::format("{}: FST block {} at byte {}{} says {} bytes, the file "
                             "ends first (truncated)",
@@ -158,7 +198,14 @@ bool looksLikeFst(std::string_view head) {
     return u[0] == kBlockGzipWrapper && head.size() >= 19 && u[17] == 0x1f && u[18] == 0x8b;
 }
 
-void checkFstBlocks(const std::string& path, const std::string& name) {
+std::string FstBlockChain::blockAt(std::uint64_t time) const {
+    for (const FstValueBlock& b : value_blocks)
+        if (b.to >= time || &b == &value_blocks.back())
+            return fmt::format("block {} at byte {}{}", b.number, b.at, where);
+    return "value blocks" + where;
+}
+
+FstBlockChain checkFstBlocks(const std::string& path, const std::string& name) {
     BlockInput in(path, name);
     unsigned char first[17];
     const bool wrapped = in.read(first, 17) && first[0] == kBlockGzipWrapper;
@@ -183,6 +230,7 @@ void checkFstBlocks(const std::string& path, const std::string& name) {
     if (!facts.geometry || !facts.hierarchy)
         throw InputError(fmt::format("{}: FST file without its {} block", name,
                                      facts.geometry ? "hierarchy" : "geometry"));
+    return {std::move(facts.value_blocks), wrapped ? " (inside its gzip wrapper)" : ""};
 }
 
 void FstContextCloser::operator()(void* ctx) const {

@@ -43,24 +43,35 @@ void writeSaleaeBin(const Waveform& w, const std::string& dir, int version) {
     }
 }
 
-void writeSaleaeAnalogBin(const Waveform& w, const std::string& dir, double volts) {
+void writeSaleaeAnalogBin(const Waveform& w, const std::string& dir, double volts, int version) {
     std::filesystem::create_directories(dir);
-    const double begin = double(w.start) * double(w.timebase.num) / double(w.timebase.den);
+    const double period = double(w.timebase.num) / double(w.timebase.den);
     const auto samples = std::uint64_t(std::max<Tick>(w.end - w.start, 0) + 1);
+    const std::uint64_t first_part = version == 1 ? samples / 2 : samples;
     for (std::uint32_t l = 0; l < w.names.size(); ++l) {
         AtomicFile out(fmt::format("{}/analog_{}.bin", dir, l));
         out.put("<SALEAE>");
-        put(out, std::int32_t(0));  // version
+        put(out, std::int32_t(version));
         put(out, std::int32_t(1));  // analog
-        put(out, begin);
-        put(out, std::uint64_t(w.timebase.den / w.timebase.num));
-        put(out, std::uint64_t(1));  // downsample
-        put(out, samples);
+        auto waveformHeader = [&](Tick from, std::uint64_t n) {
+            put(out, double(from) * period);
+            if (version == 1) put(out, double(w.start) * period);  // the trigger time
+            if (version == 1)
+                put(out, 1 / period);
+            else
+                put(out, std::uint64_t(w.timebase.den / w.timebase.num));
+            put(out, std::uint64_t(1));  // downsample
+            put(out, n);
+        };
+        if (version == 1) put(out, std::uint64_t(2));  // waveforms
+        waveformHeader(w.start, first_part);
         bool level = l < w.initial.size() && w.initial[l];
         std::size_t k = 0;
         while (k < w.edges.size() && w.edges[k].t <= w.start)
             if (w.edges[k++].line == l) level = w.edges[k - 1].level;
         for (Tick t = w.start; t <= w.end; ++t) {
+            if (version == 1 && std::uint64_t(t - w.start) == first_part)
+                waveformHeader(t, samples - first_part);
             for (; k < w.edges.size() && w.edges[k].t <= t; ++k)
                 if (w.edges[k].line == l) level = w.edges[k].level;
             put(out, float(level ? volts : 0.0));

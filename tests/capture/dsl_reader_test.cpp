@@ -6,6 +6,8 @@
 
 #include <zip.h>
 
+#include <fmt/format.h>
+
 #include "capture/capture_writer.h"
 #include "capture_util.h"
 #include "core/waveform.h"
@@ -93,11 +95,60 @@ TEST(DslReader, SpiDemoAcrossTenBlocks) {
     EXPECT_EQ(r.out.find("short_frame"), std::string::npos);
 }
 
-TEST(DslReader, DsoAndAnalogSessionsRefusedByMode) {
-    std::string msg = errorOf(realDsview("demo_square_dso.dsl"));
-    EXPECT_NE(msg.find("oscilloscope (DSO) session (device mode 1)"), std::string::npos) << msg;
-    msg = errorOf(realDsview("demo_sine_analog.dsl"));
-    EXPECT_NE(msg.find("analog session (device mode 2)"), std::string::npos) << msg;
+// DSView draws a higher code as a lower voltage: a code below the channel's offset is high.
+TEST(DslReader, DsoSquareEdgesWhereItsCodesChange) {
+    const std::string path = realDsview("demo_square_dso.dsl");
+    const Collected got = collectFile(path);
+    EXPECT_EQ(got.format, "dsview-dsl-dso");
+    ASSERT_EQ(got.signals.size(), 2u);
+    EXPECT_EQ(got.signals[0].name, "0");
+    const auto ns = inNs(got);
+    for (std::uint32_t ch = 0; ch < 2; ++ch) {
+        SCOPED_TRACE(ch);
+        const std::string codes = member(path, fmt::format("O-{}/0", ch));
+        ASSERT_EQ(codes.size(), 10000u);
+        std::vector<std::pair<std::uint64_t, int>> want;  // sample, level after
+        for (std::size_t k = 1; k < codes.size(); ++k)
+            if (codes[k] != codes[k - 1]) want.push_back({k, std::uint8_t(codes[k]) < 128 ? 1 : 0});
+        EXPECT_EQ(got.initial[ch], std::uint8_t(codes[0]) < 128 ? 1 : 0);
+        std::vector<NsEdge> mine;
+        for (const NsEdge& e : ns)
+            if (e.line == ch) mine.push_back(e);
+        ASSERT_EQ(mine.size(), want.size());
+        for (std::size_t i = 0; i < want.size(); ++i) {
+            EXPECT_EQ(mine[i].level, want[i].second) << i;
+            // 100 MHz: the crossing lies within the 10 ns before the sample that shows it.
+            EXPECT_NEAR(double(mine[i].ns), double(want[i].first) * 10 - 5, 5) << i;
+        }
+    }
+}
+
+TEST(DslReader, AnalogSineCrossesItsMiddleWhereItsCodesDo) {
+    const std::string path = realDsview("demo_sine_analog.dsl");
+    const Collected got = collectFile(path);
+    EXPECT_EQ(got.format, "dsview-dsl-analog");
+    ASSERT_EQ(got.signals.size(), 2u);
+    const std::string codes = member(path, "A-0/0");
+    ASSERT_EQ(codes.size(), 244u);  // 122 samples of 2 channels, interleaved
+    // Where channel 0's codes pass the middle (128), one sample period (100 ms) wide.
+    std::vector<double> crossings_ns;
+    for (std::size_t k = 1; k < 122; ++k) {
+        const int a = std::uint8_t(codes[2 * (k - 1)]) - 128, b = std::uint8_t(codes[2 * k]) - 128;
+        if ((a < 0 && b >= 0) || (a > 0 && b <= 0)) crossings_ns.push_back(double(k) * 1e8);
+    }
+    ASSERT_EQ(crossings_ns.size(), 2u);
+    for (std::uint32_t ch = 0; ch < 2; ++ch) {
+        std::vector<NsEdge> mine;
+        for (const NsEdge& e : inNs(got))
+            if (e.line == ch) mine.push_back(e);
+        // Code 128 first (0 V), then rising codes: a falling voltage, low from the start.
+        EXPECT_EQ(got.initial[ch], 0);
+        ASSERT_EQ(mine.size(), 2u) << ch;
+        EXPECT_EQ(mine[0].level, 1);
+        EXPECT_EQ(mine[1].level, 0);
+        for (std::size_t i = 0; i < 2; ++i)
+            EXPECT_NEAR(double(mine[i].ns), crossings_ns[i] - 5e7, 1e8) << ch << " " << i;
+    }
 }
 
 Waveform sparseTraffic(Tick samples) {
@@ -167,6 +218,41 @@ TEST(DslReader, BrokenSessions) {
         bad[i] = char(bad[i] ^ 0x5a);
     p = tempCapture("bad.dsl", bad);
     EXPECT_NE(errorOf(p).find("L-5/0"), std::string::npos) << errorOf(p);
+}
+
+TEST(DslReader, BrokenDsoAndAnalogSessionsNameTheBlock) {
+    const std::string dso = realDsview("demo_square_dso.dsl");
+    const std::string head = member(dso, "header"), codes = member(dso, "O-0/0");
+    auto session = [&](const std::string& name,
+                       const std::vector<std::pair<std::string, std::string>>& m) {
+        return tempCapture(name, fuzz::buildStoredZip(m));
+    };
+    std::string p = session("dso_short.dsl",
+                            {{"header", head}, {"O-0/0", codes}, {"O-1/0", codes.substr(0, 9000)}});
+    EXPECT_EQ(errorOf(p), p + ": block O-1/0 holds 9000 bytes, 10000 samples take 10000 "
+                              "(wrong block size)");
+    p = session("dso_missing.dsl", {{"header", head}, {"O-0/0", codes}});
+    EXPECT_EQ(errorOf(p), p + ": block O-1/0 is missing");
+    const std::string sine = realDsview("demo_sine_analog.dsl");
+    const std::string ahead = member(sine, "header"), rows = member(sine, "A-0/0");
+    p = session("analog_odd.dsl", {{"header", ahead}, {"A-0/0", rows.substr(0, 243)}});
+    EXPECT_EQ(errorOf(p), p + ": block A-0/0 holds 243 bytes, not whole rows of 2 channels "
+                              "(wrong block size)");
+    p = session("analog_short.dsl", {{"header", ahead}, {"A-0/0", rows.substr(0, 200)}});
+    EXPECT_EQ(errorOf(p), p + ": the A-0 blocks hold 100 samples, the header says total "
+                              "samples = 122 (wrong block size)");
+    std::string bits = ahead;
+    bits.replace(bits.find("bits = 8"), 8, "bits = 16");
+    p = session("analog_bits.dsl", {{"header", bits}, {"A-0/0", rows}});
+    EXPECT_EQ(errorOf(p), p + ": header: bits = 16: only 8-bit samples are read");
+    // Deflated samples damaged: the block is named.
+    std::string bad = readFile(dso);
+    const auto at = bad.find("O-1/0");
+    ASSERT_NE(at, std::string::npos);
+    for (std::size_t i = at + 40; i < at + 120 && i < bad.size(); ++i)
+        bad[i] = char(bad[i] ^ 0x5a);
+    p = tempCapture("dso_bad.dsl", bad);
+    EXPECT_NE(errorOf(p).find("O-1/0"), std::string::npos) << errorOf(p);
 }
 
 }  // namespace

@@ -101,10 +101,52 @@ TEST(SaleaeBin, AnalogFolderReadsAsTheVcdThroughTheSchmittTrigger) {
     std::string p = tempCapture("analog_cut.bin", good.substr(0, good.size() - 6));
     EXPECT_NE(errorOf(p).find(p + ": says "), std::string::npos) << errorOf(p);
     EXPECT_NE(errorOf(p).find("(truncated)"), std::string::npos);
-    std::string v1 = good;
-    v1[8] = 1;
-    p = tempCapture("analog_v1.bin", v1);
-    EXPECT_EQ(errorOf(p), p + ": Saleae analog export version 1 is not read (version 0 is)");
+    std::string v2 = good;
+    v2[8] = 2;
+    p = tempCapture("analog_v2.bin", v2);
+    EXPECT_EQ(errorOf(p),
+              p + ": Saleae analog export version 2 is not read (versions 0 and 1 are)");
+}
+
+TEST(SaleaeBin, AnalogVersion1InTwoWaveformsReadsAsTheVcd) {
+    const Waveform w = traffic();
+    const std::string vcd = tempDir() + "/a1.vcd", dir = tempDir() + "/analog_v1";
+    writeVcd(w, vcd);
+    writeSaleaeAnalogBin(w, dir, 3.3, 1);
+    const Collected want = collectFile(vcd, {"clk", "data", "cs"});
+    const Collected got = collectFile(dir, {"analog_0", "analog_1", "analog_2"});
+    EXPECT_EQ(got.format, "saleae-bin-analog");
+    EXPECT_EQ(got.initial, want.initial);
+    const auto a = inNs(got), b = inNs(want);
+    ASSERT_EQ(a.size(), b.size());
+    const double period_ns = 1e9 / 12'500'000;
+    for (std::size_t i = 0; i < a.size(); ++i) {
+        ASSERT_EQ(a[i].line, b[i].line) << i;
+        ASSERT_EQ(a[i].level, b[i].level) << i;
+        ASSERT_NEAR(double(a[i].ns), double(b[i].ns), period_ns) << i;
+    }
+}
+
+TEST(SaleaeBin, BrokenAnalogVersion1NamesTheWaveform) {
+    const Waveform w = traffic();
+    const std::string dir = tempDir() + "/analog_v1_broken";
+    writeSaleaeAnalogBin(w, dir, 3.3, 1);
+    const std::string good = readFile(dir + "/analog_0.bin");
+    // Common header 16, waveform count 8, then waveform 0's 40-byte header at byte 24.
+    std::string p = tempCapture("v1_cut.bin", good.substr(0, good.size() - 6));
+    EXPECT_NE(errorOf(p).find(p + ": waveform 1 at byte "), std::string::npos) << errorOf(p);
+    EXPECT_NE(errorOf(p).find("(truncated)"), std::string::npos) << errorOf(p);
+    std::string bad = good;
+    bad[24 + 16 + 7] = char(0xff);  // waveform 0's sample rate: a NaN
+    p = tempCapture("v1_rate.bin", bad);
+    EXPECT_NE(errorOf(p).find(p + ": waveform 0 at byte 24: begin "), std::string::npos)
+        << errorOf(p);
+    p = tempCapture("v1_tail.bin", good + "ab");
+    EXPECT_EQ(errorOf(p), p + ": 2 bytes after the last waveform");
+    bad = good;
+    bad[16] = 9;  // nine waveforms where two are
+    p = tempCapture("v1_count.bin", bad);
+    EXPECT_NE(errorOf(p).find(p + ": waveform 2 of 9 at byte "), std::string::npos) << errorOf(p);
 }
 
 TEST(SaleaeBin, SalSessionRefusedPointingToTheExport) {
