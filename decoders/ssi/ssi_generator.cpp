@@ -62,19 +62,23 @@ double unit(std::mt19937_64& rng) {
     return double(rng() >> 11) * 0x1.0p-53 * 2.0 - 1.0;
 }
 
-}  // namespace
-
-SsiGenerated generateSsi(const SsiGenConfig& cfg, const std::vector<SsiGenFrame>& frames) {
-    const int w = cfg.data_bits;
-    const int gap = cfg.ring_gap;
-    if (w < 1 || w > 64 || w + (cfg.lead ? 1 : 0) > 64)
-        throw std::invalid_argument("generateSsi: data_bits out of range");
-    const double T = 1e9 / cfg.clock_hz;
-    if (cfg.jitter_ns >= T / 4) throw std::invalid_argument("generateSsi: jitter too large");
-    std::mt19937_64 rng(cfg.seed);
-
+// The clock and data lines of every burst, before glitches and the capture cut.
+struct Simulation {
     std::vector<Level> clk, data;
     std::vector<BurstRecord> bursts;
+    double last_clock = 0;
+};
+
+Simulation simulateBursts(const SsiGenConfig& cfg, const std::vector<SsiGenFrame>& frames) {
+    const int w = cfg.data_bits;
+    const int gap = cfg.ring_gap;
+    const double T = 1e9 / cfg.clock_hz;
+    std::mt19937_64 rng(cfg.seed);
+
+    Simulation sim;
+    auto& clk = sim.clk;
+    auto& data = sim.data;
+    auto& bursts = sim.bursts;
     bool data_level = true;
     double last_clock = cfg.lead_in_ns;
     double pending_rise = -1;  // monoflop expiry as seen on the data line
@@ -136,10 +140,86 @@ SsiGenerated generateSsi(const SsiGenConfig& cfg, const std::vector<SsiGenFrame>
         setData(pending_rise, true);
         bursts.back().rise_at = pending_rise;
     }
+    sim.last_clock = last_clock;
+    return sim;
+}
 
-    const auto clk_edges = withGlitches(clk, true, cfg.glitches, 0);
-    const auto data_edges = withGlitches(data, true, cfg.glitches, 1);
-    double end_ns = last_clock;
+// Raw word, bit count and repeat comparison of a burst whose data bits were all sampled.
+void fullFrameTruth(const SsiGenConfig& cfg, const BurstRecord& b, int d, SsiTruth& t) {
+    const int w = cfg.data_bits;
+    const int gap = cfg.ring_gap;
+    const int lead = cfg.lead ? 1 : 0;
+    const bool lead_bit = b.level_at_start;
+    t.bits = w + lead;
+    t.raw = cfg.lsb_first ? (b.word << lead) | (lead ? std::uint64_t(lead_bit) : 0)
+                          : b.word | (lead ? std::uint64_t(lead_bit) << w : 0);
+    t.repeats = 1 + (d - w) / (w + gap);
+    t.partial_bits = std::max(0, (d - w) % (w + gap) - gap);
+    for (const auto& [rep, idx] : b.flips) {
+        if (rep < 1 || idx >= w) continue;
+        if (rep * (w + gap) + idx >= d) continue;  // never sampled
+        t.repeat_match = false;
+        t.diff_bits.push_back(cfg.lsb_first ? idx + lead : w - 1 - idx);
+    }
+    if (b.reread && b.word != b.previous_word) {
+        t.repeat_match = false;
+        const std::uint64_t d = b.word ^ b.previous_word;
+        for (int bit = 0; bit < w; ++bit)
+            if (d >> bit & 1) t.diff_bits.push_back(cfg.lsb_first ? bit + lead : bit);
+    }
+    std::sort(t.diff_bits.begin(), t.diff_bits.end());
+    t.diff_bits.erase(std::unique(t.diff_bits.begin(), t.diff_bits.end()), t.diff_bits.end());
+}
+
+// What the master saw of one burst, given the clock edges that fall inside the capture.
+SsiTruth burstTruth(const SsiGenConfig& cfg, const BurstRecord& b, double end_ns,
+                    const WaveBuilder& wb, double ns_per_tick) {
+    const int w = cfg.data_bits;
+    const int lead = cfg.lead ? 1 : 0;
+    SsiTruth t;
+    // Clock edges inside the capture decide what the master sampled.
+    int n = 0;
+    double last = b.falls.front();
+    for (std::size_t i = 0; i < b.falls.size(); ++i) {
+        if (b.falls[i] >= end_ns) break;
+        ++n;
+        last = b.falls[i];
+        if (b.rises[i] < end_ns) last = b.rises[i];
+    }
+    t.start = wb.ticksFromNs(b.falls.front());
+    t.end = wb.ticksFromNs(last);
+    t.reread = b.reread;
+    t.clock_hz = cfg.clock_hz;
+    const int d = n - 1;  // data samples: falling edges 2..n
+    const bool lead_bit = b.level_at_start;
+    if (d < w) {
+        t.short_frame = true;
+        t.bits = d + lead;
+        if (cfg.lsb_first)
+            t.raw = (lowBits(b.word, d) << lead) | (lead ? std::uint64_t(lead_bit) : 0);
+        else
+            t.raw = (d == 0 ? 0 : b.word >> (w - d)) | (lead ? std::uint64_t(lead_bit) << d : 0);
+    } else {
+        fullFrameTruth(cfg, b, d, t);
+    }
+    if (b.low_at_end && b.rise_at >= 0 && b.rise_at < end_ns && n == int(b.falls.size()))
+        t.tm_ns = double(wb.ticksFromNs(b.rise_at) - t.end) * ns_per_tick;
+    return t;
+}
+
+}  // namespace
+
+SsiGenerated generateSsi(const SsiGenConfig& cfg, const std::vector<SsiGenFrame>& frames) {
+    const int w = cfg.data_bits;
+    if (w < 1 || w > 64 || w + (cfg.lead ? 1 : 0) > 64)
+        throw std::invalid_argument("generateSsi: data_bits out of range");
+    const double T = 1e9 / cfg.clock_hz;
+    if (cfg.jitter_ns >= T / 4) throw std::invalid_argument("generateSsi: jitter too large");
+
+    const Simulation sim = simulateBursts(cfg, frames);
+    const auto clk_edges = withGlitches(sim.clk, true, cfg.glitches, 0);
+    const auto data_edges = withGlitches(sim.data, true, cfg.glitches, 1);
+    double end_ns = sim.last_clock;
     if (!clk_edges.empty()) end_ns = std::max(end_ns, clk_edges.back().t);
     if (!data_edges.empty()) end_ns = std::max(end_ns, data_edges.back().t);
     end_ns += cfg.tail_ns;
@@ -155,58 +235,9 @@ SsiGenerated generateSsi(const SsiGenConfig& cfg, const std::vector<SsiGenFrame>
     SsiGenerated out;
     out.wave = wb.build(wb.ticksFromNs(end_ns));
     const double ns_per_tick = out.wave.timebase.nsPerTick();
-    const int lead = cfg.lead ? 1 : 0;
-    for (const auto& b : bursts) {
+    for (const auto& b : sim.bursts) {
         if (b.falls.front() >= end_ns) break;
-        SsiTruth t;
-        // Clock edges inside the capture decide what the master sampled.
-        int n = 0;
-        double last = b.falls.front();
-        for (std::size_t i = 0; i < b.falls.size(); ++i) {
-            if (b.falls[i] >= end_ns) break;
-            ++n;
-            last = b.falls[i];
-            if (b.rises[i] < end_ns) last = b.rises[i];
-        }
-        t.start = wb.ticksFromNs(b.falls.front());
-        t.end = wb.ticksFromNs(last);
-        t.reread = b.reread;
-        t.clock_hz = cfg.clock_hz;
-        const int d = n - 1;  // data samples: falling edges 2..n
-        const bool lead_bit = b.level_at_start;
-        if (d < w) {
-            t.short_frame = true;
-            t.bits = d + lead;
-            if (cfg.lsb_first)
-                t.raw = (lowBits(b.word, d) << lead) | (lead ? std::uint64_t(lead_bit) : 0);
-            else
-                t.raw =
-                    (d == 0 ? 0 : b.word >> (w - d)) | (lead ? std::uint64_t(lead_bit) << d : 0);
-        } else {
-            t.bits = w + lead;
-            t.raw = cfg.lsb_first ? (b.word << lead) | (lead ? std::uint64_t(lead_bit) : 0)
-                                  : b.word | (lead ? std::uint64_t(lead_bit) << w : 0);
-            t.repeats = 1 + (d - w) / (w + gap);
-            t.partial_bits = std::max(0, (d - w) % (w + gap) - gap);
-            for (const auto& [rep, idx] : b.flips) {
-                if (rep < 1 || idx >= w) continue;
-                if (rep * (w + gap) + idx >= d) continue;  // never sampled
-                t.repeat_match = false;
-                t.diff_bits.push_back(cfg.lsb_first ? idx + lead : w - 1 - idx);
-            }
-            if (b.reread && b.word != b.previous_word) {
-                t.repeat_match = false;
-                const std::uint64_t d = b.word ^ b.previous_word;
-                for (int bit = 0; bit < w; ++bit)
-                    if (d >> bit & 1) t.diff_bits.push_back(cfg.lsb_first ? bit + lead : bit);
-            }
-            std::sort(t.diff_bits.begin(), t.diff_bits.end());
-            t.diff_bits.erase(std::unique(t.diff_bits.begin(), t.diff_bits.end()),
-                              t.diff_bits.end());
-        }
-        if (b.low_at_end && b.rise_at >= 0 && b.rise_at < end_ns && n == int(b.falls.size()))
-            t.tm_ns = double(wb.ticksFromNs(b.rise_at) - t.end) * ns_per_tick;
-        out.frames.push_back(std::move(t));
+        out.frames.push_back(burstTruth(cfg, b, end_ns, wb, ns_per_tick));
     }
     return out;
 }
