@@ -233,13 +233,37 @@ private:
         }
     }
 
-    void parseHeader() {
-        std::string_view line;
+    // What the comment lines above the header said.
+    struct HeaderComments {
         std::vector<std::string> channel_names;
-        std::optional<SampleRate> comment_rate;
-        std::uint64_t comment_rate_line = 0;
+        std::optional<SampleRate> rate;
+        std::uint64_t rate_line = 0;
         // `#123` lines and no other comment so far: VCD value changes without their header?
         std::uint64_t vcd_times = 0, other_comments = 0;
+    };
+
+    void readHeaderComment(std::string_view t, HeaderComments& c) {
+        ++(t.size() > 1 && t[0] == '#' && unsigned(t[1] - '0') < 10 ? c.vcd_times
+                                                                    : c.other_comments);
+        // sigrok: "; Channels (2/8): MA, SLO" and "; Samplerate: 24 MHz"
+        std::string_view body = trimField(t.substr(1));
+        const std::string lb = asciiLower(body);
+        auto colon = body.find(':');
+        if (lb.rfind("channels", 0) == 0 && colon != std::string_view::npos) {
+            std::vector<std::string_view> parts;
+            split(body.substr(colon + 1), ',', parts);
+            c.channel_names.assign(parts.begin(), parts.end());
+        } else if (lb.rfind("samplerate", 0) == 0 && colon != std::string_view::npos) {
+            c.rate = parseSampleRate(body.substr(colon + 1), true);
+            c.rate_line = line_no_;
+        } else if (wall_clock_.empty()) {
+            wall_clock_ = wallClockOfSigrokComment(body);
+        }
+    }
+
+    // The first line that is neither blank nor a comment: the header.
+    std::string_view skipToHeaderLine(HeaderComments& c) {
+        std::string_view line;
         for (;;) {
             auto st = src_->nextLine(line);
             if (st == TextSource::Status::NoData) {
@@ -247,7 +271,7 @@ private:
                 continue;
             }
             if (st == TextSource::Status::Eof) {
-                if (vcd_times > 0 && other_comments == 0)
+                if (c.vcd_times > 0 && c.other_comments == 0)
                     throw InputError(src_->name() +
                                      ": VCD value changes without a VCD header: a VCD starts "
                                      "with $timescale, $var ... and $enddefinitions");
@@ -257,28 +281,71 @@ private:
             std::string_view t = trimField(line);
             if (t.empty()) continue;
             if (t.front() == ';' || t.front() == '#') {
-                ++(t.size() > 1 && t[0] == '#' && unsigned(t[1] - '0') < 10 ? vcd_times
-                                                                            : other_comments);
-                // sigrok: "; Channels (2/8): MA, SLO" and "; Samplerate: 24 MHz"
-                std::string_view body = trimField(t.substr(1));
-                const std::string lb = asciiLower(body);
-                auto colon = body.find(':');
-                if (lb.rfind("channels", 0) == 0 && colon != std::string_view::npos) {
-                    std::vector<std::string_view> parts;
-                    split(body.substr(colon + 1), ',', parts);
-                    channel_names.assign(parts.begin(), parts.end());
-                } else if (lb.rfind("samplerate", 0) == 0 && colon != std::string_view::npos) {
-                    comment_rate = parseSampleRate(body.substr(colon + 1), true);
-                    comment_rate_line = line_no_;
-                } else if (wall_clock_.empty()) {
-                    wall_clock_ = wallClockOfSigrokComment(body);
-                }
+                readHeaderComment(t, c);
                 continue;
             }
-            break;
+            return line;
         }
-        if (looksLikeVcdChange(line) &&
-            ((vcd_times > 0 && other_comments == 0) || src_->name().ends_with(".vcd")))
+    }
+
+    // The signal names and the dialect (format_, timed_, first_col_) the header fields show.
+    std::vector<std::string> columnNames(const std::vector<std::string_view>& f,
+                                         const HeaderComments& c) {
+        const std::string first = asciiLower(f[0]);
+        std::vector<std::string> names;
+        // sigrok's header form: a row of channel types, the names only in the comment
+        auto isType = [](std::string_view s) {
+            const std::string l = asciiLower(s);
+            return l == "logic" || l == "analog";
+        };
+        const bool all_logic = std::all_of(f.begin(), f.end(), isType);
+        const bool typed_after_time = f.size() > 1 && std::all_of(f.begin() + 1, f.end(), isType);
+        if (first.rfind("time", 0) == 0) {
+            timed_ = true;
+            first_col_ = 1;
+            format_ = first == "times"                            ? "scanastudio-csv"
+                      : first == "time [s]" || first == "time[s]" ? "saleae-csv"
+                                                                  : "time-csv";
+            if (typed_after_time && c.channel_names.size() + 1 == f.size()) {
+                names = c.channel_names;
+                format_ = "sigrok-csv";
+            } else {
+                for (std::size_t i = 1; i < f.size(); ++i)
+                    names.emplace_back(f[i]);
+            }
+        } else if (all_logic) {
+            format_ = "sigrok-csv";
+            if (c.channel_names.size() == f.size()) {
+                names = c.channel_names;
+            } else {
+                for (std::size_t i = 0; i < f.size(); ++i)
+                    names.push_back(std::to_string(i));
+            }
+        } else {
+            format_ = c.rate && c.rate->timebase ? "sigrok-csv" : "plain-csv";
+            names.assign(f.begin(), f.end());
+        }
+        return names;
+    }
+
+    void addSignals(const std::vector<std::string>& names) {
+        std::unordered_set<std::string_view> seen;  // linear in columns: 10^5 are not rare
+        seen.reserve(names.size());
+        signals_.reserve(names.size());
+        for (std::size_t i = 0; i < names.size(); ++i) {
+            if (names[i].empty())
+                fail(fmt::format("empty column name (column {})", i + 1 + first_col_));
+            if (!seen.insert(names[i]).second)
+                fail(fmt::format("duplicate column name '{}'", printable(names[i])));
+            signals_.push_back(signalFor(names[i]));
+        }
+    }
+
+    void parseHeader() {
+        HeaderComments comments;
+        const std::string_view line = skipToHeaderLine(comments);
+        if (looksLikeVcdChange(line) && ((comments.vcd_times > 0 && comments.other_comments == 0) ||
+                                         src_->name().ends_with(".vcd")))
             fail(
                 "VCD value changes without a VCD header: a VCD starts with $timescale, "
                 "$var ... and $enddefinitions");
@@ -296,52 +363,9 @@ private:
         // ",0,0,0,0" in memory order, with this file's separator.
         sep_zero_ =
             std::uint64_t(std::uint8_t(sep_)) * 0x0001000100010001ULL + 0x3000300030003000ULL;
-        const std::string first = asciiLower(f[0]);
-        std::vector<std::string> names;
-        // sigrok's header form: a row of channel types, the names only in the comment
-        auto isType = [](std::string_view s) {
-            const std::string l = asciiLower(s);
-            return l == "logic" || l == "analog";
-        };
-        const bool all_logic = std::all_of(f.begin(), f.end(), isType);
-        const bool typed_after_time = f.size() > 1 && std::all_of(f.begin() + 1, f.end(), isType);
-        if (first.rfind("time", 0) == 0) {
-            timed_ = true;
-            first_col_ = 1;
-            format_ = first == "times"                            ? "scanastudio-csv"
-                      : first == "time [s]" || first == "time[s]" ? "saleae-csv"
-                                                                  : "time-csv";
-            if (typed_after_time && channel_names.size() + 1 == f.size()) {
-                names = channel_names;
-                format_ = "sigrok-csv";
-            } else {
-                for (std::size_t i = 1; i < f.size(); ++i)
-                    names.emplace_back(f[i]);
-            }
-        } else if (all_logic) {
-            format_ = "sigrok-csv";
-            if (channel_names.size() == f.size()) {
-                names = channel_names;
-            } else {
-                for (std::size_t i = 0; i < f.size(); ++i)
-                    names.push_back(std::to_string(i));
-            }
-        } else {
-            format_ = comment_rate && comment_rate->timebase ? "sigrok-csv" : "plain-csv";
-            names.assign(f.begin(), f.end());
-        }
-        std::unordered_set<std::string_view> seen;  // linear in columns: 10^5 are not rare
-        seen.reserve(names.size());
-        signals_.reserve(names.size());
-        for (std::size_t i = 0; i < names.size(); ++i) {
-            if (names[i].empty())
-                fail(fmt::format("empty column name (column {})", i + 1 + first_col_));
-            if (!seen.insert(names[i]).second)
-                fail(fmt::format("duplicate column name '{}'", printable(names[i])));
-            signals_.push_back(signalFor(names[i]));
-        }
+        addSignals(columnNames(f, comments));
         if (timed_) chooseResolution();  // the timebase is known before the first row
-        if (!timed_) denseTimebase(comment_rate, comment_rate_line);
+        if (!timed_) denseTimebase(comments.rate, comments.rate_line);
     }
 
     static bool looksLikeVcdChange(std::string_view line) {
