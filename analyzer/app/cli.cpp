@@ -74,8 +74,8 @@ struct Parsed {
     bool scan = false;     // --scan: the attached analysers
 };
 
-Parsed parse(const QStringList& argv, bool verify) {
-    QCommandLineParser p;
+// Every option with its help text, in the order --help lists them.
+void addOptions(QCommandLineParser& p) {
     p.setApplicationDescription(
         "Decode logic-analyser captures of encoder and motion-control buses.");
     p.addPositionalArgument("CAPTURE", "VCD, CSV or sigrok .sr capture; - reads standard input",
@@ -120,8 +120,11 @@ Parsed parse(const QStringList& argv, bool verify) {
                     &junit,     &jobs,       &shard,    &from_list, &threads, &help,    &version,
                     &device,    &samplerate, &channels, &samples,   &seconds, &save,    &scan})
         p.addOption(*o);
-    if (!p.parse(argv)) throw InputError(p.errorText().toStdString());
-    if (p.isSet(help)) {
+}
+
+// --help and --version print and end the run.
+bool printedHelpOrVersion(const QCommandLineParser& p) {
+    if (p.isSet("h")) {
         fmt::print("{}", p.helpText().toStdString());
         fmt::print(
             "\nCommands:\n  decode CAPTURE... --proto NAME [...]\n"
@@ -132,60 +135,70 @@ Parsed parse(const QStringList& argv, bool verify) {
             "  decode --scan\n"
             "  decode merge-junit SHARD.xml... -o ALL.xml [--from-list FILE]\n"
             "  decode monitor [--lcm URL]\n  decode --list\n");
-        return {{}, false, true};
+        return true;
     }
-    if (p.isSet(version)) {
+    if (p.isSet("version")) {
         fmt::print("decode (busdecode) 0.1.0\n");
-        return {{}, false, true};
+        return true;
     }
-    Parsed out;
-    out.list = p.isSet(list);
-    out.formats = p.isSet(formats);
-    out.scan = p.isSet(scan);
-    DecodeArgs& a = out.args;
-    a.device = p.value(device).toStdString();
-    a.samplerate = p.value(samplerate).toStdString();
-    a.channels = p.value(channels).toStdString();
-    a.samples = p.value(samples).toStdString();
-    a.seconds = p.value(seconds).toStdString();
-    a.save = p.value(save).toStdString();
-    if (a.device.empty() && (p.isSet(samplerate) || p.isSet(channels) || p.isSet(samples) ||
-                             p.isSet(seconds) || p.isSet(save)))
+    return false;
+}
+
+void readLiveArgs(const QCommandLineParser& p, DecodeArgs& a) {
+    a.device = p.value("device").toStdString();
+    a.samplerate = p.value("samplerate").toStdString();
+    a.channels = p.value("channels").toStdString();
+    a.samples = p.value("samples").toStdString();
+    a.seconds = p.value("time").toStdString();
+    a.save = p.value("save").toStdString();
+    if (a.device.empty() && (p.isSet("samplerate") || p.isSet("channels") || p.isSet("samples") ||
+                             p.isSet("time") || p.isSet("save")))
         throw InputError("--samplerate, --channels, --samples, --time and --save need --device");
+}
+
+void readDecodeArgs(const QCommandLineParser& p, DecodeArgs& a) {
     a.captures = toStd(p.positionalArguments());
-    a.protos = toStd(p.values(proto));
-    a.maps = toStd(p.values(map));
-    a.opts = toStd(p.values(opt));
-    a.format = p.value(format).toStdString();
+    a.protos = toStd(p.values("proto"));
+    a.maps = toStd(p.values("map"));
+    a.opts = toStd(p.values("opt"));
+    a.format = p.value("format").toStdString();
     if (a.format != "text" && a.format != "jsonl")
         throw InputError(fmt::format("--format {}: expected text or jsonl", a.format));
-    a.report = p.value(report).toStdString();
-    if (p.isSet(lcm))
-        a.lcm_url = p.value(lcm) == "default" ? std::string() : p.value(lcm).toStdString();
-    if (p.isSet(rate)) {
-        a.rate_hz = rateArgument("--rate", p.value(rate).toStdString());
+    a.report = p.value("report").toStdString();
+    if (p.isSet("lcm"))
+        a.lcm_url = p.value("lcm") == "default" ? std::string() : p.value("lcm").toStdString();
+    if (p.isSet("rate")) {
+        a.rate_hz = rateArgument("--rate", p.value("rate").toStdString());
     }
-    for (const auto& t : toStd(p.values(threshold)))
+    for (const auto& t : toStd(p.values("threshold")))
         a.thresholds.push_back(parseThresholdOption(t));
-    if (p.isSet(hysteresis))
-        a.hysteresis = parseHysteresisOption(p.value(hysteresis).toStdString());
-    a.follow = p.isSet(follow);
-    a.realtime = p.isSet(realtime);
-    a.rules = p.value(rules).toStdString();
-    a.junit = p.value(junit).toStdString();
-    a.shard = p.value(shard).toStdString();
-    a.from_list = p.value(from_list).toStdString();
-    auto j = parseInteger(p.value(jobs).toStdString());
+    if (p.isSet("hysteresis"))
+        a.hysteresis = parseHysteresisOption(p.value("hysteresis").toStdString());
+    a.follow = p.isSet("follow");
+    a.realtime = p.isSet("realtime");
+}
+
+void readVerifyAndThreadArgs(const QCommandLineParser& p, DecodeArgs& a) {
+    a.rules = p.value("rules").toStdString();
+    a.junit = p.value("junit").toStdString();
+    a.shard = p.value("shard").toStdString();
+    a.from_list = p.value("from-list").toStdString();
+    auto j = parseInteger(p.value("jobs").toStdString());
     if (!j || *j < 0 || *j > 256)
         throw InputError("--jobs: expected a whole number from 0 (all cores) to 256");
     a.jobs = int(*j);
-    const std::string t = p.value(threads).toStdString();
+    const std::string t = p.value("threads").toStdString();
     if (t != "1" && t != "2")
         throw InputError(fmt::format(
             "--threads {}: expected 1 (read and decode on one thread) or 2 (read ahead on a "
             "second)",
             t));
     a.threads = t == "1" ? 1 : 2;
+}
+
+// Options that belong to another command, or a run with nothing to read.
+void checkCombinations(const Parsed& out, bool verify) {
+    const DecodeArgs& a = out.args;
     if (!verify &&
         (!a.rules.empty() || !a.junit.empty() || !a.shard.empty() || !a.from_list.empty()))
         throw InputError("--rules, --junit, --shard and --from-list belong to 'decode verify'");
@@ -195,6 +208,21 @@ Parsed parse(const QStringList& argv, bool verify) {
     if (!out.list && !out.formats && !out.scan && a.device.empty() && a.captures.empty() &&
         a.from_list.empty())
         throw InputError("no capture given (see decode --help)");
+}
+
+Parsed parse(const QStringList& argv, bool verify) {
+    QCommandLineParser p;
+    addOptions(p);
+    if (!p.parse(argv)) throw InputError(p.errorText().toStdString());
+    if (printedHelpOrVersion(p)) return {{}, false, true};
+    Parsed out;
+    out.list = p.isSet("list");
+    out.formats = p.isSet("formats");
+    out.scan = p.isSet("scan");
+    readLiveArgs(p, out.args);
+    readDecodeArgs(p, out.args);
+    readVerifyAndThreadArgs(p, out.args);
+    checkCombinations(out, verify);
     return out;
 }
 
