@@ -223,78 +223,67 @@ std::string fieldText(const Field& f) {
     return f.key + "=" + v;
 }
 
-// The first faulty event drawn like a logic analyser screen: reconstructed lines with
-// bit values, field segments above them, decoded fields as bus cells, faults in red.
-std::string timingDiagramSvg(const Event& e, const Timebase& tb, bool rebuild_bits) {
-    auto layout = rebuild_bits ? frameLayout(e) : std::vector<BitSegment>{};
-    std::size_t total_bits = 0;
+// Clock and data lines rebuilt from the decoded fields, with the field segments above them.
+void appendRebuiltBits(std::string& body, double& y, const Event& e,
+                       const std::vector<BitSegment>& layout, double L, double plot) {
+    std::size_t nbits = 0;
     for (const auto& seg : layout)
-        total_bits += seg.bits.size();
-    if (total_bits > 400) layout.clear();  // too many cells to read: fields only
-    const double W = 960, L = 110, R = 16;
-    const double plot = W - L - R;
-    const double start_ns = tb.toNsF(double(e.start)), end_ns = tb.toNsF(double(e.end));
-    std::string body;
-    double y = 34;
-
-    if (!layout.empty()) {
-        std::size_t nbits = 0;
-        for (const auto& seg : layout)
-            nbits += seg.bits.size();
-        const double cw = plot / double(nbits);
-        const bool biss = e.proto == "bissc";
-        // Segment boxes
-        double x = L;
-        for (const auto& seg : layout) {
-            const double w = cw * double(seg.bits.size());
-            body += fmt::format(
-                R"(<rect class="segment" x="{}" y="{}" width="{}" height="18" fill="{}" stroke="#555"/>)",
-                num(x), y, num(w), seg.fault ? "#ffcdd2" : "#e3f2fd");
-            if (w > 18)
-                body += fmt::format(R"(<text x="{}" y="{}" text-anchor="middle"{}>{}</text>)",
-                                    num(x + w / 2), y + 13, seg.fault ? R"( fill="#b71c1c")" : "",
-                                    esc(seg.label));
-            x += w;
-        }
-        y += 30;
-        // Clock line: one falling-then-rising period per bit.
-        std::string clk = fmt::format("M{},{}", L, y);
-        for (std::size_t i = 0; i < nbits; ++i) {
-            const double x0 = L + cw * double(i), xm = x0 + cw / 2, x1 = x0 + cw;
-            clk += fmt::format(" L{0},{1} L{0},{2} L{3},{2} L{3},{1} L{4},{1}", num(x0), y, y + 20,
-                               num(xm), num(x1));
-        }
-        body += fmt::format(R"(<text x="8" y="{}">{}</text>)", y + 14, biss ? "MA" : "CLK");
+        nbits += seg.bits.size();
+    const double cw = plot / double(nbits);
+    const bool biss = e.proto == "bissc";
+    // Segment boxes
+    double x = L;
+    for (const auto& seg : layout) {
+        const double w = cw * double(seg.bits.size());
         body += fmt::format(
-            R"(<path class="wave" d="{}" fill="none" stroke="#1b5e20" stroke-width="1.5"/>)", clk);
-        y += 34;
-        // Data line with the bit values.
-        std::string data;
-        std::size_t i = 0;
-        for (const auto& seg : layout) {
-            for (int b : seg.bits) {
-                const double x0 = L + cw * double(i), x1 = x0 + cw;
-                const double ly = b ? y : y + 20;
-                data += fmt::format("{}{},{} L{},{} ", data.empty() ? "M" : "L", num(x0), ly,
-                                    num(x1), ly);
-                if (cw >= 8)
-                    body += fmt::format(R"(<text x="{}" y="{}" text-anchor="middle"{}>{}</text>)",
-                                        num(x0 + cw / 2), y + 36,
-                                        seg.fault ? R"( fill="#b71c1c")" : "", b);
-                ++i;
-            }
-        }
-        body += fmt::format(R"(<text x="8" y="{}">{}</text>)", y + 14, biss ? "SL" : "DATA");
-        body += fmt::format(
-            R"(<path class="wave" d="{}" fill="none" stroke="#0d47a1" stroke-width="1.5"/>)", data);
-        y += 50;
-        body += fmt::format(
-            R"(<text x="{}" y="{}" fill="#777">bits rebuilt from the decoded fields, spread evenly over the frame</text>)",
-            L, y);
-        y += 16;
+            R"(<rect class="segment" x="{}" y="{}" width="{}" height="18" fill="{}" stroke="#555"/>)",
+            num(x), y, num(w), seg.fault ? "#ffcdd2" : "#e3f2fd");
+        if (w > 18)
+            body += fmt::format(R"(<text x="{}" y="{}" text-anchor="middle"{}>{}</text>)",
+                                num(x + w / 2), y + 13, seg.fault ? R"( fill="#b71c1c")" : "",
+                                esc(seg.label));
+        x += w;
     }
+    y += 30;
+    // Clock line: one falling-then-rising period per bit.
+    std::string clk = fmt::format("M{},{}", L, y);
+    for (std::size_t i = 0; i < nbits; ++i) {
+        const double x0 = L + cw * double(i), xm = x0 + cw / 2, x1 = x0 + cw;
+        clk += fmt::format(" L{0},{1} L{0},{2} L{3},{2} L{3},{1} L{4},{1}", num(x0), y, y + 20,
+                           num(xm), num(x1));
+    }
+    body += fmt::format(R"(<text x="8" y="{}">{}</text>)", y + 14, biss ? "MA" : "CLK");
+    body += fmt::format(
+        R"(<path class="wave" d="{}" fill="none" stroke="#1b5e20" stroke-width="1.5"/>)", clk);
+    y += 34;
+    // Data line with the bit values.
+    std::string data;
+    std::size_t i = 0;
+    for (const auto& seg : layout) {
+        for (int b : seg.bits) {
+            const double x0 = L + cw * double(i), x1 = x0 + cw;
+            const double ly = b ? y : y + 20;
+            data +=
+                fmt::format("{}{},{} L{},{} ", data.empty() ? "M" : "L", num(x0), ly, num(x1), ly);
+            if (cw >= 8)
+                body +=
+                    fmt::format(R"(<text x="{}" y="{}" text-anchor="middle"{}>{}</text>)",
+                                num(x0 + cw / 2), y + 36, seg.fault ? R"( fill="#b71c1c")" : "", b);
+            ++i;
+        }
+    }
+    body += fmt::format(R"(<text x="8" y="{}">{}</text>)", y + 14, biss ? "SL" : "DATA");
+    body += fmt::format(
+        R"(<path class="wave" d="{}" fill="none" stroke="#0d47a1" stroke-width="1.5"/>)", data);
+    y += 50;
+    body += fmt::format(
+        R"(<text x="{}" y="{}" fill="#777">bits rebuilt from the decoded fields, spread evenly over the frame</text>)",
+        L, y);
+    y += 16;
+}
 
-    // Decoded fields as bus cells (hexagons), wrapped over rows.
+// Decoded fields as bus cells (hexagons), wrapped over rows.
+void appendFieldCells(std::string& body, double& y, const Event& e, double L, double plot) {
     const double cell = 168;
     const int per_row = int(plot / cell);
     for (std::size_t i = 0; i < e.fields.size(); ++i) {
@@ -313,15 +302,11 @@ std::string timingDiagramSvg(const Event& e, const Timebase& tb, bool rebuild_bi
                             esc(fieldText(e.fields[i])));
     }
     y += 40;
+}
 
-    // Errors
-    std::string errs;
-    for (const auto& err : e.errors)
-        errs += (errs.empty() ? "" : ", ") + err;
-    body += fmt::format(R"(<text class="errors" x="8" y="{}" fill="#b71c1c">errors: {}</text>)", y,
-                        esc(errs.empty() ? "none" : errs));
-    y += 22;
-    // Time axis
+void appendTimeAxis(std::string& body, double y, double L, double W, double R, double start_ns,
+                    double end_ns) {
+    const double plot = W - L - R;
     body +=
         fmt::format(R"(<line x1="{0}" y1="{1}" x2="{2}" y2="{1}" stroke="#888"/>)", L, y, W - R);
     for (int k = 0; k <= 4; ++k) {
@@ -335,6 +320,32 @@ std::string timingDiagramSvg(const Event& e, const Timebase& tb, bool rebuild_bi
                                      : "middle",
                             esc(formatDuration(t)));
     }
+}
+
+// The first faulty event drawn like a logic analyser screen: reconstructed lines with
+// bit values, field segments above them, decoded fields as bus cells, faults in red.
+std::string timingDiagramSvg(const Event& e, const Timebase& tb, bool rebuild_bits) {
+    auto layout = rebuild_bits ? frameLayout(e) : std::vector<BitSegment>{};
+    std::size_t total_bits = 0;
+    for (const auto& seg : layout)
+        total_bits += seg.bits.size();
+    if (total_bits > 400) layout.clear();  // too many cells to read: fields only
+    const double W = 960, L = 110, R = 16;
+    const double plot = W - L - R;
+    const double start_ns = tb.toNsF(double(e.start)), end_ns = tb.toNsF(double(e.end));
+    std::string body;
+    double y = 34;
+
+    if (!layout.empty()) appendRebuiltBits(body, y, e, layout, L, plot);
+    appendFieldCells(body, y, e, L, plot);
+    // Errors
+    std::string errs;
+    for (const auto& err : e.errors)
+        errs += (errs.empty() ? "" : ", ") + err;
+    body += fmt::format(R"(<text class="errors" x="8" y="{}" fill="#b71c1c">errors: {}</text>)", y,
+                        esc(errs.empty() ? "none" : errs));
+    y += 22;
+    appendTimeAxis(body, y, L, W, R, start_ns, end_ns);
     y += 24;
     std::string head = fmt::format(
         R"(<svg class="timing" xmlns="http://www.w3.org/2000/svg" width="{0}" height="{1}" viewBox="0 0 {0} {1}">)",
@@ -345,22 +356,9 @@ std::string timingDiagramSvg(const Event& e, const Timebase& tb, bool rebuild_bi
     return head + body + "</svg>\n";
 }
 
-}  // namespace
-
-std::string htmlEscape(const std::string& s) {
-    return xmlEscape(s);
-}
-
-std::string renderHtmlReport(const CaptureStats& stats) {
-    const CaptureFacts& f = stats.facts();
-    const Timebase& tb = f.timebase;
+std::string captureFactsHtml(const CaptureFacts& f) {
     std::string h;
-    h += "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">";
-    h += fmt::format("<title>busdecode report: {}</title><style>{}</style></head><body>\n",
-                     esc(f.file.empty() ? "capture" : f.file), kStyle);
-    h += fmt::format("<h1>busdecode report: {}</h1>\n", esc(f.file.empty() ? "capture" : f.file));
-
-    // Capture facts
+    const Timebase& tb = f.timebase;
     h += "<h2>Capture</h2><table>\n";
     auto row = [&](const std::string& k, const std::string& v) {
         h += fmt::format("<tr><th>{}</th><td>{}</td></tr>\n", esc(k), esc(v));
@@ -374,81 +372,108 @@ std::string renderHtmlReport(const CaptureStats& stats) {
     for (const auto& b : f.bindings)
         row("signal", fmt::format("{}.{} = {}", b.instance, b.role, b.signal));
     h += "</table>\n";
+    return h;
+}
 
-    for (const auto& inst : stats.instances()) {
-        h += fmt::format("<h2>Bus {}</h2>\n", esc(inst));
-        const auto groups = stats.groupsOf(inst);
-        if (groups.empty()) {
-            h += "<p>No events decoded.</p>\n";
-            continue;
+// Event counts, faults, errors and flags per event type of one bus.
+std::string groupTableHtml(const std::vector<const GroupStats*>& groups) {
+    std::string h;
+    h += "<table><tr><th>type</th><th>events</th><th>with faults</th><th>errors by "
+         "kind</th><th>flags</th></tr>\n";
+    for (const GroupStats* g : groups) {
+        std::string errs, flags;
+        for (const auto& [k, n] : g->errors)
+            errs += fmt::format("{}{} {}", errs.empty() ? "" : ", ", k, n);
+        for (const auto& [k, c] : g->flags) {
+            if (k == "nE" || k == "nW")
+                flags += fmt::format("{}{} active {}", flags.empty() ? "" : ", ", k, c.false_count);
+            else
+                flags += fmt::format("{}{} true {} / false {}", flags.empty() ? "" : ", ", k,
+                                     c.true_count, c.false_count);
         }
-        h += "<table><tr><th>type</th><th>events</th><th>with faults</th><th>errors by "
-             "kind</th><th>flags</th></tr>\n";
-        for (const GroupStats* g : groups) {
-            std::string errs, flags;
-            for (const auto& [k, n] : g->errors)
-                errs += fmt::format("{}{} {}", errs.empty() ? "" : ", ", k, n);
-            for (const auto& [k, c] : g->flags) {
-                if (k == "nE" || k == "nW")
-                    flags +=
-                        fmt::format("{}{} active {}", flags.empty() ? "" : ", ", k, c.false_count);
-                else
-                    flags += fmt::format("{}{} true {} / false {}", flags.empty() ? "" : ", ", k,
-                                         c.true_count, c.false_count);
-            }
-            h += fmt::format(
-                "<tr><td>{}</td><td class=\"n\">{}</td><td "
-                "class=\"n{}\">{}</td><td>{}</td><td>{}</td></tr>\n",
-                esc(g->type), g->count, g->faulty ? " fault" : "", g->faulty, esc(errs),
-                esc(flags));
-        }
-        h += "</table>\n";
-        if (const auto* regs = stats.registers(inst); regs && !regs->empty()) {
-            h += "<table><tr><th>register</th><th>reads</th><th>writes</th><th>last "
-                 "data</th></tr>\n";
-            for (const auto& [a, r] : *regs)
-                h += fmt::format(
-                    "<tr><td>0x{:02X}</td><td class=\"n\">{}</td><td "
-                    "class=\"n\">{}</td><td>0x{:02X}{}</td></tr>\n",
-                    a, r.reads, r.writes, r.last_data, r.crc_failed ? " (CRC failed)" : "");
-            h += "</table>\n";
-        }
-        for (const GroupStats* g : groups) {
-            std::vector<std::pair<std::string, const QuantileSketch*>> rows;
-            for (const auto& [k, s] : g->timing)
-                rows.emplace_back(k, &s);
-            if (!g->pause_ns.empty()) rows.emplace_back("pause_ns", &g->pause_ns);
-            if (rows.empty()) continue;
-            h += fmt::format(
-                "<h3>{} "
-                "timing</h3><table><tr><th>field</th><th>n</th><th>min</th><th>median</th><th>p99</"
-                "th><th>max</th></tr>\n",
-                esc(g->type));
-            for (const auto& [k, s] : rows)
-                h += fmt::format(
-                    "<tr><td>{}</td><td class=\"n\">{}</td><td class=\"n\">{}</td><td "
-                    "class=\"n\">{}</td><td class=\"n\">{}</td><td class=\"n\">{}</td></tr>\n",
-                    esc(k == "pause_ns" ? "pause between" : k), s->count(),
-                    esc(formatFieldValue(k, s->min())), esc(formatFieldValue(k, s->median())),
-                    esc(formatFieldValue(k, s->quantile(0.99))),
-                    esc(formatFieldValue(k, s->max())));
-            h += "</table>\n<div>";
-            for (const auto& [k, s] : rows)
-                h += histogramSvg(
-                    fmt::format("{} {}", g->type, k == "pause_ns" ? "pause between" : k), k, *s);
-            h += "</div>\n";
-        }
-        if (const auto* p = stats.position(inst)) {
-            h += fmt::format("<p>Position: min {:.0f}, max {:.0f}, range {:.0f} over {} values",
-                             p->min, p->max, p->max - p->min, p->count);
-            if (p->count > 1)
-                h += fmt::format("; largest jump {:.0f} at {}", p->max_jump,
-                                 esc(formatDuration(tb.toNsF(double(p->max_jump_at)))));
-            h += ".</p>\n" + positionSvgs(stats, inst, *p);
-        }
-        if (const auto* c = stats.faultsOverTime(inst)) h += faultsOverTimeSvg(stats, inst, *c);
+        h += fmt::format(
+            "<tr><td>{}</td><td class=\"n\">{}</td><td "
+            "class=\"n{}\">{}</td><td>{}</td><td>{}</td></tr>\n",
+            esc(g->type), g->count, g->faulty ? " fault" : "", g->faulty, esc(errs), esc(flags));
     }
+    h += "</table>\n";
+    return h;
+}
 
+std::string registersHtml(const CaptureStats& stats, const std::string& inst) {
+    std::string h;
+    if (const auto* regs = stats.registers(inst); regs && !regs->empty()) {
+        h += "<table><tr><th>register</th><th>reads</th><th>writes</th><th>last "
+             "data</th></tr>\n";
+        for (const auto& [a, r] : *regs)
+            h += fmt::format(
+                "<tr><td>0x{:02X}</td><td class=\"n\">{}</td><td "
+                "class=\"n\">{}</td><td>0x{:02X}{}</td></tr>\n",
+                a, r.reads, r.writes, r.last_data, r.crc_failed ? " (CRC failed)" : "");
+        h += "</table>\n";
+    }
+    return h;
+}
+
+// Quantiles and histograms of every timed field per event type.
+std::string timingTablesHtml(const std::vector<const GroupStats*>& groups) {
+    std::string h;
+    for (const GroupStats* g : groups) {
+        std::vector<std::pair<std::string, const QuantileSketch*>> rows;
+        for (const auto& [k, s] : g->timing)
+            rows.emplace_back(k, &s);
+        if (!g->pause_ns.empty()) rows.emplace_back("pause_ns", &g->pause_ns);
+        if (rows.empty()) continue;
+        h += fmt::format(
+            "<h3>{} "
+            "timing</h3><table><tr><th>field</th><th>n</th><th>min</th><th>median</th><th>p99</"
+            "th><th>max</th></tr>\n",
+            esc(g->type));
+        for (const auto& [k, s] : rows)
+            h += fmt::format(
+                "<tr><td>{}</td><td class=\"n\">{}</td><td class=\"n\">{}</td><td "
+                "class=\"n\">{}</td><td class=\"n\">{}</td><td class=\"n\">{}</td></tr>\n",
+                esc(k == "pause_ns" ? "pause between" : k), s->count(),
+                esc(formatFieldValue(k, s->min())), esc(formatFieldValue(k, s->median())),
+                esc(formatFieldValue(k, s->quantile(0.99))), esc(formatFieldValue(k, s->max())));
+        h += "</table>\n<div>";
+        for (const auto& [k, s] : rows)
+            h += histogramSvg(fmt::format("{} {}", g->type, k == "pause_ns" ? "pause between" : k),
+                              k, *s);
+        h += "</div>\n";
+    }
+    return h;
+}
+
+std::string positionHtml(const CaptureStats& stats, const std::string& inst, const Timebase& tb) {
+    std::string h;
+    if (const auto* p = stats.position(inst)) {
+        h += fmt::format("<p>Position: min {:.0f}, max {:.0f}, range {:.0f} over {} values", p->min,
+                         p->max, p->max - p->min, p->count);
+        if (p->count > 1)
+            h += fmt::format("; largest jump {:.0f} at {}", p->max_jump,
+                             esc(formatDuration(tb.toNsF(double(p->max_jump_at)))));
+        h += ".</p>\n" + positionSvgs(stats, inst, *p);
+    }
+    return h;
+}
+
+std::string busSectionHtml(const CaptureStats& stats, const std::string& inst, const Timebase& tb) {
+    std::string h;
+    h += fmt::format("<h2>Bus {}</h2>\n", esc(inst));
+    const auto groups = stats.groupsOf(inst);
+    if (groups.empty()) return h + "<p>No events decoded.</p>\n";
+    h += groupTableHtml(groups);
+    h += registersHtml(stats, inst);
+    h += timingTablesHtml(groups);
+    h += positionHtml(stats, inst, tb);
+    if (const auto* c = stats.faultsOverTime(inst)) h += faultsOverTimeSvg(stats, inst, *c);
+    return h;
+}
+
+std::string waveformsHtml(const CaptureStats& stats, const CaptureFacts& f) {
+    std::string h;
+    const Timebase& tb = f.timebase;
     if (!stats.waveforms().empty()) {
         h += "<h2>Captured waveforms</h2>\n<p>The first faulty events of each bus as captured, "
              "with a clean one of each event type for comparison: the decoder's sample points "
@@ -462,7 +487,11 @@ std::string renderHtmlReport(const CaptureStats& stats) {
                 opts == f.options.end() ? std::map<std::string, std::string>{} : opts->second);
         }
     }
-    h += stats.signalSection().html();
+    return h;
+}
+
+std::string faultsHtml(const CaptureStats& stats, const Timebase& tb) {
+    std::string h;
     h += "<h2>Faults</h2>\n";
     if (stats.firstFaults().empty()) {
         h += "<p>None.</p>\n";
@@ -480,6 +509,32 @@ std::string renderHtmlReport(const CaptureStats& stats) {
             h += timingDiagramSvg(*e, tb, stats.waveforms().empty());
         }
     }
+    return h;
+}
+
+}  // namespace
+
+std::string htmlEscape(const std::string& s) {
+    return xmlEscape(s);
+}
+
+std::string renderHtmlReport(const CaptureStats& stats) {
+    const CaptureFacts& f = stats.facts();
+    const Timebase& tb = f.timebase;
+    std::string h;
+    h += "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">";
+    h += fmt::format("<title>busdecode report: {}</title><style>{}</style></head><body>\n",
+                     esc(f.file.empty() ? "capture" : f.file), kStyle);
+    h += fmt::format("<h1>busdecode report: {}</h1>\n", esc(f.file.empty() ? "capture" : f.file));
+
+    h += captureFactsHtml(f);
+
+    for (const auto& inst : stats.instances())
+        h += busSectionHtml(stats, inst, tb);
+
+    h += waveformsHtml(stats, f);
+    h += stats.signalSection().html();
+    h += faultsHtml(stats, tb);
     h += "<h2>Text report</h2>\n<pre>" + esc(renderTextReport(stats)) + "</pre>\n";
     h += "</body></html>\n";
     return h;
