@@ -7,6 +7,29 @@
 
 namespace busdecode {
 
+namespace {
+
+// The slots the slave drives after each rising edge (index 0 = LAT: still idle 1).
+std::vector<int> slaveSlots(const BisscFrameSpec& f, int bits, int crc_bits, std::uint32_t crc) {
+    std::vector<int> slots = {1, 0};  // LAT, ACK
+    for (int i = 0; i < f.proc_cycles; ++i)
+        slots.push_back(0);
+    slots.push_back(1);  // start
+    slots.push_back(f.cds & 1);
+    for (int i = bits - 1; i >= 0; --i)
+        slots.push_back(int((f.data >> i) & 1));
+    slots.push_back(f.ne & 1);
+    slots.push_back(f.nw & 1);
+    for (int i = crc_bits - 1; i >= 0; --i)
+        slots.push_back(int((crc >> i) & 1));
+    slots.push_back(0);  // stop
+    for (int i = 0; i < f.extra_clocks; ++i)
+        slots.push_back(0);
+    return slots;
+}
+
+}  // namespace
+
 BisscGenerator::BisscGenerator(BisscGenConfig cfg)
     : cfg_(std::move(cfg)), wb_(cfg_.timebase, cfg_.names, {1, 1}), rng_(cfg_.seed) {
     now_ns_ = cfg_.lead_ns;
@@ -54,25 +77,11 @@ const BisscFrameTruth& BisscGenerator::addFrame(const BisscFrameSpec& f) {
     truth.spec = f;
     truth.clock_hz = cfg_.clock_hz;
 
-    // The slots the slave drives after each rising edge (index 0 = LAT: still idle 1).
-    std::vector<int> slots = {1, 0};  // LAT, ACK
-    for (int i = 0; i < f.proc_cycles; ++i)
-        slots.push_back(0);
-    slots.push_back(1);  // start
-    slots.push_back(f.cds & 1);
-    for (int i = cfg_.bits - 1; i >= 0; --i)
-        slots.push_back(int((f.data >> i) & 1));
-    slots.push_back(f.ne & 1);
-    slots.push_back(f.nw & 1);
     std::uint32_t crc = crcFor(f.data, f.ne, f.nw);
     if (f.corrupt_crc) crc ^= 1u;
     truth.crc_sent = crc;
     truth.crc_ok = !f.corrupt_crc;
-    for (int i = crc_bits - 1; i >= 0; --i)
-        slots.push_back(int((crc >> i) & 1));
-    slots.push_back(0);  // stop
-    for (int i = 0; i < f.extra_clocks; ++i)
-        slots.push_back(0);
+    const std::vector<int> slots = slaveSlots(f, cfg_.bits, crc_bits, crc);
 
     int rises = int(slots.size());
     if (f.truncate_after >= 0 && f.truncate_after < rises) {
