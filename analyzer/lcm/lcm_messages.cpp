@@ -127,96 +127,119 @@ Publisher typed(Fill fill) {
     };
 }
 
+// The message fields of each typed event, one filler per LCM type.
+void fillSsiFrame(busdecode_lcm::ssi_frame_t& m, FieldReader& r) {
+    m.raw = r.integer("raw");
+    m.bits = int32_t(r.integer("bits"));
+    m.position = r.integer("position");
+    m.st = r.integer("st");
+    m.mt = r.integer("mt");
+    m.angle = r.real("angle");
+    m.repeats = int32_t(r.integer("repeats"));
+    m.repeat_match = r.flag("repeat_match");
+    m.clock_hz = r.real("clock_hz");
+    m.has_tm_ns = r.present("tm_ns");
+    m.tm_ns = r.real("tm_ns");
+}
+
+void fillBisscFrame(busdecode_lcm::bissc_frame_t& m, FieldReader& r) {
+    m.position = r.integer("position");
+    m.st = r.integer("st");
+    m.mt = r.integer("mt");
+    m.nE = int8_t(r.integer("nE"));
+    m.nW = int8_t(r.integer("nW"));
+    m.crc_rx = int8_t(r.integer("crc_rx"));
+    m.crc_ok = r.flag("crc_ok");
+    m.cds = int8_t(r.integer("cds"));
+    m.cdm = int8_t(r.integer("cdm"));
+    m.line_delay_ns = r.real("line_delay_ns");
+    m.proc_cycles = int32_t(r.integer("proc_cycles"));
+    m.clock_hz = r.real("clock_hz");
+    m.timeout_ns = r.real("timeout_ns");
+}
+
+void fillBisscRegister(busdecode_lcm::bissc_register_t& m, FieldReader& r) {
+    m.op = r.text("op");
+    m.id = int32_t(r.integer("id"));
+    m.address = int32_t(r.integer("address"));
+    m.data = r.list("data");
+    m.num_data = int16_t(m.data.size());
+    m.crc_ok = r.flag("crc_ok");
+}
+
+void fillBisscCommand(busdecode_lcm::bissc_command_t& m, FieldReader& r) {
+    m.id = int32_t(r.integer("id"));
+    m.command = int32_t(r.integer("command"));
+    m.crc_ok = r.flag("crc_ok");
+}
+
+void fillSpiTransfer(busdecode_lcm::spi_transfer_t& m, FieldReader& r) {
+    m.mosi = r.integer("mosi");
+    m.miso = r.integer("miso");
+    m.bits = int32_t(r.integer("bits"));
+}
+
+void fillTmc8100Command(busdecode_lcm::tmc8100_command_t& m, FieldReader& r) {
+    m.code = int32_t(r.integer("code"));
+    m.name = r.text("name");
+}
+
+void fillTmc8100Reply(busdecode_lcm::tmc8100_reply_t& m, FieldReader& r) {
+    m.tag = int32_t(r.integer("tag"));
+    m.value = r.integer("value");
+    m.meaning = r.text("meaning");
+}
+
+void fillTmc8100EncoderRead(busdecode_lcm::tmc8100_encoder_read_t& m, FieldReader& r) {
+    m.gray = r.integer("gray");
+    m.binary = r.integer("binary");
+    m.flags = r.integer("flags");
+    m.consistent = r.flag("consistent");
+    // ssi_match exists only when the SSI side is decoded in the same pass:
+    // its absence is not a fault, so it is not listed in null_fields.
+    m.has_ssi_match = r.present("ssi_match");
+    if (m.has_ssi_match) m.ssi_match = r.flag("ssi_match");
+}
+
+void fillUartByte(busdecode_lcm::uart_byte_t& m, FieldReader& r) {
+    m.value = int32_t(r.integer("value"));
+    m.line = r.text("line");
+}
+
+void fillTmclCommand(busdecode_lcm::tmcl_command_t& m, FieldReader& r) {
+    m.address = int32_t(r.integer("address"));
+    m.command = int32_t(r.integer("command"));
+    m.mnemonic = r.text("mnemonic");
+    m.type_no = int32_t(r.integer("type_no"));
+    m.motor = int32_t(r.integer("motor"));
+    m.value = int32_t(r.integer("value"));
+    m.checksum_ok = r.flag("checksum_ok");
+}
+
+void fillTmclReply(busdecode_lcm::tmcl_reply_t& m, FieldReader& r) {
+    m.reply_address = int32_t(r.integer("reply_address"));
+    m.module_address = int32_t(r.integer("module_address"));
+    m.status = int32_t(r.integer("status"));
+    m.status_text = r.text("status_text");
+    m.command = int32_t(r.integer("command"));
+    m.value = int32_t(r.integer("value"));
+    m.checksum_ok = r.flag("checksum_ok");
+}
+
 const std::map<std::pair<std::string_view, std::string_view>, Publisher>& typedPublishers() {
     namespace M = busdecode_lcm;
     static const std::map<std::pair<std::string_view, std::string_view>, Publisher> table{
-        {{"ssi", "frame"}, typed<M::ssi_frame_t>([](auto& m, FieldReader& r) {
-             m.raw = r.integer("raw");
-             m.bits = int32_t(r.integer("bits"));
-             m.position = r.integer("position");
-             m.st = r.integer("st");
-             m.mt = r.integer("mt");
-             m.angle = r.real("angle");
-             m.repeats = int32_t(r.integer("repeats"));
-             m.repeat_match = r.flag("repeat_match");
-             m.clock_hz = r.real("clock_hz");
-             m.has_tm_ns = r.present("tm_ns");
-             m.tm_ns = r.real("tm_ns");
-         })},
-        {{"bissc", "frame"}, typed<M::bissc_frame_t>([](auto& m, FieldReader& r) {
-             m.position = r.integer("position");
-             m.st = r.integer("st");
-             m.mt = r.integer("mt");
-             m.nE = int8_t(r.integer("nE"));
-             m.nW = int8_t(r.integer("nW"));
-             m.crc_rx = int8_t(r.integer("crc_rx"));
-             m.crc_ok = r.flag("crc_ok");
-             m.cds = int8_t(r.integer("cds"));
-             m.cdm = int8_t(r.integer("cdm"));
-             m.line_delay_ns = r.real("line_delay_ns");
-             m.proc_cycles = int32_t(r.integer("proc_cycles"));
-             m.clock_hz = r.real("clock_hz");
-             m.timeout_ns = r.real("timeout_ns");
-         })},
-        {{"bissc", "register"}, typed<M::bissc_register_t>([](auto& m, FieldReader& r) {
-             m.op = r.text("op");
-             m.id = int32_t(r.integer("id"));
-             m.address = int32_t(r.integer("address"));
-             m.data = r.list("data");
-             m.num_data = int16_t(m.data.size());
-             m.crc_ok = r.flag("crc_ok");
-         })},
-        {{"bissc", "command"}, typed<M::bissc_command_t>([](auto& m, FieldReader& r) {
-             m.id = int32_t(r.integer("id"));
-             m.command = int32_t(r.integer("command"));
-             m.crc_ok = r.flag("crc_ok");
-         })},
-        {{"spi", "transfer"}, typed<M::spi_transfer_t>([](auto& m, FieldReader& r) {
-             m.mosi = r.integer("mosi");
-             m.miso = r.integer("miso");
-             m.bits = int32_t(r.integer("bits"));
-         })},
-        {{"tmc8100", "command"}, typed<M::tmc8100_command_t>([](auto& m, FieldReader& r) {
-             m.code = int32_t(r.integer("code"));
-             m.name = r.text("name");
-         })},
-        {{"tmc8100", "reply"}, typed<M::tmc8100_reply_t>([](auto& m, FieldReader& r) {
-             m.tag = int32_t(r.integer("tag"));
-             m.value = r.integer("value");
-             m.meaning = r.text("meaning");
-         })},
-        {{"tmc8100", "encoder_read"}, typed<M::tmc8100_encoder_read_t>([](auto& m, FieldReader& r) {
-             m.gray = r.integer("gray");
-             m.binary = r.integer("binary");
-             m.flags = r.integer("flags");
-             m.consistent = r.flag("consistent");
-             // ssi_match exists only when the SSI side is decoded in the same pass:
-             // its absence is not a fault, so it is not listed in null_fields.
-             m.has_ssi_match = r.present("ssi_match");
-             if (m.has_ssi_match) m.ssi_match = r.flag("ssi_match");
-         })},
-        {{"uart", "byte"}, typed<M::uart_byte_t>([](auto& m, FieldReader& r) {
-             m.value = int32_t(r.integer("value"));
-             m.line = r.text("line");
-         })},
-        {{"tmcl", "command"}, typed<M::tmcl_command_t>([](auto& m, FieldReader& r) {
-             m.address = int32_t(r.integer("address"));
-             m.command = int32_t(r.integer("command"));
-             m.mnemonic = r.text("mnemonic");
-             m.type_no = int32_t(r.integer("type_no"));
-             m.motor = int32_t(r.integer("motor"));
-             m.value = int32_t(r.integer("value"));
-             m.checksum_ok = r.flag("checksum_ok");
-         })},
-        {{"tmcl", "reply"}, typed<M::tmcl_reply_t>([](auto& m, FieldReader& r) {
-             m.reply_address = int32_t(r.integer("reply_address"));
-             m.module_address = int32_t(r.integer("module_address"));
-             m.status = int32_t(r.integer("status"));
-             m.status_text = r.text("status_text");
-             m.command = int32_t(r.integer("command"));
-             m.value = int32_t(r.integer("value"));
-             m.checksum_ok = r.flag("checksum_ok");
-         })},
+        {{"ssi", "frame"}, typed<M::ssi_frame_t>(fillSsiFrame)},
+        {{"bissc", "frame"}, typed<M::bissc_frame_t>(fillBisscFrame)},
+        {{"bissc", "register"}, typed<M::bissc_register_t>(fillBisscRegister)},
+        {{"bissc", "command"}, typed<M::bissc_command_t>(fillBisscCommand)},
+        {{"spi", "transfer"}, typed<M::spi_transfer_t>(fillSpiTransfer)},
+        {{"tmc8100", "command"}, typed<M::tmc8100_command_t>(fillTmc8100Command)},
+        {{"tmc8100", "reply"}, typed<M::tmc8100_reply_t>(fillTmc8100Reply)},
+        {{"tmc8100", "encoder_read"}, typed<M::tmc8100_encoder_read_t>(fillTmc8100EncoderRead)},
+        {{"uart", "byte"}, typed<M::uart_byte_t>(fillUartByte)},
+        {{"tmcl", "command"}, typed<M::tmcl_command_t>(fillTmclCommand)},
+        {{"tmcl", "reply"}, typed<M::tmcl_reply_t>(fillTmclReply)},
     };
     return table;
 }
