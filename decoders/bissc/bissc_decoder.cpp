@@ -32,14 +32,14 @@ BisscDecoder::BisscDecoder(const Options& options)
 
 void BisscDecoder::start(const DecoderContext& ctx) {
     Decoder::start(ctx);
-    min_quiet_ = tb().fromNs(kMinQuietNs);
+    c_.min_quiet = tb().fromNs(kMinQuietNs);
     run_.delay = 0;
     updateQuietTicks();
     run_.ma = ctx.initial_levels.size() > kMa ? ctx.initial_levels[kMa] != 0 : true;
     run_.sl = ctx.initial_levels.size() > kSl ? ctx.initial_levels[kSl] != 0 : true;
     sampler_.reset(run_.sl);
     // A capture that starts with SL low starts inside a frame or a timeout.
-    state_ = run_.sl ? State::Idle : State::WaitSlaveIdle;
+    c_.state = run_.sl ? State::Idle : State::WaitSlaveIdle;
 }
 
 Tick BisscDecoder::watermark(Tick now) const {
@@ -59,11 +59,11 @@ void BisscDecoder::advance(Tick now) {
 void BisscDecoder::glitch(Tick t, int role) {
     (void)t;
     (void)role;
-    if (state_ == State::WaitAck || state_ == State::Data || state_ == State::Timeout ||
-        state_ == State::TimeoutEnded)
+    if (c_.state == State::WaitAck || c_.state == State::Data || c_.state == State::Timeout ||
+        c_.state == State::TimeoutEnded)
         addError("glitch");
     else
-        glitch_pending_ = true;
+        c_.glitch_pending = true;
 }
 
 void BisscDecoder::addError(const std::string& e) {
@@ -73,17 +73,17 @@ void BisscDecoder::addError(const std::string& e) {
 double BisscDecoder::quietLimit() const {
     // Or the slave's timeout as seen before: a clock paused that long has reset the slave
     // (its next clocks are a new request, even if the pause was short of kMinQuietNs).
-    return std::min(std::max(min_quiet_, 3.0 * meanPeriod()) + run_.delay, slave_timeout_);
+    return std::min(std::max(c_.min_quiet, 3.0 * meanPeriod()) + run_.delay, c_.slave_timeout);
 }
 
 void BisscDecoder::checkQuietSlow(Tick now) {
-    if (state_ == State::TimeoutEnded) {
+    if (c_.state == State::TimeoutEnded) {
         // The clock did not go on within a clock phase of its last edge: frame over.
         if (!isClockPhase(double(now - run_.last_ma_edge), !run_.ma) && now >= f_.timeout_end) {
             // After clocks past an early slave timeout, CDM is where the master left MA.
             if (f_.retriggered) f_.ma_at_timeout_end = run_.ma;
             closeFrame(f_.timeout_end, f_.timeout_end, nullptr, true);
-            state_ = run_.sl ? State::Idle : State::WaitSlaveIdle;
+            c_.state = run_.sl ? State::Idle : State::WaitSlaveIdle;
         }
         return;
     }
@@ -91,19 +91,19 @@ void BisscDecoder::checkQuietSlow(Tick now) {
     // ends once the clock has been quiet past quietLimit() or, before the ACK, once the
     // master gave up (never for a lone rise from low: that case is next).
     if (double(now - run_.last_ma_edge) <= quietLimit() &&
-        !(state_ == State::WaitAck && masterGaveUp(now)))
+        !(c_.state == State::WaitAck && masterGaveUp(now)))
         return;
-    if (state_ == State::WaitAck && f_.from_hold && f_.rises.size() == 1) {
+    if (c_.state == State::WaitAck && f_.from_hold && f_.rises.size() == 1) {
         // MA rose from low and stayed high: the master went back to idle after CDM = 1.
-        state_ = State::Idle;
+        c_.state = State::Idle;
         idle();
         return;
     }
-    const char* why = state_ == State::WaitAck  ? "no_ack"
-                      : run_.slot == Slot::Busy ? "no_start"
-                                                : "short_frame";
+    const char* why = c_.state == State::WaitAck ? "no_ack"
+                      : run_.slot == Slot::Busy  ? "no_start"
+                                                 : "short_frame";
     closeFrame(run_.last_ma_edge, kNoTick, why, true);
-    state_ = run_.sl ? State::Idle : State::WaitSlaveIdle;
+    c_.state = run_.sl ? State::Idle : State::WaitSlaveIdle;
 }
 
 bool BisscDecoder::isClockPhase(double length, bool level) const {
@@ -125,8 +125,8 @@ void BisscDecoder::resolveHoldStart(Tick ack) {
     const double as_hold = double(ack - f_.rises[1]);
     const double as_idle = double(ack - f_.rises[2]);
     bool idle_return;
-    if (last_delay_ >= 0) {
-        idle_return = std::fabs(as_idle - last_delay_) < std::fabs(as_hold - last_delay_);
+    if (c_.last_delay >= 0) {
+        idle_return = std::fabs(as_idle - c_.last_delay) < std::fabs(as_hold - c_.last_delay);
     } else {
         const double high = double(f_.hold_fall - f_.rises[0]);
         const double low = double(f_.rises[1] - f_.hold_fall);
@@ -154,11 +154,11 @@ void BisscDecoder::beginFrame(Tick start, bool from_hold) {
     f_.start = start;
     f_.from_hold = from_hold;
     sampler_.reset(run_.sl);
-    state_ = State::WaitAck;
+    c_.state = State::WaitAck;
     setBusyFrom(start);
-    if (glitch_pending_) {
+    if (c_.glitch_pending) {
         addError("glitch");
-        glitch_pending_ = false;
+        c_.glitch_pending = false;
     }
 }
 
@@ -264,7 +264,7 @@ bool BisscDecoder::takeSlEdge(RunFields& s, RunRoom<Count>& r, Tick t, bool leve
 }
 
 bool BisscDecoder::takeAckWaitEdge(Tick t, int role, bool level) {
-    if (role != kMa || state_ != State::WaitAck || !sampler_.empty()) return false;
+    if (role != kMa || c_.state != State::WaitAck || !sampler_.empty()) return false;
     // onMa() with no sample to take (none is scheduled before the ACK), checkQuiet()
     // finding nothing to do, then onMaAfterSamples()'s WaitAck case.
     if (quietMayEnd(t)) return false;
@@ -305,10 +305,10 @@ void BisscDecoder::onMa(Tick t, bool level) {
 void BisscDecoder::onMaAfterSamples(Tick t, bool level) {
     checkQuiet(t);
     recordMaEdge(t, level,
-                 (state_ == State::WaitAck || state_ == State::Data) && !f_.rises.empty() &&
+                 (c_.state == State::WaitAck || c_.state == State::Data) && !f_.rises.empty() &&
                      run_.last_ma_edge != kNoTick);
 
-    switch (state_) {
+    switch (c_.state) {
         case State::WaitSlaveIdle:
             break;
         case State::Idle:
@@ -346,16 +346,16 @@ void BisscDecoder::onSl(Tick t, bool level) {
     drainSamples();
     checkQuiet(t);
 
-    switch (state_) {
+    switch (c_.state) {
         case State::WaitSlaveIdle:
             if (level) {
-                state_ = State::Idle;
+                c_.state = State::Idle;
                 idle();
             }
             break;
         case State::Idle:
             if (!level) {  // SL low outside a frame: not ours to decode
-                state_ = State::WaitSlaveIdle;
+                c_.state = State::WaitSlaveIdle;
                 idle();
             }
             break;
@@ -364,7 +364,7 @@ void BisscDecoder::onSl(Tick t, bool level) {
             if (f_.rises.size() < 2) {
                 addError("early_ack");
                 closeFrame(t, kNoTick, nullptr, true);
-                state_ = State::WaitSlaveIdle;
+                c_.state = State::WaitSlaveIdle;
                 break;
             }
             resolveHoldStart(t);
@@ -373,7 +373,7 @@ void BisscDecoder::onSl(Tick t, bool level) {
             // is not one.
             run_.max_high = run_.max_low = 0;
             startDelayEstimate(double(t - f_.rises[1]));
-            state_ = State::Data;
+            c_.state = State::Data;
             break;
         case State::Data: {
             const double late =
@@ -382,7 +382,7 @@ void BisscDecoder::onSl(Tick t, bool level) {
                 // SL moved long after the last clocked slot: the master stopped early and
                 // the slave timed out (or gave up).
                 closeFrame(t, kNoTick, run_.slot == Slot::Busy ? "no_start" : "short_frame", true);
-                state_ = level ? State::Idle : State::WaitSlaveIdle;
+                c_.state = level ? State::Idle : State::WaitSlaveIdle;
             } else if (run_.slot != Slot::Done) {
                 refineDelay(t);
             }
@@ -393,7 +393,7 @@ void BisscDecoder::onSl(Tick t, bool level) {
                 // Decided at the next MA edge or when the clock has been quiet a period.
                 f_.timeout_end = t;
                 f_.ma_at_timeout_end = run_.ma;
-                state_ = State::TimeoutEnded;
+                c_.state = State::TimeoutEnded;
                 checkQuiet(t);
             }
             break;
@@ -401,10 +401,10 @@ void BisscDecoder::onSl(Tick t, bool level) {
             if (level) break;
             if (f_.retriggered) {  // the slave's ACK to the clocks past the stop bit
                 f_.timeout_end = kNoTick;
-                state_ = State::Timeout;
+                c_.state = State::Timeout;
             } else {  // SL fell again with MA quiet: not ours
                 closeFrame(f_.timeout_end, f_.timeout_end, nullptr, true);
-                state_ = State::WaitSlaveIdle;
+                c_.state = State::WaitSlaveIdle;
             }
             break;
     }
@@ -413,7 +413,7 @@ void BisscDecoder::onSl(Tick t, bool level) {
 void BisscDecoder::scheduleUpTo(double t) {
     // Samples are scheduled just before the sampled line could pass them, so each uses
     // the line delay estimated from every SL edge seen until then.
-    if (state_ != State::Data) return;
+    if (c_.state != State::Data) return;
     while (run_.scheduled < f_.rises.size()) {
         double at = sampleTime(run_.scheduled);
         if (at >= t) break;
@@ -432,9 +432,9 @@ void BisscDecoder::startDelayEstimate(double ack_delay) {
     run_.delay_sum = ack_delay;
     run_.delay_edges = 1;
     const double tolerance = std::max(2.0, 0.25 * meanPeriod());
-    if (last_delay_ >= 0 && std::fabs(ack_delay - last_delay_) <= tolerance) {
+    if (c_.last_delay >= 0 && std::fabs(ack_delay - c_.last_delay) <= tolerance) {
         constexpr int kPriorWeight = 8;
-        run_.delay_sum += kPriorWeight * last_delay_;
+        run_.delay_sum += kPriorWeight * c_.last_delay;
         run_.delay_edges += kPriorWeight;
     }
     run_.delay = run_.delay_sum / run_.delay_edges;
@@ -444,7 +444,7 @@ void BisscDecoder::startDelayEstimate(double ack_delay) {
 void BisscDecoder::drainSamples() {
     while (sampler_.ready()) {
         const LineSampler::Sample s = sampler_.pop();
-        if (state_ == State::Data) takeSample(int(s.tag), s.level, s.t);
+        if (c_.state == State::Data) takeSample(int(s.tag), s.level, s.t);
     }
 }
 
@@ -466,9 +466,9 @@ void BisscDecoder::takeSample(int index, bool level, double t) {
                 // No low stop bit, so no timeout to wait for: the frame ends here.
                 addError("stop_bit");
                 closeFrame(Tick(std::ceil(t)), kNoTick, nullptr, true);
-                state_ = run_.sl ? State::Idle : State::WaitSlaveIdle;
+                c_.state = run_.sl ? State::Idle : State::WaitSlaveIdle;
             } else {
-                state_ = State::Timeout;
+                c_.state = State::Timeout;
             }
             break;
         default:  // Done (the plain slots are taken above)
@@ -528,14 +528,14 @@ BisscDecoder::FrameOutcome BisscDecoder::checkFrame(Event& e, Tick timeout_end) 
         // clock periods, so that a pulse on SL during the timeout cannot make clock
         // phases look like pauses.
         if (timeout_end > f_.rises.back()) {
-            slave_timeout_ = std::max(double(timeout_end - f_.rises.back()), 2.0 * meanPeriod());
+            c_.slave_timeout = std::max(double(timeout_end - f_.rises.back()), 2.0 * meanPeriod());
             updateQuietTicks();
         }
     }
     out.period = meanPeriod();
     out.clocked = f_.rises.size() >= 2 && out.period > 0;
-    if (out.clocked) last_period_ = out.period;
-    if (f_.ack != kNoTick) last_delay_ = run_.delay;
+    if (out.clocked) c_.last_period = out.period;
+    if (f_.ack != kNoTick) c_.last_delay = run_.delay;
     out.acked = f_.ack != kNoTick;
     out.delay_ns = out.acked ? std::llround(tb().toNsF(run_.delay)) : 0;
     return out;
@@ -640,7 +640,7 @@ void BisscDecoder::finish(Tick end) {
     scheduleUpTo(double(end));
     sampler_.advanceTo(end);
     drainSamples();
-    switch (state_) {
+    switch (c_.state) {
         case State::WaitAck:
             // MA rising from low and nothing after: the master's return to idle.
             if (f_.from_hold && f_.rises.size() == 1) break;
@@ -658,7 +658,7 @@ void BisscDecoder::finish(Tick end) {
         default:
             break;
     }
-    state_ = State::Idle;
+    c_.state = State::Idle;
     control_.finish();
 }
 

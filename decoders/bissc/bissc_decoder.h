@@ -124,7 +124,7 @@ private:
     template <class Count>
     RunRoom<Count> runRoom() {
         return {f_.rises.data(), Count(f_.rises.sizeRef()), double(f_.rises.size() - 1),
-                run_.period / 2.0, quiet_ticks_};
+                run_.period / 2.0, c_.quiet_ticks};
     }
     // The rest of a frame: plain fields (compared whole by spliceState()), its rises and
     // its errors.
@@ -154,7 +154,7 @@ private:
 
     // Only in State::Data with the sampler empty (and two rises, a period, seen).
     bool dataEdgesNow() const {
-        return state_ == State::Data && sampler_.empty() && f_.rises.size() >= 2;
+        return c_.state == State::Data && sampler_.empty() && f_.rises.size() >= 2;
     }
     // One usual edge of a frame's data (dataEdgesNow()): what the general path (onMa(),
     // onSl()) does with it, the same arithmetic in the same order, so that every sample
@@ -289,7 +289,7 @@ private:
     // out once per rising edge.
     double meanPeriod() const { return run_.period; }
     [[gnu::always_inline]] void updatePeriod() {
-        run_.period = f_.rises.size() < 2 ? last_period_ : periodOfRises();
+        run_.period = f_.rises.size() < 2 ? c_.last_period : periodOfRises();
     }
     // The mean period over rises[] (two or more).
     [[gnu::always_inline]] double periodOfRises() const {
@@ -336,11 +336,11 @@ private:
     // checkQuiet()'s inline test: false in the usual case, where checkQuietSlow() would
     // do nothing (takeAckWaitEdge() asks it too).
     bool quietMayEnd(Tick now) const {
-        return state_ == State::TimeoutEnded ||
-               ((state_ == State::WaitAck || state_ == State::Data) &&
+        return c_.state == State::TimeoutEnded ||
+               ((c_.state == State::WaitAck || c_.state == State::Data) &&
                 run_.last_ma_edge != kNoTick &&
-                (now - run_.last_ma_edge > quiet_ticks_ ||
-                 (state_ == State::WaitAck && masterGaveUp(now))));
+                (now - run_.last_ma_edge > c_.quiet_ticks ||
+                 (c_.state == State::WaitAck && masterGaveUp(now))));
     }
     // In WaitAck: has MA stayed high for many of the frame's clock phases (or, none
     // seen yet, of the previous frame's)? Until the ACK the master clocks without a
@@ -352,14 +352,14 @@ private:
     bool masterGaveUp(Tick now) const {
         if (!run_.ma || (f_.from_hold && f_.rises.size() == 1)) return false;
         const Tick phase = std::max(run_.max_high, run_.max_low);
-        const double limit = kGaveUpPhases * (phase > 0 ? double(phase) : last_period_ / 2);
+        const double limit = kGaveUpPhases * (phase > 0 ? double(phase) : c_.last_period / 2);
         return limit > 0 && double(now - run_.last_ma_edge) > limit;
     }
     // MA high this many of the frame's longest clock phases before the ACK: the master
     // gave up. Far above a clock's jitter or an uneven duty cycle, far below the pause
     // between frames, which is at least the slave's timeout.
     static constexpr double kGaveUpPhases = 8.0;
-    // quiet_ticks_ for min_quiet_ and slave_timeout_ as they are now.
+    // c_.quiet_ticks for c_.min_quiet and c_.slave_timeout as they are now.
     void updateQuietTicks();
     void checkQuietSlow(Tick now);
     void resolveHoldStart(Tick ack);
@@ -370,22 +370,27 @@ private:
     FixedLengthCrc crc_;  // the frame CRC, over the data bits, nE and nW
     BisscControlReassembler control_;
     LineSampler sampler_;
-    State state_ = State::Idle;
+    // The decoder's own state beside the frame's: compared whole when splicing
+    // (spliceState()), so a field added here cannot be left out of the comparison.
+    struct Carried {
+        State state = State::Idle;
+        double last_delay = -1;  // line delay of the previous frame (ticks), -1 unknown
+        bool glitch_pending = false;
+        double last_period = 0;  // mean clock period of the previous frame (ticks)
+        double min_quiet = 0;    // kMinQuietNs in ticks
+        // The slave's timeout (ticks, last rising MA edge to SL rising, as seen at the
+        // master) measured on the last frame that ran into it; infinite until then.
+        double slave_timeout = std::numeric_limits<double>::infinity();
+        // floor(min(min_quiet, slave_timeout)): no more than quietLimit() (the line delay is
+        // never negative: it is measured from an MA rise to a later SL edge), so a gap of
+        // whole ticks n can only end a frame if n > quiet_ticks: checkQuiet()'s test per
+        // edge, without a conversion; checkQuietSlow() decides. It does not follow the
+        // delay, so that refining the delay on every SL edge need not work it out again.
+        Tick quiet_ticks = 0;
+    };
+    Carried c_;
     RunFields run_;
     Frame f_;
-    double last_delay_ = -1;  // line delay of the previous frame (ticks), -1 unknown
-    bool glitch_pending_ = false;
-    double last_period_ = 0;  // mean clock period of the previous frame (ticks)
-    double min_quiet_ = 0;    // kMinQuietNs in ticks
-    // The slave's timeout (ticks, last rising MA edge to SL rising, as seen at the master)
-    // measured on the last frame that ran into it; infinite until then.
-    double slave_timeout_ = std::numeric_limits<double>::infinity();
-    // floor(min(min_quiet_, slave_timeout_)): no more than quietLimit() (the line delay is
-    // never negative: it is measured from an MA rise to a later SL edge), so a gap of
-    // whole ticks n can only end a frame if n > quiet_ticks_: checkQuiet()'s test per edge,
-    // without a conversion; checkQuietSlow() decides. It does not follow the delay, so
-    // that refining the delay on every SL edge need not work it out again.
-    Tick quiet_ticks_ = 0;
     std::uint64_t frames_ = 0, answered_frames_ = 0, clean_frames_ = 0;
     // Edges outside a frame's data (onMa, onSl, takeAckWaitEdge()): all of them while no
     // frame is running.
@@ -396,10 +401,10 @@ inline void BisscDecoder::updateQuietTicks() {
     // floor() by truncation and one correction; clamped, so that a timeout measured
     // across an absurd gap cannot overflow.
     constexpr double kMaxTick = 9.0e18;
-    const double limit = std::clamp(std::min(min_quiet_, slave_timeout_), -kMaxTick, kMaxTick);
+    const double limit = std::clamp(std::min(c_.min_quiet, c_.slave_timeout), -kMaxTick, kMaxTick);
     Tick q = Tick(limit);
     if (double(q) > limit) --q;
-    quiet_ticks_ = q;
+    c_.quiet_ticks = q;
 }
 
 inline void BisscDecoder::refineDelay(Tick t) {

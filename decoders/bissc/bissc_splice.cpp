@@ -11,13 +11,12 @@ bool BisscDecoder::spliceState(SpliceState& out) const {
     // out (its event emitted) and only what it measured is carried on. (Not while idle: a
     // decoder started in the middle of a frame is idle for a while, long before it could
     // match, and would spend the splice points the speculator looks for.)
-    if (state_ != State::WaitAck || !f_.rises.empty() || !sampler_.empty()) return false;
+    if (c_.state != State::WaitAck || !f_.rises.empty() || !sampler_.empty()) return false;
     out.words.clear();
     out.counts.clear();
     if (!control_.appendSpliceWords(out.words)) return false;
     SpliceWords w(out.words);
-    w << state_ << last_delay_ << glitch_pending_ << last_period_ << min_quiet_ << slave_timeout_
-      << quiet_ticks_ << busySince() << sampler_.level();
+    w.fields(c_) << busySince() << sampler_.level();
     // The frame: just begun (most fields still as beginFrame() left them), or the last one
     // when idle, which a new frame resets; compared whole either way, not reasoned about.
     w.fields(run_).fields(static_cast<const FrameFields&>(f_)) << f_.rises.size();
