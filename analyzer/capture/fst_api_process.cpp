@@ -68,15 +68,17 @@ std::uint64_t addressSpaceNow() {
 
 // The child's setup: no crash reports of its own, no output, bounded memory. (It ends
 // when the parent does: its socket closes, and sending fails without a SIGPIPE.)
-void becomeChild(std::uint64_t budget) {
+void becomeChild(std::uint64_t budget, std::uint64_t cpu_seconds) {
     if (__sanitizer_set_death_callback) __sanitizer_set_death_callback(nullptr);
-    for (int sig : {SIGSEGV, SIGBUS, SIGABRT, SIGFPE, SIGILL, SIGPIPE})
+    for (int sig : {SIGSEGV, SIGBUS, SIGABRT, SIGFPE, SIGILL, SIGPIPE, SIGXCPU})
         ::signal(sig, sig == SIGPIPE ? SIG_IGN : SIG_DFL);
     if (const int null = ::open("/dev/null", O_WRONLY); null >= 0) {
         ::dup2(null, STDERR_FILENO);
         ::dup2(null, STDOUT_FILENO);
         ::close(null);
     }
+    const rlimit cpu{rlim_t(cpu_seconds), rlim_t(cpu_seconds + 1)};
+    ::setrlimit(RLIMIT_CPU, &cpu);
 #ifndef BUSDECODE_FST_ASAN
     if (const std::uint64_t now = addressSpaceNow(); now > 0) {
         const rlimit limit{rlim_t(now + budget), rlim_t(now + budget)};
@@ -125,7 +127,7 @@ std::string PayloadReader::text() {
     return std::string(take(std::size_t(u64())));
 }
 
-FstChild::FstChild(const std::string& name, std::uint64_t budget,
+FstChild::FstChild(const std::string& name, std::uint64_t budget, std::uint64_t cpu_seconds,
                    const std::function<void(ChildChannel&)>& body) {
     int fds[2];
     if (::socketpair(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0, fds) != 0)
@@ -141,7 +143,7 @@ FstChild::FstChild(const std::string& name, std::uint64_t budget,
     }
     if (pid_ == 0) {
         ::close(fds[0]);
-        becomeChild(budget);
+        becomeChild(budget, cpu_seconds);
         ChildChannel out(fds[1]);  // (the parent's buffered output is never flushed here)
         try {
             body(out);

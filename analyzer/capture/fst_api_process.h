@@ -65,8 +65,9 @@ public:
     // Forks; the child runs `body` with room for `budget` bytes of memory beyond what it
     // holds at the fork (not enforced under AddressSanitizer, whose shadow needs far more
     // address space), its standard error silenced, then ends. Throws InputError naming
-    // `name` when no child can be made.
-    FstChild(const std::string& name, std::uint64_t budget,
+    // `name` when no child can be made. `cpu_seconds` bounds its processor time: a corrupt
+    // block that sends fstapi round a loop ends the child (SIGXCPU), not the reading.
+    FstChild(const std::string& name, std::uint64_t budget, std::uint64_t cpu_seconds,
              const std::function<void(ChildChannel&)>& body);
     ~FstChild();  // kills the child if still running and reaps it
     FstChild(const FstChild&) = delete;

@@ -6,6 +6,7 @@
 // - the child sends the signals, then, once told the selection, the initial levels and
 //   blocks of edges; --rate overrides the timescale (one sample per time unit, as for VCD).
 #include <cstring>
+#include <filesystem>
 
 #include <fmt/format.h>
 #include <unistd.h>
@@ -30,13 +31,21 @@ Timebase timebaseOf(int exponent, const std::string& name) {
     return exponent < 0 ? Timebase{1, p} : Timebase{p, 1};
 }
 
+// The child's processor time: far more than fstapi takes to unpack the file (well over
+// 10 MB a second), so only a loop in it runs out.
+std::uint64_t fstCpuSeconds(const std::string& path) {
+    std::error_code ec;
+    const std::uintmax_t size = std::filesystem::file_size(path, ec);
+    return 30 + (ec ? 0 : std::uint64_t(size >> 20));
+}
+
 class FstReader : public CaptureReader {
 public:
     FstReader(const std::string& path, std::string name, const OpenOptions& opts, int owned_fd)
         : name_(std::move(name)),
           owned_fd_(owned_fd),
           chain_(checkFstBlocks(path, name_)),
-          child_(name_, kFstBlockBudget,
+          child_(name_, kFstBlockBudget, fstCpuSeconds(path),
                  [&](ChildChannel& channel) { serveFst(path, name_, channel); }) {
         readHeader(expect(fst_message::Header, "its header and hierarchy"));
         if (opts.rate_hz > 0) {  // one sample per time unit (as for VCD)

@@ -6,6 +6,7 @@
 
 #include <filesystem>
 
+#include "capture/fst_api_process.h"
 #include "robustness_cli.h"
 
 namespace busdecode::test {
@@ -54,6 +55,19 @@ TEST(FstCorruptBlocks, ABlockAskingForMoreThanTheBudgetIsRefusedBeforeFstapi) {
     const std::string err = oneLineFailure({"--formats", f});
     EXPECT_NE(err.find("needs 1048577 MB to unpack, more than the 256 MB"), std::string::npos)
         << err;
+}
+
+// A loop inside fstapi (none is known since the block walk checks lengths first) ends the
+// child at its processor-time limit, which the reader reports as the way it ended.
+TEST(FstCorruptBlocks, AChildThatLoopsIsEndedByItsCpuLimit) {
+    FstChild child("loop.fst", std::uint64_t(64) << 20, 1, [](ChildChannel&) {
+        for (volatile std::uint64_t i = 0;; i = i + 1) {
+        }
+    });
+    std::uint8_t kind = 0;
+    std::string payload;
+    EXPECT_FALSE(child.channel().receive(kind, payload));
+    EXPECT_NE(child.howItEnded().find("CPU time limit exceeded"), std::string::npos);
 }
 
 }  // namespace
