@@ -12,29 +12,26 @@
 # Needs: two Release/RelWithDebInfo builds with BUSDECODE_BENCH on in the new one,
 # python3, jq, /usr/bin/time.
 set -euo pipefail
-src="$(cd "$(dirname "$0")/.." && pwd)"
-new="$src/build"
 old=""
 size=200
 runs=9
-while getopts "o:b:s:n:" o; do
-    case $o in
-        o) old="$(cd "$OPTARG" && pwd)" ;;
-        b) new="$(cd "$OPTARG" && pwd)" ;;
-        s) size="$OPTARG" ;;
-        n) runs="$OPTARG" ;;
-        *) exit 2 ;;
+usage="-o OLD_BUILD [-s SIZE_MB] [-n RUNS]"
+bench_option() {
+    case $1 in
+        o) old="$(cd "$2" && pwd)" ;;
+        s) size="$2" ;;
+        n) runs="$2" ;;
     esac
+}
+. "$(dirname "$0")/common.sh"
+bench_parse "o:s:n:" "$@"
+new="$build"
+[ -n "$old" ] || bench_fail "usage: compare_builds.sh [-b NEW_BUILD] $usage"
+for x in "$old/bin/decode" "$new/bin/make_capture"; do
+    [ -x "$x" ] || bench_fail "missing $x"
 done
-[ -n "$old" ] || { echo "usage: compare_builds.sh -o OLD_BUILD [-b NEW_BUILD] [-s SIZE_MB] [-n RUNS]" >&2; exit 2; }
-for x in "$old/bin/decode" "$new/bin/decode" "$new/bin/make_capture"; do
-    [ -x "$x" ] || { echo "compare_builds.sh: missing $x" >&2; exit 2; }
-done
-for t in jq python3 /usr/bin/time; do
-    command -v "$t" >/dev/null || { echo "compare_builds.sh: $t not found" >&2; exit 2; }
-done
-tmp="$(mktemp -d "${TMPDIR:-/tmp}/busdecode-compare.XXXXXX")"
-trap 'rm -rf "$tmp"' EXIT
+bench_need jq python3
+tmp="$dir"
 
 rows=()
 worst=0
@@ -44,8 +41,8 @@ gen() {
     sync
 }
 peak_mb() {
-    /usr/bin/time -v "$@" >/dev/null 2>"$tmp/time.txt" || true
-    awk '/Maximum resident set size/ {printf "%.1f", $6 / 1024}' "$tmp/time.txt"
+    bench_time "$tmp/time.txt" "$@" || true
+    awk '{printf "%.1f", $4 / 1024}' "$tmp/time.txt"
 }
 # compare LABEL ARGS...: one row, decode ARGS with the old and the new build.
 compare() {
