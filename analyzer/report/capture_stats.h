@@ -63,6 +63,15 @@ struct GroupStats {
 
     QuantileSketch& timingField(const std::string& key);
     FlagCount& flag(const std::string& key);
+    // The rows of its timing table, as both reports print it: each timed field, then the
+    // pause between events if there was one.
+    std::vector<std::pair<std::string, const QuantileSketch*>> timingRows() const {
+        std::vector<std::pair<std::string, const QuantileSketch*>> rows;
+        for (const auto& [k, s] : timing)
+            rows.emplace_back(k, &s);
+        if (!pause_ns.empty()) rows.emplace_back("pause_ns", &pause_ns);
+        return rows;
+    }
 };
 
 struct PositionStats {

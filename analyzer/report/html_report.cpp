@@ -419,10 +419,7 @@ std::string registersHtml(const CaptureStats& stats, const std::string& inst) {
 std::string timingTablesHtml(const std::vector<const GroupStats*>& groups) {
     std::string h;
     for (const GroupStats* g : groups) {
-        std::vector<std::pair<std::string, const QuantileSketch*>> rows;
-        for (const auto& [k, s] : g->timing)
-            rows.emplace_back(k, &s);
-        if (!g->pause_ns.empty()) rows.emplace_back("pause_ns", &g->pause_ns);
+        const auto rows = g->timingRows();
         if (rows.empty()) continue;
         h += fmt::format(
             "<h3>{} "

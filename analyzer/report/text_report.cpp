@@ -80,10 +80,7 @@ void busSection(std::string& out, const CaptureStats& stats, const std::string& 
                                   formatDuration(tb.toNsF(double(p->max_jump_at)))));
     }
     for (const GroupStats* g : groups) {
-        std::vector<std::pair<std::string, const QuantileSketch*>> rows;
-        for (const auto& [k, s] : g->timing)
-            rows.emplace_back(k, &s);
-        if (!g->pause_ns.empty()) rows.emplace_back("pause_ns", &g->pause_ns);
+        const auto rows = g->timingRows();
         if (rows.empty()) continue;
         line(out, "");
         // The label column is as wide as the rows' (4 + 28), so the headings sit over them.

@@ -77,6 +77,19 @@ TEST(SaleaeBin, BrokenFiles) {
               empty + ": is a directory without Saleae digital_N.bin or analog_N.bin files");
 }
 
+// The analog export's edges against the VCD's: the same lines and levels, each crossing of
+// the threshold between the samples either side of the edge (12.5 MS/s).
+void expectSameEdgesWithinASample(const Collected& got, const Collected& want) {
+    const auto a = inNs(got), b = inNs(want);
+    ASSERT_EQ(a.size(), b.size());
+    const double period_ns = 1e9 / 12'500'000;
+    for (std::size_t i = 0; i < a.size(); ++i) {
+        ASSERT_EQ(a[i].line, b[i].line) << i;
+        ASSERT_EQ(a[i].level, b[i].level) << i;
+        ASSERT_NEAR(double(a[i].ns), double(b[i].ns), period_ns) << i;
+    }
+}
+
 TEST(SaleaeBin, AnalogFolderReadsAsTheVcdThroughTheSchmittTrigger) {
     const Waveform w = traffic();
     const std::string vcd = tempDir() + "/a.vcd", dir = tempDir() + "/analog";
@@ -86,15 +99,7 @@ TEST(SaleaeBin, AnalogFolderReadsAsTheVcdThroughTheSchmittTrigger) {
     const Collected got = collectFile(dir, {"analog_0", "analog_1", "analog_2"});
     EXPECT_EQ(got.format, "saleae-bin-analog");
     EXPECT_EQ(got.initial, want.initial);
-    const auto a = inNs(got), b = inNs(want);
-    ASSERT_EQ(a.size(), b.size());
-    // The crossing of the threshold lies between the samples either side of the edge.
-    const double period_ns = 1e9 / 12'500'000;
-    for (std::size_t i = 0; i < a.size(); ++i) {
-        ASSERT_EQ(a[i].line, b[i].line) << i;
-        ASSERT_EQ(a[i].level, b[i].level) << i;
-        ASSERT_NEAR(double(a[i].ns), double(b[i].ns), period_ns) << i;
-    }
+    expectSameEdgesWithinASample(got, want);
     // One file alone; a cut file; a version this reader does not know.
     EXPECT_EQ(collectFile(dir + "/analog_1.bin").signals.size(), 1u);
     const std::string good = readFile(dir + "/analog_0.bin");
@@ -117,14 +122,7 @@ TEST(SaleaeBin, AnalogVersion1InTwoWaveformsReadsAsTheVcd) {
     const Collected got = collectFile(dir, {"analog_0", "analog_1", "analog_2"});
     EXPECT_EQ(got.format, "saleae-bin-analog");
     EXPECT_EQ(got.initial, want.initial);
-    const auto a = inNs(got), b = inNs(want);
-    ASSERT_EQ(a.size(), b.size());
-    const double period_ns = 1e9 / 12'500'000;
-    for (std::size_t i = 0; i < a.size(); ++i) {
-        ASSERT_EQ(a[i].line, b[i].line) << i;
-        ASSERT_EQ(a[i].level, b[i].level) << i;
-        ASSERT_NEAR(double(a[i].ns), double(b[i].ns), period_ns) << i;
-    }
+    expectSameEdgesWithinASample(got, want);
 }
 
 TEST(SaleaeBin, BrokenAnalogVersion1NamesTheWaveform) {
