@@ -975,15 +975,18 @@ private:
     // read, and a time of another length switches loops.
     void fastRun(EdgeBlock& block) {
         if (e_ - p_ < 32 || max_targets_ >= kEdgeBlockSize) return;
-        // Edges are written through a pointer into the block sized to its capacity, and
-        // the block is cut back to what was written at the end.
+        // Edges are written through a pointer into the block, sized to what the run's bytes
+        // can hold (a change takes two bytes or more: a short piece fills no whole block),
+        // and the block is cut back to what was written at the end.
         std::vector<Edge>& edges = block.edges;
         const std::size_t used = edges.size();
-        edges.resize(kEdgeBlockSize);
+        const std::size_t room = std::min<std::size_t>(
+            kEdgeBlockSize, used + max_targets_ * (std::size_t(e_ - p_) + 1));
+        edges.resize(room);
         FastCursor at{p_,
                       e_ - 32,
                       edges.data() + used,
-                      edges.data() + (kEdgeBlockSize - max_targets_),  // pump()'s test
+                      edges.data() + (room - max_targets_),  // pump()'s test
                       line_,
                       cur_};
         // Times grow a digit now and then (and may shrink where leading zeros were
