@@ -14,19 +14,19 @@
 // through edge() and in blocks through edges(): all must give the same events
 // (checkBlocksMatchEdges). With the flags' top bit, a decoder that can be spliced
 // (a SpliceableDecoder) also decodes the edges written as a VCD file the same in order and
-// in pieces of a few dozen bytes, each piece decoded ahead and spliced in (checkPiecesMatchInOrder,
-// core/piece_speculation.h).
+// in about eight pieces (61 bytes or more), each piece decoded ahead and spliced in
+// (checkPiecesMatchInOrder, core/piece_speculation.h).
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <limits>
 
 #include "byte_stream.h"
 #include "capture/capture_reader.h"
 #include "capture/capture_writer.h"
-#include "support/feed/direct_feed.h"
 #include "core/registry.h"
 #include "core/scratch_dir.h"
 #include "core/session.h"
@@ -35,6 +35,7 @@
 #include "fuzz_harness.h"
 #include "reader_targets.h"
 #include "sinks/event_format.h"
+#include "support/feed/direct_feed.h"
 
 namespace busdecode::fuzz {
 
@@ -214,10 +215,11 @@ void checkPiecesMatchInOrder(const DecoderFactory& factory, const Waveform& w,
     }
     const ScratchDir dir("busdecode-fuzz");
     const std::string path = dir.path() + "/edges.vcd";
+    std::uint64_t piece_bytes = 61;
     auto decode = [&](bool in_pieces, std::vector<std::string>& lines, Session::PieceStats& st) {
         OpenOptions o;
         o.read_ahead = in_pieces;
-        o.vcd_piece_bytes = 61;
+        o.vcd_piece_bytes = piece_bytes;
         o.vcd_boundary_search = 4096;
         auto reader = openCapture(path, o);
         Session session({req}, *reader, "fuzz");
@@ -231,6 +233,9 @@ void checkPiecesMatchInOrder(const DecoderFactory& factory, const Waveform& w,
     Session::PieceStats stats;
     try {
         writeVcd(w, path);
+        // About eight pieces, 61 bytes or more: each piece costs a mapping and a decoder
+        // started ahead, and hundreds of them a file held the target to 600 inputs a second.
+        piece_bytes = std::max<std::uint64_t>(61, std::filesystem::file_size(path) / 8 + 1);
         decode(false, in_order, stats);
     } catch (const std::exception&) {
         return;  // edges a VCD file cannot hold, or read back otherwise: not this check's
