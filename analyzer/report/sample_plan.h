@@ -16,14 +16,14 @@ namespace busdecode {
 // Where the decoder read each bit, and which field each bit belongs to.
 struct SamplePlan {
     std::string clock_role, data_role;
-    std::vector<double> t_ns;  // one per bit, in wire order
+    std::vector<double> t_ns{};  // one per bit, in wire order
     struct Segment {
         std::string label;
         std::size_t first = 0, count = 0;
         bool fault = false;
     };
-    std::vector<Segment> segments;
-    std::optional<double> delay_ns;  // measured line delay, drawn after `delay_from_ns`
+    std::vector<Segment> segments{};
+    std::optional<double> delay_ns{};  // measured line delay, drawn after `delay_from_ns`
     double delay_from_ns = 0;
 };
 
