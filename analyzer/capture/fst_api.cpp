@@ -80,7 +80,10 @@ public:
         while (n > 0) {
             if (!gz_) {  // a file: seek, then check the size once at the end
                 const off_t end = ::lseek(fd_, 0, SEEK_END);
-                if (end < 0 || std::uint64_t(end) < at_ + n) return false;
+                // Compared without at_ + n, which a corrupt length wraps round to a
+                // position behind this block: the walk then went round for ever.
+                if (end < 0 || at_ > std::uint64_t(end) || n > std::uint64_t(end) - at_)
+                    return false;
                 at_ += n;
                 return ::lseek(fd_, off_t(at_), SEEK_SET) == off_t(at_);
             }
