@@ -424,7 +424,9 @@ void SsiDecoder::noteRingWidth(const std::vector<std::uint8_t>& samples, const S
     if (ring_looked_++ == 0) ring_first_raw_ = w.raw;
     // A still encoder repeats a chance pattern in every frame: words that differ count.
     ring_varied_ = ring_varied_ || w.raw != ring_first_raw_;
-    ++ring_votes_[std::size_t(ringWidth(samples, cfg_.ring_gap))];
+    // A frame clocked past 64 bits may repeat after more than a word holds: no ring, as 0.
+    const int width = ringWidth(samples, cfg_.ring_gap);
+    ++ring_votes_[width < int(ring_votes_.size()) ? std::size_t(width) : 0];
 }
 
 int SsiDecoder::ringWidthFound() const {
