@@ -6,6 +6,7 @@
 #
 # -r stops each target after RUNS executions instead of after SECONDS. DECODER_MAX_LEN
 # (default 4096) caps the decoder targets' inputs: shorter edge streams run faster.
+# FUZZ_FLAGS adds libFuzzer options to every run (e.g. -entropic=0, see README.md).
 #
 # Corpora live in BUILD_DIR/corpus/<target> (seeded from the generators via
 # fuzz_make_seeds, from captures/ and tests/data/real/, and from fuzz/seeds/), crashes
@@ -88,7 +89,7 @@ for t in "${targets[@]}"; do
     limit="-max_total_time=$secs"
     [ -n "$runs_limit" ] && limit="-runs=$runs_limit"
     start=$(date +%s)
-    "$build/bin/fuzz_$t" "$build/corpus/$t" $(options_for "$t") "$limit" \
+    "$build/bin/fuzz_$t" "$build/corpus/$t" $(options_for "$t") "$limit" ${FUZZ_FLAGS:-} \
         -timeout=10 -rss_limit_mb=2048 -malloc_limit_mb=1024 -print_final_stats=1 \
         -artifact_prefix="$build/artifacts/$t/" >"$log" 2>&1
     rc=$?
