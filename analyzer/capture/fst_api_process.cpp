@@ -54,6 +54,7 @@ bool readAll(int fd, char* p, std::size_t n) {
     return true;
 }
 
+#ifndef BUSDECODE_FST_ASAN
 // The address space the process holds now (VmSize), 0 when /proc cannot tell.
 std::uint64_t addressSpaceNow() {
     std::FILE* f = std::fopen("/proc/self/status", "r");
@@ -65,6 +66,7 @@ std::uint64_t addressSpaceNow() {
     std::fclose(f);
     return std::uint64_t(kb) * 1024;
 }
+#endif
 
 // The child's setup: no crash reports of its own, no output, bounded memory. (It ends
 // when the parent does: its socket closes, and sending fails without a SIGPIPE.)

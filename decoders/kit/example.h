@@ -34,7 +34,7 @@ struct NoTruth {};
 // An example with the truth its decoder's test checks exactly (frames, control events...).
 template <class Truth = NoTruth>
 struct Example : ExampleCapture {
-    Truth truth;
+    Truth truth{};
 };
 
 // The examples of every decoder linked in, by id, for make_examples. A decoder lists its

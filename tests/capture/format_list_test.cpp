@@ -52,8 +52,9 @@ TEST(FormatList, EveryFormatAReaderReportsIsListed) {
         if (e.path().extension() != ".cpp" || file.find("_writer") != std::string::npos) continue;
         for (const std::string& name : formatNamesIn(readFile(e.path().string()))) {
             ++seen;
-            if (!not_files.count(name))
+            if (!not_files.count(name)) {
                 EXPECT_TRUE(listed.count(name)) << name << " (" << file << ")";
+            }
         }
     }
     EXPECT_GE(seen, 15u) << "the scan found too few format names to be reading the readers";

@@ -40,7 +40,9 @@ TEST(SaleaeBin, FolderRoundTripVersions0And1) {
             EXPECT_EQ(got[i].level, exp[i].level);
             EXPECT_NEAR(double(got[i].ns + offset), double(exp[i].ns), 1.0) << i;
         }
-        if (version == 1) EXPECT_EQ(c.tb.den / c.tb.num, 12'500'000);
+        if (version == 1) {
+            EXPECT_EQ(c.tb.den / c.tb.num, 12'500'000);
+        }
         // One channel's file alone.
         const Collected one = collectFile(dir + "/digital_1.bin");
         ASSERT_EQ(one.signals.size(), 1u);

@@ -29,7 +29,8 @@ RunResult runWithoutPluginPath(const std::string& decode, const std::string& arg
 TEST(PluginDir, MissingPluginsNameTheDirectoriesSearchedAndTheVariable) {
     const std::string decode = lonelyDecode();
     const std::string capture = sourceDir() + "/captures/bissc_1mhz_26bit.vcd";
-    for (const std::string args : {shellQuote(capture) + " --proto bissc", std::string("--list")}) {
+    for (const std::string& args :
+         {shellQuote(capture) + " --proto bissc", std::string("--list")}) {
         const RunResult r = runWithoutPluginPath(decode, args);
         EXPECT_EQ(r.status, 2) << args << "\n" << r.err;
         EXPECT_EQ(r.out, "") << args;

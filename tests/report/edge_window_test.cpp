@@ -60,7 +60,9 @@ TEST(EdgeWindow, AnalogLineKeepsItsVoltageAndTrigger) {
         const auto& [t, v] = ma.trace[i];
         EXPECT_GE(t, f.from);
         EXPECT_LE(t, f.to);
-        if (i) EXPECT_GT(t, ma.trace[i - 1].first);  // time order kept
+        if (i) {
+            EXPECT_GT(t, ma.trace[i - 1].first);  // time order kept
+        }
         lo = std::min(lo, v);
         hi = std::max(hi, v);
     }

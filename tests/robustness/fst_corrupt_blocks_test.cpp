@@ -4,6 +4,7 @@
 // round for ever): decode exits 2 with one line naming the file and the block.
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <filesystem>
 
 #include "capture/fst_api_process.h"
@@ -61,8 +62,9 @@ TEST(FstCorruptBlocks, ABlockAskingForMoreThanTheBudgetIsRefusedBeforeFstapi) {
 // child at its processor-time limit, which the reader reports as the way it ended.
 TEST(FstCorruptBlocks, AChildThatLoopsIsEndedByItsCpuLimit) {
     FstChild child("loop.fst", std::uint64_t(64) << 20, 1, [](ChildChannel&) {
-        for (volatile std::uint64_t i = 0;; i = i + 1) {
-        }
+        std::atomic<std::uint64_t> spins{0};
+        for (;;)
+            spins.fetch_add(1, std::memory_order_relaxed);
     });
     std::uint8_t kind = 0;
     std::string payload;
