@@ -93,6 +93,11 @@ void BisscDecoder::checkQuietSlow(Tick now) {
     if (double(now - run_.last_ma_edge) <= quietLimit() &&
         !(c_.state == State::WaitAck && masterGaveUp(now)))
         return;
+    // A clocked slot's sample still ahead (a learnt timeout shorter than the line delay and
+    // half a period): close once it is taken, so that where the quiet is noticed (an edge,
+    // a piece's end) cannot change the frame.
+    if (c_.state == State::Data && (run_.scheduled < f_.rises.size() || sampler_.pending() > 0))
+        return;
     if (c_.state == State::WaitAck && f_.from_hold && f_.rises.size() == 1) {
         // MA rose from low and stayed high: the master went back to idle after CDM = 1.
         c_.state = State::Idle;
