@@ -96,8 +96,7 @@ void BisscDecoder::checkQuietSlow(Tick now) {
     // A clocked slot's sample still ahead (a learnt timeout shorter than the line delay and
     // half a period): close once it is taken, so that where the quiet is noticed (an edge,
     // a piece's end) cannot change the frame.
-    if (c_.state == State::Data && (run_.scheduled < f_.rises.size() || sampler_.pending() > 0))
-        return;
+    if (c_.state == State::Data && !clockedSamplesTaken()) return;
     if (c_.state == State::WaitAck && f_.from_hold && f_.rises.size() == 1) {
         // MA rose from low and stayed high: the master went back to idle after CDM = 1.
         c_.state = State::Idle;
@@ -383,7 +382,7 @@ void BisscDecoder::onSl(Tick t, bool level) {
         case State::Data: {
             const double late =
                 double(f_.rises.back()) + run_.delay + kLateSlEdgePeriods * meanPeriod();
-            if (run_.scheduled == f_.rises.size() && sampler_.pending() == 0 && double(t) > late) {
+            if (clockedSamplesTaken() && double(t) > late) {
                 // SL moved long after the last clocked slot: the master stopped early and
                 // the slave timed out (or gave up).
                 closeFrame(t, kNoTick, run_.slot == Slot::Busy ? "no_start" : "short_frame", true);

@@ -152,6 +152,10 @@ private:
         std::vector<std::string> errors;
     };
 
+    // Every clocked slot so far sampled and taken: the frame can close without losing one.
+    bool clockedSamplesTaken() const {
+        return run_.scheduled == f_.rises.size() && sampler_.pending() == 0;
+    }
     // Only in State::Data with the sampler empty (and two rises, a period, seen).
     bool dataEdgesNow() const {
         return c_.state == State::Data && sampler_.empty() && f_.rises.size() >= 2;
