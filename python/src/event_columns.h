@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/session.h"
+#include "lane_buffer.h"
 
 namespace busdecode::py {
 
@@ -20,19 +21,34 @@ struct Column {
     enum class Kind { Empty, Bool, Int, UInt, Real, Text, Object };
     std::string key;
     Kind kind = Kind::Empty;
-    std::vector<std::uint64_t> lanes;  // int64 / uint64 / double bits / 0-1, per row
-    std::vector<std::uint8_t> nulls;   // 1 where the row has no value
-    std::vector<Value> objects;        // Kind::Object: every row
-    std::vector<std::string> texts;    // Kind::Text: the distinct strings, by code
-    bool negative = false;             // an int64 below 0 was seen
+    LaneBuffer<std::uint64_t> lanes;  // int64 / uint64 / double bits / 0-1, per row
+    LaneBuffer<std::uint8_t> nulls;   // 1 where the row has no value
+    std::vector<Value> objects;       // Kind::Object: every row
+    std::vector<std::string> texts;   // Kind::Text: the distinct strings, by code
+    bool negative = false;            // an int64 below 0 was seen
 
     std::size_t rows() const { return kind == Kind::Object ? objects.size() : nulls.size(); }
-    void append(const Value& v);
+    void append(const Value& v) {
+        // The common case inline: a value of the column's own kind.
+        if (kind == Kind::Int && std::holds_alternative<std::int64_t>(v)) {
+            const std::int64_t i = *std::get_if<std::int64_t>(&v);
+            negative = negative || i < 0;
+            return appendNumber(kind, std::uint64_t(i));
+        }
+        if (kind == Kind::Bool && std::holds_alternative<bool>(v))
+            return appendNumber(kind, *std::get_if<bool>(&v));
+        appendAnyKind(v);
+    }
     void appendNull();
     void dropLast();
 
 private:
-    void appendNumber(Kind k, std::uint64_t bits);
+    void appendAnyKind(const Value& v);  // with the promotions between kinds
+    void appendNumber(Kind k, std::uint64_t bits) {
+        if (kind == Kind::Empty) kind = k;
+        lanes.push_back(bits);
+        nulls.push_back(0);
+    }
     void appendText(const std::string& s);
     std::unordered_map<std::string, std::uint64_t> text_codes_;
     std::uint64_t last_text_ = 0;  // the code appended last: most rows repeat it
@@ -42,16 +58,20 @@ private:
 
 struct Table {
     std::string proto, type;
-    std::vector<std::int64_t> start_ns, end_ns;
+    LaneBuffer<std::int64_t> start_ns, end_ns;
     std::vector<Column> columns;  // in the order the fields first appeared
     // Each row's errors as an index into the distinct error lists seen (0: none).
-    std::vector<std::uint32_t> errors;
+    LaneBuffer<std::uint32_t> errors;
     std::vector<std::vector<std::string>> error_sets{{}};
 
     void add(const Event& e, std::int64_t start, std::int64_t end);
 
 private:
+    // The column of the field at `position` among the event's own fields (made when
+    // new); kNoColumn for a key every event has (proto, start_ns...), kept apart.
     std::size_t columnFor(const std::string& key, std::size_t position);
+    static constexpr std::size_t kNoColumn = ~std::size_t(0);
+    [[gnu::noinline]] std::size_t findColumn(const std::string& key, std::size_t position);
     std::uint32_t errorSet(const std::vector<std::string>& errors);
     std::unordered_map<std::string, std::size_t> index_;
     std::vector<std::size_t> last_order_;  // column of each field position last time

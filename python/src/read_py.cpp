@@ -6,6 +6,7 @@
 
 #include <bit>
 #include <cmath>
+#include <type_traits>
 
 #include "app/decode_args.h"
 #include "bindings.h"
@@ -17,11 +18,12 @@ namespace busdecode::py {
 
 namespace {
 
-// A 1-D array viewing `v`, which it then owns.
-template <class T>
-pyb::array ownedArray(std::vector<T>&& v, const char* dtype) {
-    auto* owner = new std::vector<T>(std::move(v));
-    pyb::capsule free_it(owner, [](void* p) { delete static_cast<std::vector<T>*>(p); });
+// A 1-D array viewing `v` (a std::vector or LaneBuffer), which it then owns.
+template <class Buffer>
+pyb::array ownedArray(Buffer&& v, const char* dtype) {
+    using T = std::remove_cv_t<std::remove_reference_t<decltype(*v.data())>>;
+    auto* owner = new Buffer(std::move(v));
+    pyb::capsule free_it(owner, [](void* p) { delete static_cast<Buffer*>(p); });
     static const T none{};
     const T* data = owner->empty() ? &none : owner->data();
     return pyb::array(pyb::dtype(dtype), {owner->size()}, {sizeof(T)}, data, free_it);

@@ -11,6 +11,11 @@
 namespace busdecode::py {
 namespace {
 
+template <class T>
+std::vector<T> values(const LaneBuffer<T>& b) {
+    return {b.begin(), b.end()};
+}
+
 Column columnOf(std::initializer_list<Value> values) {
     Column c;
     for (const auto& v : values)
@@ -21,8 +26,8 @@ Column columnOf(std::initializer_list<Value> values) {
 TEST(EventColumns, IntegersStayIntegersWithNullsMasked) {
     Column c = columnOf({std::int64_t(-3), Null{}, std::uint64_t(7)});
     EXPECT_EQ(c.kind, Column::Kind::Int);
-    EXPECT_EQ(c.lanes, (std::vector<std::uint64_t>{std::uint64_t(-3), 0, 7}));
-    EXPECT_EQ(c.nulls, (std::vector<std::uint8_t>{0, 1, 0}));
+    EXPECT_EQ(values(c.lanes), (std::vector<std::uint64_t>{std::uint64_t(-3), 0, 7}));
+    EXPECT_EQ(values(c.nulls), (std::vector<std::uint8_t>{0, 1, 0}));
 }
 
 TEST(EventColumns, AnIntegerBeyondInt64MakesAnUnsignedColumn) {
@@ -75,12 +80,31 @@ TEST(EventColumns, TablesPadMissingFieldsAndKeepTheLastOfARepeatedKey) {
     t.add(a, 10, 20);
     t.add(b, 30, 40);
     ASSERT_EQ(t.columns.size(), 3u);  // x, y, z: the common keys are never columns
-    EXPECT_EQ(t.columns[0].lanes, (std::vector<std::uint64_t>{3, 0}));
-    EXPECT_EQ(t.columns[0].nulls, (std::vector<std::uint8_t>{0, 1}));
-    EXPECT_EQ(t.columns[2].nulls, (std::vector<std::uint8_t>{1, 0}));
-    EXPECT_EQ(t.start_ns, (std::vector<std::int64_t>{10, 30}));
-    EXPECT_EQ(t.errors, (std::vector<std::uint32_t>{1, 0}));
+    EXPECT_EQ(values(t.columns[0].lanes), (std::vector<std::uint64_t>{3, 0}));
+    EXPECT_EQ(values(t.columns[0].nulls), (std::vector<std::uint8_t>{0, 1}));
+    EXPECT_EQ(values(t.columns[2].nulls), (std::vector<std::uint8_t>{1, 0}));
+    EXPECT_EQ(values(t.start_ns), (std::vector<std::int64_t>{10, 30}));
+    EXPECT_EQ(values(t.errors), (std::vector<std::uint32_t>{1, 0}));
     EXPECT_EQ(t.error_sets[1], (std::vector<std::string>{"crc"}));
+}
+
+TEST(LaneBuffer, KeepsItsValuesThroughGrowthMovesAndPops) {
+    LaneBuffer<std::uint64_t> b;
+    EXPECT_TRUE(b.empty());
+    const std::uint64_t n = 3'000'000;  // 24 MB: several remaps, past the huge-page size
+    for (std::uint64_t i = 0; i < n; ++i)
+        b.push_back(i * 7);
+    b.pop_back();
+    LaneBuffer<std::uint64_t> moved(std::move(b));
+    EXPECT_TRUE(b.empty());
+    ASSERT_EQ(moved.size(), n - 1);
+    EXPECT_EQ(moved.back(), (n - 2) * 7);
+    for (std::uint64_t i = 0; i < n - 1; i += 99'991)
+        ASSERT_EQ(moved[i], i * 7) << i;
+    b = std::move(moved);
+    EXPECT_EQ(b.size(), n - 1);
+    b.push_back(1);
+    EXPECT_EQ(b.back(), 1u);
 }
 
 }  // namespace
