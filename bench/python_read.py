@@ -38,12 +38,13 @@ def child(capture, bus, opts):
     t0 = time.perf_counter()
     c0 = time.process_time()
     args = busdecode._capture_args(capture, bus, None, opts, None, 2)
-    columns = _busdecode.read_columns(args)
-    t1 = time.perf_counter()
-    frames = {}
-    for name, cols in columns.items():
-        data = {k: busdecode._pandas_array(pd, kind, v, m) for k, kind, v, m in cols}
-        frames[name] = pd.DataFrame(data, copy=False)
+    with busdecode._collector_paused():  # as read() does
+        columns = _busdecode.read_columns(args)
+        t1 = time.perf_counter()
+        frames = {}
+        for name, cols in columns.items():
+            data = {k: busdecode._pandas_array(pd, kind, v, m) for k, kind, v, m in cols}
+            frames[name] = pd.DataFrame(data, copy=False)
     t2 = time.perf_counter()
     cpu = time.process_time() - c0
     events = sum(len(f) for f in frames.values())

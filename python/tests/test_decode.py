@@ -1,5 +1,6 @@
 """decode(), read() and decoders() against the CLI on every decoder's captures."""
 
+import gc
 import itertools
 import math
 import tracemalloc
@@ -117,6 +118,22 @@ def test_read_column_types():
     assert faulty
     faulty[0].append("mine")
     assert sum("mine" in e for e in errs) == 1
+
+
+@pytest.mark.parametrize("enabled", [True, False])
+def test_read_leaves_the_garbage_collector_as_it_was(enabled):
+    # read() holds the collector off while it makes its objects, and then gives it back,
+    # also when it fails.
+    was = gc.isenabled()
+    try:
+        gc.enable() if enabled else gc.disable()
+        assert busdecode.read(CAPTURES / "uart_rxtx_9600_8n1.vcd", proto="uart")
+        assert gc.isenabled() == enabled
+        with pytest.raises(busdecode.InputError):
+            busdecode.read(CAPTURES / "no_such_capture.vcd", proto="uart")
+        assert gc.isenabled() == enabled
+    finally:
+        gc.enable() if was else gc.disable()
 
 
 def test_decoders_list_what_decode_list_shows():
