@@ -185,13 +185,7 @@ def _pandas_array(pd: Any, kind: str, values: Any, mask: Any) -> Any:
         return pd.arrays.IntegerArray(values, mask, copy=False)
     if kind == "boolean":
         return pd.arrays.BooleanArray(values, mask, copy=False)
-    if kind == "object":
-        import numpy as np
-
-        out = np.empty(len(values), dtype=object)
-        out[:] = values
-        return out
-    return values
+    return values  # float64, int64 and object columns come as numpy arrays already
 
 
 def read(path: PathLike, proto: Protos, map: Assignments = None, opts: Assignments = None,

@@ -29,11 +29,29 @@ pyb::array ownedArray(Buffer&& v, const char* dtype) {
     return pyb::array(pyb::dtype(dtype), {owner->size()}, {sizeof(T)}, data, free_it);
 }
 
-pyb::list objectColumn(const std::vector<Value>& values) {
-    pyb::list out(values.size());
-    for (std::size_t i = 0; i < values.size(); ++i)
-        out[i] = valueToPython(values[i]);
+// A numpy array of `n` objects, row i holding the new reference `item(i)`. Made here and
+// not from a list by numpy, which looks into each row (a list of errors may be a
+// sequence to it) and took longer than the whole DataFrame.
+template <class Item>
+pyb::array objectArray(std::size_t n, Item&& item) {
+    // numpy fills a new object array with nulls.
+    pyb::array out(pyb::dtype("O"), std::vector<pyb::ssize_t>{pyb::ssize_t(n)});
+    auto** rows = static_cast<PyObject**>(out.mutable_data());
+    for (std::size_t i = 0; i < n; ++i)
+        rows[i] = item(i);
     return out;
+}
+
+// A new reference to `o`.
+PyObject* share(PyObject* o) {
+    Py_INCREF(o);
+    return o;
+}
+
+pyb::array objectColumn(const std::vector<Value>& values) {
+    return objectArray(values.size(), [&](std::size_t i) {
+        return valueToPython(values[i]).release().ptr();
+    });
 }
 
 // (key, kind, values, mask): kind names the pandas array to make.
@@ -62,13 +80,9 @@ pyb::tuple columnToPython(Column& c) {
             std::vector<pyb::object> texts;
             for (const auto& t : c.texts)
                 texts.push_back(pyb::str(t));
-            // The CPython calls directly: pybind11's item proxies cost several times more a row.
-            pyb::list out(c.lanes.size());
-            for (std::size_t i = 0; i < c.lanes.size(); ++i) {
-                PyObject* item = c.nulls[i] ? Py_None : texts[c.lanes[i]].ptr();
-                Py_INCREF(item);
-                PyList_SET_ITEM(out.ptr(), Py_ssize_t(i), item);
-            }
+            auto out = objectArray(c.lanes.size(), [&](std::size_t i) {
+                return share(c.nulls[i] ? Py_None : texts[c.lanes[i]].ptr());
+            });
             return pyb::make_tuple(c.key, "object", out, pyb::none());
         }
         case K::Empty:
@@ -81,22 +95,18 @@ pyb::tuple columnToPython(Column& c) {
 }
 
 // Each row's errors as a list of its own (a fresh list: rows may be changed apart).
-pyb::list errorColumn(const Table& t) {
+pyb::array errorColumn(const Table& t) {
     std::vector<std::vector<pyb::str>> sets;
     for (const auto& set : t.error_sets)
         sets.emplace_back(set.begin(), set.end());
-    pyb::list out(t.errors.size());
-    for (std::size_t i = 0; i < t.errors.size(); ++i) {
+    return objectArray(t.errors.size(), [&](std::size_t i) {
         const auto& set = sets[t.errors[i]];
         PyObject* row = PyList_New(Py_ssize_t(set.size()));
         if (!row) throw pyb::error_already_set();
-        for (std::size_t j = 0; j < set.size(); ++j) {
-            Py_INCREF(set[j].ptr());
-            PyList_SET_ITEM(row, Py_ssize_t(j), set[j].ptr());
-        }
-        PyList_SET_ITEM(out.ptr(), Py_ssize_t(i), row);  // steals the reference
-    }
-    return out;
+        for (std::size_t j = 0; j < set.size(); ++j)
+            PyList_SET_ITEM(row, Py_ssize_t(j), share(set[j].ptr()));  // steals the reference
+        return row;
+    });
 }
 
 pyb::dict tablesToPython(std::vector<Table>& tables) {
