@@ -3,6 +3,7 @@
 // stream by (an OutputSink on the decoding thread, no Python): numbers in flat 64-bit
 // lanes with a null mask, so that the DataFrame's columns are made from buffers and not
 // from a Python object per field.
+#include <bit>
 #include <cstdint>
 #include <map>
 #include <string>
@@ -37,6 +38,8 @@ struct Column {
         }
         if (kind == Kind::Bool && std::holds_alternative<bool>(v))
             return appendNumber(kind, *std::get_if<bool>(&v));
+        if (kind == Kind::Real && std::holds_alternative<double>(v))
+            return appendNumber(kind, std::bit_cast<std::uint64_t>(*std::get_if<double>(&v)));
         appendAnyKind(v);
     }
     void appendNull();

@@ -49,9 +49,8 @@ PyObject* share(PyObject* o) {
 }
 
 pyb::array objectColumn(const std::vector<Value>& values) {
-    return objectArray(values.size(), [&](std::size_t i) {
-        return valueToPython(values[i]).release().ptr();
-    });
+    return objectArray(values.size(),
+                       [&](std::size_t i) { return valueToPython(values[i]).release().ptr(); });
 }
 
 // (key, kind, values, mask): kind names the pandas array to make.

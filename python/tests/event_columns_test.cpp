@@ -50,6 +50,10 @@ TEST(EventColumns, ADoubleTurnsIntegersIntoReals) {
     EXPECT_EQ(c.nulls[1], 1);
     c.append(std::int64_t(4));
     EXPECT_EQ(std::bit_cast<double>(c.lanes[3]), 4.0);
+    c.append(-0.5);  // a double into a column of doubles
+    EXPECT_EQ(std::bit_cast<double>(c.lanes[4]), -0.5);
+    EXPECT_EQ(c.nulls[4], 0);
+    EXPECT_EQ(c.kind, Column::Kind::Real);
 }
 
 TEST(EventColumns, StringsAreCodesIntoTheDistinctOnes) {
