@@ -40,8 +40,7 @@ public:
     pyb::dict next() {
         while (at_ >= batch_.size()) {
             if (!stream_) throw pyb::stop_iteration();
-            batch_.clear();
-            at_ = 0;
+            at_ = 0;  // next() takes the batch back
             EventStream::Got got = EventStream::Got::Waiting;
             busy_ = true;
             try {

@@ -2,9 +2,9 @@
 
 #include <bit>
 #include <cmath>
-#include <cstring>
 #include <limits>
 
+#include "short_key.h"
 #include "sinks/event_format.h"
 
 namespace busdecode::py {
@@ -106,33 +106,6 @@ void Column::appendAnyKind(const Value& v) {
     toObjects();
     objects.push_back(v);
 }
-
-namespace {
-
-template <class Word>
-bool sameEnds(const char* a, const char* b, std::size_t n) {
-    Word a0, b0, a1, b1;  // the first and the last sizeof(Word) bytes, overlapping
-    std::memcpy(&a0, a, sizeof(Word));
-    std::memcpy(&b0, b, sizeof(Word));
-    std::memcpy(&a1, a + n - sizeof(Word), sizeof(Word));
-    std::memcpy(&b1, b + n - sizeof(Word), sizeof(Word));
-    return a0 == b0 && a1 == b1;
-}
-
-// Keys are a few letters: two word loads each cost less than a call to memcmp, which
-// was a fifth of read()'s column building.
-bool sameKey(const std::string& a, const std::string& b) {
-    const std::size_t n = a.size();
-    if (n != b.size()) return false;
-    if (n > 16) return std::memcmp(a.data(), b.data(), n) == 0;
-    if (n >= 8) return sameEnds<std::uint64_t>(a.data(), b.data(), n);
-    if (n >= 4) return sameEnds<std::uint32_t>(a.data(), b.data(), n);
-    for (std::size_t i = 0; i < n; ++i)
-        if (a[i] != b[i]) return false;
-    return true;
-}
-
-}  // namespace
 
 [[gnu::always_inline]] inline std::size_t Table::columnFor(const std::string& key,
                                                            std::size_t position) {

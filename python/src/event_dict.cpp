@@ -3,6 +3,7 @@
 #include <type_traits>
 #include <variant>
 
+#include "short_key.h"
 #include "sinks/event_format.h"
 
 namespace busdecode::py {
@@ -40,25 +41,66 @@ pyb::object valueToPython(const Value& v) {
         v);
 }
 
+void TimedEvent::set(const Event& e, std::int64_t start, std::int64_t end) {
+    event.proto = e.proto;
+    event.type = e.type;
+    event.fields = e.fields;
+    event.errors = e.errors;
+    start_ns = start;
+    end_ns = end;
+}
+
 pyb::str DictMaker::name(const std::string& s) {
     auto it = names_.find(s);
     if (it == names_.end()) it = names_.emplace(s, pyb::str(s)).first;
     return it->second;
 }
 
+PyObject* DictMaker::fieldKey(const std::string& key, std::size_t position) {
+    if (position < keys_at_.size() && sameKey(keys_at_[position].first, key))
+        return keys_at_[position].second.ptr();
+    if (isCommonEventKey(key)) return kNone;
+    if (position >= keys_at_.size()) keys_at_.resize(position + 1);
+    keys_at_[position] = {key, name(key)};
+    return keys_at_[position].second.ptr();
+}
+
+PyObject* DictMaker::repeatedName(const std::string& s, std::pair<std::string, pyb::str>& last) {
+    if (!last.second || !sameKey(last.first, s)) last = {s, name(s)};
+    return last.second.ptr();
+}
+
+namespace {
+
+// d[key] = value, through the C API: pybind11's item proxies cost several times more.
+void put(PyObject* d, PyObject* key, PyObject* value) {
+    if (PyDict_SetItem(d, key, value) < 0) throw pyb::error_already_set();
+}
+void put(PyObject* d, const pyb::str& key, const pyb::object& value) {
+    put(d, key.ptr(), value.ptr());
+}
+
+}  // namespace
+
 pyb::dict DictMaker::operator()(const TimedEvent& te) {
     const Event& e = te.event;
-    pyb::dict d;
-    d[name("proto")] = name(e.proto);
-    d[name("type")] = name(e.type);
-    d[name("start_ns")] = pyb::int_(te.start_ns);
-    d[name("end_ns")] = pyb::int_(te.end_ns);
-    for (const auto& f : e.fields)
-        if (!isCommonEventKey(f.key)) d[name(f.key)] = valueToPython(f.value);
+    auto d = pyb::reinterpret_steal<pyb::dict>(PyDict_New());
+    if (!d) throw pyb::error_already_set();
+    put(d.ptr(), proto_.ptr(), repeatedName(e.proto, last_proto_));
+    put(d.ptr(), type_.ptr(), repeatedName(e.type, last_type_));
+    put(d.ptr(), start_ns_, pyb::int_(te.start_ns));
+    put(d.ptr(), end_ns_, pyb::int_(te.end_ns));
+    std::size_t position = 0;
+    for (const auto& f : e.fields) {
+        PyObject* key = fieldKey(f.key, position);
+        if (key == kNone) continue;
+        ++position;
+        put(d.ptr(), key, valueToPython(f.value).ptr());
+    }
     pyb::list errors(e.errors.size());
     for (std::size_t i = 0; i < e.errors.size(); ++i)
         errors[i] = name(e.errors[i]);
-    d[name("errors")] = std::move(errors);
+    put(d.ptr(), errors_, errors);
     return d;
 }
 

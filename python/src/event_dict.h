@@ -7,6 +7,8 @@
 #include <cstdint>
 #include <string>
 #include <unordered_map>
+#include <utility>
+#include <vector>
 
 #include "core/event.h"
 
@@ -17,10 +19,15 @@ namespace pyb = pybind11;
 // A field value as jsonl writes it.
 pyb::object valueToPython(const Value& v);
 
-// An event whose times are already in ns (the session's timebase applied).
+// What a dict is made of: an event's proto, type, fields and errors (not its summary),
+// with its times already in ns (the session's timebase applied).
 struct TimedEvent {
     Event event;
     std::int64_t start_ns = 0, end_ns = 0;
+
+    // Copies what a dict needs of `e` into this one's storage, kept from an earlier
+    // event: no allocation once the strings and vectors have grown.
+    void set(const Event& e, std::int64_t start, std::int64_t end);
 };
 
 // Makes the dicts; keeps the key and name strings it made, so that the millions of
@@ -31,7 +38,19 @@ public:
 
 private:
     pyb::str name(const std::string& s);
+    // The key of the field at `position` among the event's own fields (kNone for a key
+    // every event has, put first): events of one kind list their fields in one order.
+    PyObject* fieldKey(const std::string& key, std::size_t position);
+    // The name of `s`, looked up only when it is not `last` (most events repeat it).
+    PyObject* repeatedName(const std::string& s, std::pair<std::string, pyb::str>& last);
+    static constexpr PyObject* kNone = nullptr;
+    // The keys every event has, made once (with the GIL: DictMaker is made from Python).
+    const pyb::str proto_ = pyb::str("proto"), type_ = pyb::str("type"),
+                   start_ns_ = pyb::str("start_ns"), end_ns_ = pyb::str("end_ns"),
+                   errors_ = pyb::str("errors");
+    std::pair<std::string, pyb::str> last_proto_, last_type_;
     std::unordered_map<std::string, pyb::str> names_;
+    std::vector<std::pair<std::string, pyb::str>> keys_at_;  // by position, last seen
 };
 
 }  // namespace busdecode::py

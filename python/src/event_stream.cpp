@@ -22,8 +22,10 @@ public:
     }
     void onEvent(const Event& e, const CaptureFacts& facts) override {
         if (s_.stop_) return;
-        batch_.push_back({e, facts.timebase.toNs(e.start), facts.timebase.toNs(e.end)});
-        if (batch_.size() >= s_.batch_) flush();
+        TimedEvent& t = used_ < batch_.size() ? batch_[used_] : batch_.emplace_back();
+        ++used_;
+        t.set(e, facts.timebase.toNs(e.start), facts.timebase.toNs(e.end));
+        if (used_ >= s_.batch_) flush();
     }
     void end(const CaptureFacts& facts) override {
         flush();
@@ -31,14 +33,17 @@ public:
         s_.facts_ = facts;
     }
     void flush() {
-        if (!batch_.empty()) s_.push(std::move(batch_));
-        batch_.clear();
-        batch_.reserve(s_.batch_);
+        if (used_ == 0) return;
+        batch_.resize(used_);  // a batch given back may have held more
+        s_.push(std::move(batch_));
+        batch_ = s_.takeSpare();
+        used_ = 0;
     }
 
 private:
     EventStream& s_;
-    std::vector<TimedEvent> batch_;
+    std::vector<TimedEvent> batch_;  // [0, used_) filled; the rest storage to fill
+    std::size_t used_ = 0;
 };
 
 EventStream::EventStream(DecodeJob job, std::size_t batch) : batch_(batch ? batch : 1) {
@@ -81,8 +86,18 @@ bool EventStream::waitStarted(int ms) {
     return started_ || done_;
 }
 
+std::vector<TimedEvent> EventStream::takeSpare() {
+    std::lock_guard<std::mutex> lock(mu_);
+    if (spare_.empty()) return {};
+    std::vector<TimedEvent> batch = std::move(spare_.back());
+    spare_.pop_back();
+    return batch;
+}
+
 EventStream::Got EventStream::next(std::vector<TimedEvent>& out, int ms) {
     std::unique_lock<std::mutex> lock(mu_);
+    if (!out.empty() && spare_.size() < kQueuedBatches) spare_.push_back(std::move(out));
+    out.clear();
     cv_.wait_for(lock, std::chrono::milliseconds(ms), [&] { return !queue_.empty() || done_; });
     if (!queue_.empty()) {
         out = std::move(queue_.front());

@@ -38,8 +38,9 @@ public:
     // Waits up to `ms` until the decoders are bound and the first events may come
     // (true), or the decode failed (rethrows its InputError).
     bool waitStarted(int ms);
-    // Moves the next batch into `out`, waiting up to `ms`. At the end, rethrows the
-    // decode's error if it had one.
+    // Takes back `out`, the batch handed out last (its events' storage is filled again
+    // with later ones), and moves the next batch into it, waiting up to `ms`. At the
+    // end, rethrows the decode's error if it had one.
     Got next(std::vector<TimedEvent>& out, int ms);
     // Stops the decode at its next block and discards what is queued.
     void stop();
@@ -50,12 +51,15 @@ private:
     class QueueSink;
     void run(DecodeJob job);
     void push(std::vector<TimedEvent>&& batch);
+    // A batch handed back by next(), or an empty one.
+    std::vector<TimedEvent> takeSpare();
 
     const std::size_t batch_;
     std::atomic<bool> stop_{false};
     std::mutex mu_;
     std::condition_variable cv_;
     std::deque<std::vector<TimedEvent>> queue_;
+    std::vector<std::vector<TimedEvent>> spare_;  // batches handed back, to fill again
     bool started_ = false, done_ = false;
     std::exception_ptr error_;
     CaptureFacts facts_;  // written before started_, read after

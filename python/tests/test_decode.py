@@ -3,6 +3,7 @@
 import gc
 import itertools
 import math
+import random
 import sys
 import tracemalloc
 
@@ -102,6 +103,34 @@ def test_read_tables_hold_the_cli_events(case):
             # A row holds every column of its table; a field this event lacks is null.
             assert {k: v for k, v in full.items() if k in ev} == ev
             assert all(full[k] is None for k in full if k not in ev)
+
+
+def write_uart_vcd(path, data, baud=1_000_000):
+    """`data` sent 8N1 on one line `rx`, an idle bit between bytes, as a VCD."""
+    bit = 10**9 // baud
+    lines = ["$timescale 1 ns $end", "$scope module t $end", "$var wire 1 ! rx $end",
+             "$upscope $end", "$enddefinitions $end", "#0", "1!"]
+    t, level = 2 * bit, 1
+    for byte in data:
+        for b in [0] + [(byte >> i) & 1 for i in range(8)] + [1, 1]:
+            if b != level:
+                lines += [f"#{t}", f"{b}!"]
+                level = b
+            t += bit
+    lines.append(f"#{t}")
+    path.write_text("\n".join(lines) + "\n")
+
+
+def test_decode_of_many_batches_equals_the_cli_jsonl(tmp_path):
+    # Thousands of events come in many batches from the decoding thread, whose storage
+    # is filled again once the iterator has taken them: each event must still be its own.
+    rng = random.Random(5)
+    data = bytes(rng.randrange(256) for _ in range(20000))  # 40 batches
+    path = tmp_path / "uart.vcd"
+    write_uart_vcd(path, data)
+    events = list(busdecode.decode(path, proto="uart", opts={"baud": 1000000}))
+    assert [e["value"] for e in events] == list(data)
+    assert events == cli_events(path, ["uart"], {"baud": 1000000})
 
 
 def test_read_column_types():
