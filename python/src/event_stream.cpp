@@ -9,6 +9,8 @@ namespace busdecode::py {
 namespace {
 // Batches queued before the decoding thread waits: a few thousand events at most.
 constexpr std::size_t kQueuedBatches = 8;
+// Batches handed back and kept to fill again: one taken for each one handed back.
+constexpr std::size_t kSpareBatches = 2;
 }  // namespace
 
 class EventStream::QueueSink : public OutputSink {
@@ -96,7 +98,7 @@ std::vector<TimedEvent> EventStream::takeSpare() {
 
 EventStream::Got EventStream::next(std::vector<TimedEvent>& out, int ms) {
     std::unique_lock<std::mutex> lock(mu_);
-    if (!out.empty() && spare_.size() < kQueuedBatches) spare_.push_back(std::move(out));
+    if (!out.empty() && spare_.size() < kSpareBatches) spare_.push_back(std::move(out));
     out.clear();
     cv_.wait_for(lock, std::chrono::milliseconds(ms), [&] { return !queue_.empty() || done_; });
     if (!queue_.empty()) {
