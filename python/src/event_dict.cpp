@@ -59,7 +59,7 @@ pyb::str DictMaker::name(const std::string& s) {
 PyObject* DictMaker::fieldKey(const std::string& key, std::size_t position) {
     if (position < keys_at_.size() && sameKey(keys_at_[position].first, key))
         return keys_at_[position].second.ptr();
-    if (isCommonEventKey(key)) return kNone;
+    if (isCommonEventKey(key)) return kCommonKey;
     if (position >= keys_at_.size()) keys_at_.resize(position + 1);
     keys_at_[position] = {key, name(key)};
     return keys_at_[position].second.ptr();
@@ -93,7 +93,7 @@ pyb::dict DictMaker::operator()(const TimedEvent& te) {
     std::size_t position = 0;
     for (const auto& f : e.fields) {
         PyObject* key = fieldKey(f.key, position);
-        if (key == kNone) continue;
+        if (key == kCommonKey) continue;
         ++position;
         put(d.ptr(), key, valueToPython(f.value).ptr());
     }

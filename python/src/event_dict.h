@@ -38,12 +38,12 @@ public:
 
 private:
     pyb::str name(const std::string& s);
-    // The key of the field at `position` among the event's own fields (kNone for a key
+    // The key of the field at `position` among the event's own fields (kCommonKey for a key
     // every event has, put first): events of one kind list their fields in one order.
     PyObject* fieldKey(const std::string& key, std::size_t position);
     // The name of `s`, looked up only when it is not `last` (most events repeat it).
     PyObject* repeatedName(const std::string& s, std::pair<std::string, pyb::str>& last);
-    static constexpr PyObject* kNone = nullptr;
+    static constexpr PyObject* kCommonKey = nullptr;
     // The keys every event has, made once (with the GIL: DictMaker is made from Python).
     const pyb::str proto_ = pyb::str("proto"), type_ = pyb::str("type"),
                    start_ns_ = pyb::str("start_ns"), end_ns_ = pyb::str("end_ns"),
