@@ -4,7 +4,6 @@
 // pages once it is large, so that a 500 MB capture's columns take a page fault per 2 MB
 // and not per 4 KB. Handed to numpy as is (read_py.cpp).
 #include <cstddef>
-#include <cstring>
 #include <new>
 #include <type_traits>
 #include <utility>

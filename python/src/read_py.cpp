@@ -42,12 +42,6 @@ pyb::array objectArray(std::size_t n, Item&& item) {
     return out;
 }
 
-// A new reference to `o`.
-PyObject* share(PyObject* o) {
-    Py_INCREF(o);
-    return o;
-}
-
 pyb::array objectColumn(const std::vector<Value>& values) {
     return objectArray(values.size(),
                        [&](std::size_t i) { return valueToPython(values[i]).release().ptr(); });
@@ -80,13 +74,15 @@ pyb::tuple columnToPython(Column& c) {
             for (const auto& t : c.texts)
                 texts.push_back(pyb::str(t));
             auto out = objectArray(c.lanes.size(), [&](std::size_t i) {
-                return share(c.nulls[i] ? Py_None : texts[c.lanes[i]].ptr());
+                return Py_NewRef(c.nulls[i] ? Py_None : texts[c.lanes[i]].ptr());
             });
             return pyb::make_tuple(c.key, "object", out, pyb::none());
         }
         case K::Empty:
-            return pyb::make_tuple(c.key, "object",
-                                   objectColumn(std::vector<Value>(c.nulls.size())), pyb::none());
+            return pyb::make_tuple(
+                c.key, "object",
+                objectArray(c.nulls.size(), [](std::size_t) { return Py_NewRef(Py_None); }),
+                pyb::none());
         case K::Object:
             break;
     }
@@ -103,7 +99,7 @@ pyb::array errorColumn(const Table& t) {
         PyObject* row = PyList_New(Py_ssize_t(set.size()));
         if (!row) throw pyb::error_already_set();
         for (std::size_t j = 0; j < set.size(); ++j)
-            PyList_SET_ITEM(row, Py_ssize_t(j), share(set[j].ptr()));  // steals the reference
+            PyList_SET_ITEM(row, Py_ssize_t(j), Py_NewRef(set[j].ptr()));  // steals the reference
         return row;
     });
 }
