@@ -14,6 +14,10 @@ struct FastPathHints {
     // always carry a summary may then leave its fields out (a BiSS-C frame's 20 fields
     // are a tenth of decode's time on a busy bus).
     bool fields_wanted = true;
+    // False when no sink reads the events' summaries (jsonl, LCM, verify, Python): a
+    // decoder may then leave out the text it formats per event (a BiSS-C frame's summary
+    // is a twentieth of busdecode.read()'s time).
+    bool summaries_wanted = true;
     // Every edge handed to edges() has its role for its line (role_of_line maps each line
     // that carries edges to itself): a decoder may take the role from Edge::line and skip
     // the look-up, which sits before the branch on the role (mispredicted where the data
@@ -47,6 +51,8 @@ public:
 protected:
     // Whether to add fields to the events (FastPathHints::fields_wanted).
     bool fieldsWanted() const { return hints_.fields_wanted; }
+    // Whether to set the events' summaries (FastPathHints::summaries_wanted).
+    bool summariesWanted() const { return hints_.summaries_wanted; }
 
 private:
     FastPathHints hints_;

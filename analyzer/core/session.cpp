@@ -543,11 +543,15 @@ void Session::startDecoders() {
     // Fields are built only if a sink reads them or a decoder correlates (it looks at
     // the other decoders' events in the window).
     bool fields_wanted = im.keep_window;
-    for (const auto* sink : sinks_)
+    bool summaries_wanted = false;  // decoders read each other's fields, never summaries
+    for (const auto* sink : sinks_) {
         fields_wanted |= sink->readsFields();
+        summaries_wanted |= sink->readsSummaries();
+    }
     for (int s = 0; s < int(im.slots.size()); ++s) {
         auto& slot = im.slots[s];
         slot.hints.fields_wanted = fields_wanted;
+        slot.hints.summaries_wanted = summaries_wanted;
         slot.hints.lines_are_roles = im.block_path && linesAreRoles(im.role_of_line);
         slot.fast = fastPathOf(*slot.decoder);
         if (slot.fast) slot.fast->setHints(slot.hints);

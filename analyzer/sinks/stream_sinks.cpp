@@ -109,6 +109,7 @@ private:
 class JsonlSink : public OutputSink {
 public:
     JsonlSink(std::FILE* out, bool name_capture) : out_(out), name_capture_(name_capture) {}
+    bool readsSummaries() const override { return false; }  // jsonl has fields, no summary
     void begin(const CaptureFacts& f) override { capture_ = captureJsonFields(f, name_capture_); }
     void onEvent(const Event& e, const CaptureFacts& f) override {
         line_.clear();

@@ -38,6 +38,7 @@ public:
     void begin(const CaptureFacts& facts) override;
     void onEvent(const Event& e, const CaptureFacts& facts) override;
     void end(const CaptureFacts& facts) override;
+    bool readsSummaries() const override { return false; }  // rules check fields
 
     // One outcome per rule, in rules-file order (valid after end()).
     const std::vector<RuleOutcome>& outcomes() const { return outcomes_; }

@@ -335,8 +335,9 @@ void SpiDecoder::emitWord(Tick end, bool short_frame) {
     ShortLine text;  // at most 64 bits: "MOSI 0x" + 16 digits, twice, and the short note
     bool first = true;
     // Fields only when a sink or another decoder reads them: text output prints the
-    // summary alone.
+    // summary alone, jsonl and the other sinks the fields alone.
     const bool fields = fieldsWanted();
+    const bool summary = summariesWanted();
     auto put = [&](const char* key, const char* label, std::uint64_t w, bool bound) {
         if (!bound) {
             if (fields) e.add(key, Null{});
@@ -345,6 +346,7 @@ void SpiDecoder::emitWord(Tick end, bool short_frame) {
         // MSB-first words keep the newest 64 bits; LSB-first words the first 64.
         std::uint64_t v = lowBits(w, n);
         if (fields) e.add(key, v);
+        if (!summary) return;
         if (!first) text.text(" ");
         first = false;
         text.text(label).text(" 0x").hex(v, digits);
@@ -354,10 +356,10 @@ void SpiDecoder::emitWord(Tick end, bool short_frame) {
     if (fields) e.add("bits", std::int64_t(n));
     if (short_frame) {
         e.error("short_frame");
-        text.text(" (").dec(n).text(" of ").dec(bits_).text(" bits)");
+        if (summary) text.text(" (").dec(n).text(" of ").dec(bits_).text(" bits)");
     }
     if (word_glitch_) e.error("glitch");
-    e.summary.assign(text.view());
+    if (summary) e.summary.assign(text.view());
     emit(std::move(owned));
 }
 

@@ -84,6 +84,7 @@ private:
 class TableSink : public OutputSink {
 public:
     void onEvent(const Event& e, const CaptureFacts& facts) override;
+    bool readsSummaries() const override { return false; }  // columns are the fields
     // Tables by "proto/type", in the order their first events came.
     std::vector<Table> tables;
 

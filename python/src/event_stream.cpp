@@ -16,6 +16,7 @@ constexpr std::size_t kSpareBatches = 2;
 class EventStream::QueueSink : public OutputSink {
 public:
     explicit QueueSink(EventStream& s) : s_(s) {}
+    bool readsSummaries() const override { return false; }  // dicts hold the jsonl fields
     void begin(const CaptureFacts& facts) override {
         std::lock_guard<std::mutex> lock(s_.mu_);
         s_.facts_ = facts;

@@ -59,14 +59,20 @@ void expectSameAsFixedWidth(const Waveform& w, int bits) {
     EXPECT_EQ(asJsonl(automatic, w.timebase), asJsonl(fixed, w.timebase));
 }
 
-// The events of a session whose only sink, like text output, reads no fields.
-std::vector<Event> decodeForText(const Waveform& w, const std::string& bits) {
+// The events of a session whose only sink reads the events' fields or summaries as
+// given: text output reads summaries alone, jsonl fields alone.
+std::vector<Event> decodeFor(const Waveform& w, const std::string& bits, bool fields,
+                             bool summaries) {
     registerBissc();
-    struct SummaryOnly : OutputSink {
+    struct Reading : OutputSink {
+        bool fields, summaries;
         std::vector<Event> events;
         void onEvent(const Event& e, const CaptureFacts&) override { events.push_back(e); }
-        bool readsFields() const override { return false; }
+        bool readsFields() const override { return fields; }
+        bool readsSummaries() const override { return summaries; }
     } sink;
+    sink.fields = fields;
+    sink.summaries = summaries;
     auto reader = memoryReader(w);
     DecoderRequest r;
     r.proto = "bissc";
@@ -217,7 +223,7 @@ TEST(BisscWidth, TextOutputLeavesFieldsOutAndStillFindsTheWidth) {
     const auto fixed = decodeBissc(w, {{"bits", "18"}});
     for (const std::string bits : {"18", "auto"}) {
         SCOPED_TRACE(bits);
-        const auto text = decodeForText(w, bits);
+        const auto text = decodeFor(w, bits, false, true);
         ASSERT_EQ(text.size(), fixed.size());
         for (std::size_t i = 0; i < text.size(); ++i) {
             EXPECT_EQ(eventToText(text[i], w.timebase), eventToText(fixed[i], w.timebase));
@@ -227,5 +233,21 @@ TEST(BisscWidth, TextOutputLeavesFieldsOutAndStillFindsTheWidth) {
                 EXPECT_EQ(fixed[i].fields.size(), 20u);
             }
         }
+    }
+}
+
+TEST(BisscWidth, JsonlOutputLeavesSummariesOut) {
+    // With only sinks that read fields (jsonl, LCM, Python), frames come without their
+    // summary and with the same fields.
+    std::mt19937_64 rng{26};
+    const Waveform w = capture(26, 12, [&](int) { return rng() & mask(26); });
+    const auto both = decodeBissc(w, {{"bits", "26"}});
+    const auto json = decodeFor(w, "26", true, false);
+    EXPECT_EQ(asJsonl(json, w.timebase), asJsonl(both, w.timebase));
+    ASSERT_EQ(json.size(), both.size());
+    for (std::size_t i = 0; i < json.size(); ++i) {
+        if (json[i].type != "frame") continue;
+        EXPECT_EQ(json[i].summary, "");
+        EXPECT_NE(both[i].summary, "");
     }
 }

@@ -18,13 +18,14 @@ namespace {
 
 // Emits one event per rising edge on `in`, spanning from the previous falling edge;
 // optionally asks to be correlated with the other decoder's events. A BlockDecoder, to
-// see the hints a fast decoder is given (FastPathHints::fields_wanted).
+// see the hints a fast decoder is given (FastPathHints::fields_wanted, summaries_wanted).
 class RiseDecoder : public BlockDecoder<RiseDecoder> {
 public:
     explicit RiseDecoder(const Options& o) : tag_(o.text("tag")), correlate_(o.flag("correlate")) {}
     void start(const DecoderContext& ctx) override {
         Decoder::start(ctx);
         fields_wanted.push_back(fieldsWanted());
+        summaries_wanted.push_back(summariesWanted());
     }
     void edge(Tick t, int, bool level) override {
         if (!level) {
@@ -62,6 +63,7 @@ public:
     bool correlates() const override { return correlate_; }
     static std::vector<Tick> glitches;
     static std::vector<bool> fields_wanted;  // what each decoder was told at its start
+    static std::vector<bool> summaries_wanted;
 
 private:
     std::string tag_;
@@ -70,6 +72,7 @@ private:
 };
 std::vector<Tick> RiseDecoder::glitches;
 std::vector<bool> RiseDecoder::fields_wanted;
+std::vector<bool> RiseDecoder::summaries_wanted;
 
 DecoderInfo riseInfo() {
     DecoderInfo d;
@@ -260,18 +263,36 @@ struct SummarySink : OutputSink {
 struct FieldSink : OutputSink {
     void onEvent(const Event&, const CaptureFacts&) override {}
 };
+// A sink that reads fields and never summaries (as jsonl).
+struct FieldOnlySink : FieldSink {
+    bool readsSummaries() const override { return false; }
+};
 
-// What the decoders of a session over twoLines() are told: fieldsWanted(), per decoder.
-std::vector<bool> fieldsWantedWith(const std::vector<DecoderRequest>& requests,
-                                   const std::vector<OutputSink*>& sinks) {
+// Runs a session over twoLines() with these decoders and sinks: RiseDecoder's vectors
+// then hold what each decoder was told.
+void runWith(const std::vector<DecoderRequest>& requests, const std::vector<OutputSink*>& sinks) {
     const Waveform w = twoLines();
     auto reader = memoryReader(w);
     Session s(requests, *reader, "memory");
     for (auto* sink : sinks)
         s.addSink(sink);
     RiseDecoder::fields_wanted.clear();
+    RiseDecoder::summaries_wanted.clear();
     s.run();
+}
+
+// fieldsWanted(), per decoder.
+std::vector<bool> fieldsWantedWith(const std::vector<DecoderRequest>& requests,
+                                   const std::vector<OutputSink*>& sinks) {
+    runWith(requests, sinks);
     return RiseDecoder::fields_wanted;
+}
+
+// summariesWanted(), per decoder.
+std::vector<bool> summariesWantedWith(const std::vector<DecoderRequest>& requests,
+                                      const std::vector<OutputSink*>& sinks) {
+    runWith(requests, sinks);
+    return RiseDecoder::summaries_wanted;
 }
 
 }  // namespace
@@ -296,6 +317,25 @@ TEST(Session, FieldsAreWantedWhenASinkReadsThemOrADecoderCorrelates) {
 TEST(Session, TextOutputReadsNoFieldsJsonDoes) {
     EXPECT_FALSE(makeTextSink(stdout)->readsFields());
     EXPECT_TRUE(makeJsonlSink(stdout)->readsFields());
+}
+
+TEST(Session, SummariesAreWantedWhenASinkReadsThem) {
+    const std::vector<DecoderRequest> correlating = {
+        {"rise", {{"in", "a"}}, {{"tag", "other"}}},
+        {"rise", {{"in", "input"}}, {{"correlate", "1"}}}};
+    SummarySink text;
+    FieldSink report;  // reads both, as the HTML report
+    FieldOnlySink json, json2;
+    EXPECT_EQ(summariesWantedWith(correlating, {&json}), (std::vector<bool>{false, false}));
+    EXPECT_EQ(summariesWantedWith(correlating, {&json, &json2}), (std::vector<bool>{false, false}));
+    EXPECT_EQ(summariesWantedWith(correlating, {&json, &text}), (std::vector<bool>{true, true}));
+    EXPECT_EQ(summariesWantedWith(correlating, {&report, &json}), (std::vector<bool>{true, true}));
+    EXPECT_EQ(summariesWantedWith(correlating, {}), (std::vector<bool>{false, false}));
+}
+
+TEST(Session, TextOutputReadsSummariesJsonDoesNot) {
+    EXPECT_TRUE(makeTextSink(stdout)->readsSummaries());
+    EXPECT_FALSE(makeJsonlSink(stdout)->readsSummaries());
 }
 
 TEST(Session, AStackedDecodersLowerOneAlwaysAddsFields) {

@@ -7,6 +7,7 @@
 #include "capture/capture_reader.h"
 #include "core/registry.h"
 #include "core/session.h"
+#include "sinks/event_format.h"
 #include "spi_generator.h"
 #include "spi_info.h"
 
@@ -169,6 +170,30 @@ TEST(Spi, TextOutputGetsTheSummaryWithoutFields) {
         EXPECT_EQ(text.events[0].summary, miso ? "MOSI 0xDEADB MISO 0x12345 (20 of 32 bits)"
                                                : "MOSI 0xDEADB (20 of 32 bits)");
     }
+}
+
+TEST(Spi, JsonlOutputGetsTheFieldsWithoutSummary) {
+    // A sink that reads no summaries (jsonl) gets the same events, fields and errors as
+    // one that reads both, without the summary.
+    const Waveform w = cutShortThenWhole();
+    struct FieldsOnly : OutputSink {
+        std::vector<Event> events;
+        void onEvent(const Event& e, const CaptureFacts&) override { events.push_back(e); }
+        bool readsSummaries() const override { return false; }
+    } json;
+    const auto both = decode(w, {});
+    auto reader = memoryReader(w);
+    Session s({DecoderRequest{"spi", {}, {}}}, *reader, "memory");
+    s.addSink(&json);
+    s.run();
+    ASSERT_EQ(json.events.size(), 2u);
+    ASSERT_EQ(both.size(), 2u);
+    for (std::size_t i = 0; i < 2; ++i) {
+        EXPECT_EQ(json.events[i].summary, "");
+        EXPECT_NE(both[i].summary, "");
+        EXPECT_EQ(eventToJson(json.events[i], w.timebase), eventToJson(both[i], w.timebase));
+    }
+    EXPECT_TRUE(json.events[0].hasError("short_frame"));
 }
 
 TEST(Spi, LsbFirstShortFrameKeepsTheBitsInPlace) {
