@@ -226,8 +226,10 @@ void UartDecoder::endFrame(Line& l, bool cut_short) {
     if (!l.stop_ok) e.error("framing");
     ++bytes_;
     faulty_bytes_ += !e.errors.empty();
-    const int hex_digits = (fmt_.bits + 3) / 4;
-    e.summary = fmt::format("{} 0x{:0{}X}{}", l.name, l.value, hex_digits, printable(l.value));
+    if (summariesWanted()) {  // text output and reports; jsonl and Python read the fields
+        const int hex_digits = (fmt_.bits + 3) / 4;
+        e.summary = fmt::format("{} 0x{:0{}X}{}", l.name, l.value, hex_digits, printable(l.value));
+    }
     emit(std::move(owned));
     // Low through the whole frame, stop bits included: a break, reported when it ends.
     if (l.all_low && !l.stop_ok && (l.level == fmt_.invert)) {

@@ -10,6 +10,7 @@
 #include "sinks/event_format.h"
 #include "spi_generator.h"
 #include "spi_info.h"
+#include "support/decode_events.h"
 
 using namespace busdecode;
 
@@ -176,24 +177,16 @@ TEST(Spi, JsonlOutputGetsTheFieldsWithoutSummary) {
     // A sink that reads no summaries (jsonl) gets the same events, fields and errors as
     // one that reads both, without the summary.
     const Waveform w = cutShortThenWhole();
-    struct FieldsOnly : OutputSink {
-        std::vector<Event> events;
-        void onEvent(const Event& e, const CaptureFacts&) override { events.push_back(e); }
-        bool readsSummaries() const override { return false; }
-    } json;
     const auto both = decode(w, {});
-    auto reader = memoryReader(w);
-    Session s({DecoderRequest{"spi", {}, {}}}, *reader, "memory");
-    s.addSink(&json);
-    s.run();
-    ASSERT_EQ(json.events.size(), 2u);
+    const auto json = test::decodeForFields(w, {DecoderRequest{"spi", {}, {}}});
+    ASSERT_EQ(json.size(), 2u);
     ASSERT_EQ(both.size(), 2u);
     for (std::size_t i = 0; i < 2; ++i) {
-        EXPECT_EQ(json.events[i].summary, "");
+        EXPECT_EQ(json[i].summary, "");
         EXPECT_NE(both[i].summary, "");
-        EXPECT_EQ(eventToJson(json.events[i], w.timebase), eventToJson(both[i], w.timebase));
+        EXPECT_EQ(eventToJson(json[i], w.timebase), eventToJson(both[i], w.timebase));
     }
-    EXPECT_TRUE(json.events[0].hasError("short_frame"));
+    EXPECT_TRUE(json[0].hasError("short_frame"));
 }
 
 TEST(Spi, LsbFirstShortFrameKeepsTheBitsInPlace) {

@@ -1,5 +1,8 @@
 #include "decode_events.h"
 
+#include "capture/capture_reader.h"
+#include "core/waveform.h"
+
 namespace busdecode::test {
 
 namespace {
@@ -23,6 +26,15 @@ std::vector<Event> decodeEvents(const std::string& path, std::vector<DecoderRequ
                                 const OpenOptions& open, CaptureFacts* facts) {
     auto reader = openCapture(path, open);
     return run(*reader, std::move(requests), path, facts);
+}
+
+std::vector<Event> decodeForFields(const Waveform& w, const std::vector<DecoderRequest>& requests) {
+    auto reader = memoryReader(w);
+    Session session(requests, *reader, "memory");
+    FieldCollector sink;
+    session.addSink(&sink);
+    session.run();
+    return std::move(sink.events);
 }
 
 std::vector<Event> eventsOfType(const std::vector<Event>& events, const std::string& type) {

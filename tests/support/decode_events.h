@@ -14,6 +14,16 @@ struct EventCollector : OutputSink {
     void onEvent(const Event& e, const CaptureFacts&) override { events.push_back(e); }
 };
 
+// One that reads the events' fields and never their summaries, as jsonl, LCM, verify and
+// Python do: decoders may leave the summaries out.
+struct FieldCollector : EventCollector {
+    bool readsSummaries() const override { return false; }
+};
+
+// An in-memory capture decoded for such a sink alone.
+std::vector<Event> decodeForFields(const struct Waveform& w,
+                                   const std::vector<DecoderRequest>& requests);
+
 // A reader already open (a capture in memory, say), named "memory" in the session.
 std::vector<Event> decodeEvents(CaptureReader& reader, std::vector<DecoderRequest> requests,
                                 CaptureFacts* facts = nullptr);

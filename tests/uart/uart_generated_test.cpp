@@ -8,6 +8,8 @@
 
 #include "core/registry.h"
 #include "core/session.h"
+#include "sinks/event_format.h"
+#include "support/decode_events.h"
 #include "uart_decoder.h"
 #include "uart_generator.h"
 
@@ -106,6 +108,29 @@ TEST_F(UartTest, EventSpansStartEdgeToEndOfStopBit) {
     EXPECT_EQ(bytes[0].start, 2000);
     EXPECT_EQ(bytes[0].end, 12000);
     EXPECT_EQ(asInt(*bytes[0].get("value")), 0xA5);
+}
+
+TEST_F(UartTest, JsonlOutputGetsTheFieldsWithoutSummary) {
+    // A sink that reads no summaries (jsonl, Python) gets the same bytes, fields and
+    // errors, without the summary that text output prints.
+    UartFormat f;
+    f.baud = 1'000'000;
+    WaveBuilder wb(Timebase{1, 1'000'000'000}, {"tx"}, {1});
+    UartGenerator gen(wb, 0, f);
+    double t = gen.sendChar(2000, 'A');
+    t = gen.sendChar(t + 1000, 0x7E, {.bad_stop = true});
+    const Waveform w = wb.build(wb.ticksFromNs(t + 30000));
+    const std::vector<DecoderRequest> uart = {{"uart", {}, {{"baud", "1e6"}}}};
+    const auto both = ofType(decodeWaveform(w, uart), "byte");
+    const auto json = ofType(test::decodeForFields(w, uart), "byte");
+    ASSERT_EQ(both.size(), 2u);
+    ASSERT_EQ(json.size(), 2u);
+    for (std::size_t i = 0; i < 2; ++i) {
+        EXPECT_EQ(json[i].summary, "");
+        EXPECT_EQ(eventToJson(json[i], w.timebase), eventToJson(both[i], w.timebase));
+    }
+    EXPECT_EQ(both[0].summary, "tx 0x41 'A'");
+    EXPECT_EQ(json[1].errors, std::vector<std::string>{"framing"});
 }
 
 TEST_F(UartTest, ParityAndFramingErrors) {
