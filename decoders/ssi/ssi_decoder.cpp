@@ -298,7 +298,7 @@ void SsiDecoder::fillFrame(Event& e, const SsiWord& w, double T, std::int64_t me
     if (!match) e.error("repeat_mismatch");
     if (!w.separator_ok) e.error("ring_separator");
     if (glitches > 0) e.error("glitch");
-    e.summary = frameSummary(w, f, diff, T);
+    if (summariesWanted()) e.summary = frameSummary(w, f, diff, T);  // text output, reports
 }
 
 std::string SsiDecoder::frameSummary(const SsiWord& w, const SsiFields& f,
@@ -351,7 +351,7 @@ void SsiDecoder::emitFrame(std::optional<Tick> tm_end, bool deadline_passed) {
     if (tm_end) {
         const std::int64_t tm_ns = tb().toNs(*tm_end - e.end);
         e.set("tm_ns", tm_ns);
-        tm_text = fmt::format("tm={:.1f}us", double(tm_ns) / 1e3);
+        if (summariesWanted()) tm_text = fmt::format("tm={:.1f}us", double(tm_ns) / 1e3);
         if (pending_checks_tm_) {
             tm_values_.push_back(tm_ns);
             if (double(tm_ns) < cfg_.tm_min_us * 1e3) e.error("timeout_short");
@@ -360,7 +360,7 @@ void SsiDecoder::emitFrame(std::optional<Tick> tm_end, bool deadline_passed) {
     } else if (deadline_passed && pending_checks_tm_) {
         e.error("timeout_long");
     }
-    e.summary += " " + tm_text;
+    if (summariesWanted()) e.summary += " " + tm_text;
 
     ++frames_;
     if (e.hasError("repeat_mismatch")) ++mismatches_;

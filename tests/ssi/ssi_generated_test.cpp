@@ -10,8 +10,10 @@
 #include "core/bit_word.h"
 #include "core/gray.h"
 #include "core/session.h"
+#include "sinks/event_format.h"
 #include "ssi_generator.h"
 #include "ssi_test_util.h"
+#include "support/decode_events.h"
 
 using namespace busdecode;
 using namespace busdecode::ssitest;
@@ -393,6 +395,27 @@ TEST(SsiGenerated, SummaryEventHasTmStatistics) {
     EXPECT_EQ(i64(s, "repeat_mismatches"), 0);
     for (std::size_t i = 1; i < all.size(); ++i)
         EXPECT_LE(all[i - 1].start, all[i].start);
+}
+
+TEST(SsiGenerated, JsonlOutputGetsTheFieldsWithoutSummary) {
+    // A sink that reads no summaries (jsonl, Python) gets the same frames, fields and
+    // errors, without the summary text output prints.
+    SsiGenConfig cfg;
+    cfg.tm_ns = 18000;
+    const auto g = generateSsi(cfg, randomFrames(5, 25, 52));
+    registerSsi();
+    DecoderRequest r;
+    r.proto = "ssi";
+    r.options = {{"bits", "25"}};
+    const auto both = decodeWaveform(g.wave, {r});
+    const auto json = test::decodeForFields(g.wave, {r});
+    ASSERT_EQ(json.size(), both.size());
+    ASSERT_EQ(json.size(), 6u);  // five frames and the summary event
+    for (std::size_t i = 0; i < 5; ++i) {
+        EXPECT_EQ(json[i].summary, "");
+        EXPECT_NE(both[i].summary.find("tm=18.0us"), std::string::npos) << both[i].summary;
+        EXPECT_EQ(eventToJson(json[i], g.wave.timebase), eventToJson(both[i], g.wave.timebase));
+    }
 }
 
 TEST(SsiGenerated, RisingEdgeSamplerRejectsThePauseBit) {
