@@ -14,7 +14,7 @@ struct FastPathHints {
     // always carry a summary may then leave its fields out (a BiSS-C frame's 20 fields
     // are a tenth of decode's time on a busy bus).
     bool fields_wanted = true;
-    // False when no sink reads the events' summaries (jsonl, LCM, verify, Python): a
+    // False when no sink reads the events' summaries (jsonl, verify, Python): a
     // decoder may then leave out the text it formats per event (a UART byte's summary was
     // a fifth of the time of decode --format jsonl on a 1 Mbaud line).
     bool summaries_wanted = true;

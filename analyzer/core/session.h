@@ -56,8 +56,9 @@ public:
     // False for a sink that never reads Event::fields of an event with a summary (text
     // output): with only such sinks, decoders may leave fields out.
     virtual bool readsFields() const { return true; }
-    // False for a sink that never reads Event::summary (jsonl, LCM, verify's rules,
-    // Python's tables): with only such sinks, decoders may leave the summary out.
+    // False for a sink that never reads Event::summary (jsonl, verify's rules, Python's
+    // tables; not LCM, whose annotations carry the text line): with only such sinks,
+    // decoders may leave the summary out.
     virtual bool readsSummaries() const { return true; }
     // A sink that draws the captured waveform (the HTML report) sees the mapped lines'
     // edges, each block before the events decoded from it.

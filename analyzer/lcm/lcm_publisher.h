@@ -56,7 +56,6 @@ public:
     ~LcmSink() override;
     void begin(const CaptureFacts& facts) override;
     void onEvent(const Event& e, const CaptureFacts& facts) override;
-    bool readsSummaries() const override { return false; }  // messages carry fields only
     // Waits until everything queued is published, then reports drops and failures.
     void end(const CaptureFacts& facts) override;
     LcmSinkCounts counts() const;

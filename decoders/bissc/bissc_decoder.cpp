@@ -488,7 +488,7 @@ void BisscDecoder::closeFrame(Tick end, Tick timeout_end, const char* error, boo
         e.error(err);
     if (error) e.error(error);
     const FrameOutcome out = checkFrame(e, timeout_end);
-    // Text output reads the summary alone; jsonl, LCM, verify and Python the fields alone.
+    // Text output reads the summary alone; jsonl, verify and Python the fields alone.
     if (fieldsWanted()) addFrameFields(e, out);
     if (summariesWanted()) setFrameSummary(e, out);
     countFrame(e, out);

@@ -237,7 +237,7 @@ TEST(BisscWidth, TextOutputLeavesFieldsOutAndStillFindsTheWidth) {
 }
 
 TEST(BisscWidth, JsonlOutputLeavesSummariesOut) {
-    // With only sinks that read fields (jsonl, LCM, Python), frames come without their
+    // With only sinks that read fields (jsonl, verify, Python), frames come without their
     // summary and with the same fields.
     std::mt19937_64 rng{26};
     const Waveform w = capture(26, 12, [&](int) { return rng() & mask(26); });

@@ -228,6 +228,14 @@ TEST(LcmPublish, AnnotationCarriesEveryEventsTextAndJson) {
     }
 }
 
+TEST(LcmPublish, TheSinkReadsTheSummariesItsAnnotationsCarry) {
+    // An annotation's text is text output's line, the event's summary: with LCM as the
+    // only sink, decoders must still set summaries (and fields, for the messages).
+    LcmSink sink(openLcm("memq://"), "memq://", {});
+    EXPECT_TRUE(sink.readsSummaries());
+    EXPECT_TRUE(sink.readsFields());
+}
+
 TEST(LcmPublish, NullAndMissingFieldsAreListedAndFlagged) {
     Event ssi = everyKind()[0];
     ssi.set("tm_ns", Null{});

@@ -14,7 +14,7 @@ struct EventCollector : OutputSink {
     void onEvent(const Event& e, const CaptureFacts&) override { events.push_back(e); }
 };
 
-// One that reads the events' fields and never their summaries, as jsonl, LCM, verify and
+// One that reads the events' fields and never their summaries, as jsonl, verify and
 // Python do: decoders may leave the summaries out.
 struct FieldCollector : EventCollector {
     bool readsSummaries() const override { return false; }
