@@ -197,9 +197,11 @@ void checkBlocksMatchEdges(const DecoderFactory& factory, const Waveform& w,
     }
 }
 
-// Every event as its JSON line.
+// Every event as its JSON line; like jsonl output it reads no summaries, so the pieces
+// are decoded as `decode --format jsonl` decodes them.
 class JsonLines final : public OutputSink {
 public:
+    bool readsSummaries() const override { return false; }
     void onEvent(const Event& e, const CaptureFacts& facts) override {
         lines.push_back(eventToJson(e, facts.timebase));
     }
