@@ -377,15 +377,27 @@ TEST(SsiGenerated, ParityBitAfterLsb) {
     EXPECT_TRUE(ev[3].hasError("parity"));
 }
 
-TEST(SsiGenerated, SummaryEventHasTmStatistics) {
+namespace {
+
+// Five 25-bit frames with tm = 18 us, from `seed`.
+Waveform fiveFramesTm18(unsigned seed) {
     SsiGenConfig cfg;
     cfg.tm_ns = 18000;
-    const auto g = generateSsi(cfg, randomFrames(5, 25, 51));
+    return generateSsi(cfg, randomFrames(5, 25, seed)).wave;
+}
+
+DecoderRequest ssi25() {
     registerSsi();
     DecoderRequest r;
     r.proto = "ssi";
     r.options = {{"bits", "25"}};
-    const auto all = decodeWaveform(g.wave, {r});
+    return r;
+}
+
+}  // namespace
+
+TEST(SsiGenerated, SummaryEventHasTmStatistics) {
+    const auto all = decodeWaveform(fiveFramesTm18(51), {ssi25()});
     ASSERT_FALSE(all.empty());
     const Event& s = all.back();
     ASSERT_EQ(s.type, "summary");
@@ -400,21 +412,15 @@ TEST(SsiGenerated, SummaryEventHasTmStatistics) {
 TEST(SsiGenerated, JsonlOutputGetsTheFieldsWithoutSummary) {
     // A sink that reads no summaries (jsonl, Python) gets the same frames, fields and
     // errors, without the summary text output prints.
-    SsiGenConfig cfg;
-    cfg.tm_ns = 18000;
-    const auto g = generateSsi(cfg, randomFrames(5, 25, 52));
-    registerSsi();
-    DecoderRequest r;
-    r.proto = "ssi";
-    r.options = {{"bits", "25"}};
-    const auto both = decodeWaveform(g.wave, {r});
-    const auto json = test::decodeForFields(g.wave, {r});
+    const Waveform w = fiveFramesTm18(52);
+    const auto both = decodeWaveform(w, {ssi25()});
+    const auto json = test::decodeForFields(w, {ssi25()});
     ASSERT_EQ(json.size(), both.size());
     ASSERT_EQ(json.size(), 6u);  // five frames and the summary event
     for (std::size_t i = 0; i < 5; ++i) {
         EXPECT_EQ(json[i].summary, "");
         EXPECT_NE(both[i].summary.find("tm=18.0us"), std::string::npos) << both[i].summary;
-        EXPECT_EQ(eventToJson(json[i], g.wave.timebase), eventToJson(both[i], g.wave.timebase));
+        EXPECT_EQ(eventToJson(json[i], w.timebase), eventToJson(both[i], w.timebase));
     }
 }
 
