@@ -4,7 +4,6 @@
 #include <cmath>
 #include <limits>
 
-#include "short_key.h"
 #include "sinks/event_format.h"
 
 namespace busdecode::py {
@@ -109,11 +108,7 @@ void Column::appendAnyKind(const Value& v) {
 
 [[gnu::always_inline]] inline std::size_t Table::columnFor(const std::string& key,
                                                            std::size_t position) {
-    // Events of one kind list their fields in the same order: one comparison a field.
-    if (position < last_order_.size()) {
-        const std::size_t column = last_order_[position];
-        if (sameKey(columns[column].key, key)) return column;
-    }
+    if (const std::size_t* column = last_order_.find(key, position)) return *column;
     return findColumn(key, position);
 }
 
@@ -128,9 +123,7 @@ std::size_t Table::findColumn(const std::string& key, std::size_t position) {
         columns.push_back(std::move(c));
         it = index_.emplace(key, columns.size() - 1).first;
     }
-    if (position >= last_order_.size()) last_order_.resize(position + 1);
-    last_order_[position] = it->second;
-    return it->second;
+    return last_order_.remember(key, position, it->second);
 }
 
 std::uint32_t Table::errorSet(const std::vector<std::string>& errs) {

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "core/session.h"
+#include "field_order.h"
 #include "lane_buffer.h"
 
 namespace busdecode::py {
@@ -77,7 +78,7 @@ private:
     [[gnu::noinline]] std::size_t findColumn(const std::string& key, std::size_t position);
     std::uint32_t errorSet(const std::vector<std::string>& errors);
     std::unordered_map<std::string, std::size_t> index_;
-    std::vector<std::size_t> last_order_;  // column of each field position last time
+    FieldOrder<std::size_t> last_order_;  // the column of each field position
     std::map<std::vector<std::string>, std::uint32_t> error_index_;
 };
 

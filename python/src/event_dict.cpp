@@ -3,7 +3,6 @@
 #include <type_traits>
 #include <variant>
 
-#include "short_key.h"
 #include "sinks/event_format.h"
 
 namespace busdecode::py {
@@ -57,12 +56,9 @@ pyb::str DictMaker::name(const std::string& s) {
 }
 
 PyObject* DictMaker::fieldKey(const std::string& key, std::size_t position) {
-    if (position < keys_at_.size() && sameKey(keys_at_[position].first, key))
-        return keys_at_[position].second.ptr();
+    if (const pyb::str* known = keys_at_.find(key, position)) return known->ptr();
     if (isCommonEventKey(key)) return kCommonKey;
-    if (position >= keys_at_.size()) keys_at_.resize(position + 1);
-    keys_at_[position] = {key, name(key)};
-    return keys_at_[position].second.ptr();
+    return keys_at_.remember(key, position, name(key)).ptr();
 }
 
 PyObject* DictMaker::repeatedName(const std::string& s, std::pair<std::string, pyb::str>& last) {

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "core/event.h"
+#include "field_order.h"
 
 namespace busdecode::py {
 
@@ -50,7 +51,7 @@ private:
                    errors_ = pyb::str("errors");
     std::pair<std::string, pyb::str> last_proto_, last_type_;
     std::unordered_map<std::string, pyb::str> names_;
-    std::vector<std::pair<std::string, pyb::str>> keys_at_;  // by position, last seen
+    FieldOrder<pyb::str> keys_at_;
 };
 
 }  // namespace busdecode::py
