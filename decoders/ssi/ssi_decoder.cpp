@@ -347,11 +347,11 @@ void SsiDecoder::awaitTm(Tick last, bool capture_end) {
 
 void SsiDecoder::emitFrame(std::optional<Tick> tm_end, bool deadline_passed) {
     Event& e = *pending_;
-    std::string tm_text = "tm=?";
+    std::optional<std::int64_t> measured_tm_ns;
     if (tm_end) {
         const std::int64_t tm_ns = tb().toNs(*tm_end - e.end);
+        measured_tm_ns = tm_ns;
         e.set("tm_ns", tm_ns);
-        if (summariesWanted()) tm_text = fmt::format("tm={:.1f}us", double(tm_ns) / 1e3);
         if (pending_checks_tm_) {
             tm_values_.push_back(tm_ns);
             if (double(tm_ns) < cfg_.tm_min_us * 1e3) e.error("timeout_short");
@@ -360,7 +360,9 @@ void SsiDecoder::emitFrame(std::optional<Tick> tm_end, bool deadline_passed) {
     } else if (deadline_passed && pending_checks_tm_) {
         e.error("timeout_long");
     }
-    if (summariesWanted()) e.summary += " " + tm_text;
+    if (summariesWanted())  // text output and reports; jsonl and Python read tm_ns
+        e.summary += measured_tm_ns ? fmt::format(" tm={:.1f}us", double(*measured_tm_ns) / 1e3)
+                                    : std::string(" tm=?");
 
     ++frames_;
     if (e.hasError("repeat_mismatch")) ++mismatches_;
