@@ -11,6 +11,7 @@
 #include "core/stacked.h"
 #include "core/waveform.h"
 #include "sinks/stream_sinks.h"
+#include "support/decode_events.h"
 
 using namespace busdecode;
 
@@ -263,10 +264,6 @@ struct SummarySink : OutputSink {
 struct FieldSink : OutputSink {
     void onEvent(const Event&, const CaptureFacts&) override {}
 };
-// A sink that reads fields and never summaries (as jsonl).
-struct FieldOnlySink : FieldSink {
-    bool readsSummaries() const override { return false; }
-};
 
 // Runs a session over twoLines() with these decoders and sinks: RiseDecoder's vectors
 // then hold what each decoder was told.
@@ -324,8 +321,8 @@ TEST(Session, SummariesAreWantedWhenASinkReadsThem) {
         {"rise", {{"in", "a"}}, {{"tag", "other"}}},
         {"rise", {{"in", "input"}}, {{"correlate", "1"}}}};
     SummarySink text;
-    FieldSink report;  // reads both, as the HTML report
-    FieldOnlySink json, json2;
+    FieldSink report;                  // reads both, as the HTML report
+    test::FieldCollector json, json2;  // reads fields, never summaries (as jsonl)
     EXPECT_EQ(summariesWantedWith(correlating, {&json}), (std::vector<bool>{false, false}));
     EXPECT_EQ(summariesWantedWith(correlating, {&json, &json2}), (std::vector<bool>{false, false}));
     EXPECT_EQ(summariesWantedWith(correlating, {&json, &text}), (std::vector<bool>{true, true}));

@@ -7,9 +7,8 @@ namespace busdecode::test {
 
 namespace {
 std::vector<Event> run(CaptureReader& reader, std::vector<DecoderRequest> requests,
-                       const std::string& name, CaptureFacts* facts) {
+                       const std::string& name, CaptureFacts* facts, EventCollector&& sink = {}) {
     Session session(std::move(requests), reader, name);
-    EventCollector sink;
     session.addSink(&sink);
     session.run();
     if (facts) *facts = session.facts();
@@ -30,11 +29,7 @@ std::vector<Event> decodeEvents(const std::string& path, std::vector<DecoderRequ
 
 std::vector<Event> decodeForFields(const Waveform& w, const std::vector<DecoderRequest>& requests) {
     auto reader = memoryReader(w);
-    Session session(requests, *reader, "memory");
-    FieldCollector sink;
-    session.addSink(&sink);
-    session.run();
-    return std::move(sink.events);
+    return run(*reader, requests, "memory", nullptr, FieldCollector{});
 }
 
 std::vector<Event> eventsOfType(const std::vector<Event>& events, const std::string& type) {
