@@ -21,13 +21,6 @@ protected:
     static void SetUpTestSuite() { Registry::instance().add(makeUartFactory()); }
 };
 
-std::vector<Event> ofType(const std::vector<Event>& events, const std::string& type) {
-    std::vector<Event> out;
-    for (const auto& e : events)
-        if (e.type == type) out.push_back(e);
-    return out;
-}
-
 std::vector<std::uint32_t> randomValues(std::mt19937& rng, int n, int bits) {
     std::uniform_int_distribution<std::uint32_t> d(0, (1u << bits) - 1);
     std::vector<std::uint32_t> v;
@@ -62,7 +55,7 @@ TEST_F(UartTest, EveryFormatRoundTrips) {
                     const double end = gen.sendChars(5000, values);
                     auto events = decodeWaveform(wb.build(wb.ticksFromNs(end + 100000)),
                                                  {{"uart", {}, optionsFor(f)}});
-                    auto bytes = ofType(events, "byte");
+                    auto bytes = test::eventsOfType(events, "byte");
                     ASSERT_EQ(bytes.size(), values.size()) << bits << " bits, stop " << stop;
                     for (std::size_t i = 0; i < values.size(); ++i) {
                         EXPECT_EQ(asInt(*bytes[i].get("value")), values[i]);
@@ -83,8 +76,8 @@ TEST_F(UartTest, BothLinesOverlappingInTimeOrder) {
     const auto rv = randomValues(rng, 30, 8), tv = randomValues(rng, 30, 8);
     rx.sendChars(1000, rv, 3000);
     const double end = tx.sendChars(1000 + 0.37 * rx.bitNs(), tv, 5000);
-    auto events =
-        ofType(decodeWaveform(wb.build(wb.ticksFromNs(end + 1e6)), {{"uart", {}, {}}}), "byte");
+    auto events = test::eventsOfType(
+        decodeWaveform(wb.build(wb.ticksFromNs(end + 1e6)), {{"uart", {}, {}}}), "byte");
     std::vector<std::uint32_t> got_rx, got_tx;
     Tick last = kNoTick;
     for (const auto& e : events) {
@@ -103,7 +96,8 @@ TEST_F(UartTest, EventSpansStartEdgeToEndOfStopBit) {
     WaveBuilder wb(Timebase{1, 1'000'000'000}, {"tx"}, {1});
     UartGenerator gen(wb, 0, f);
     gen.sendChar(2000, 0xA5);
-    auto bytes = ofType(decodeWaveform(wb.build(30000), {{"uart", {}, {{"baud", "1e6"}}}}), "byte");
+    auto bytes = test::eventsOfType(
+        decodeWaveform(wb.build(30000), {{"uart", {}, {{"baud", "1e6"}}}}), "byte");
     ASSERT_EQ(bytes.size(), 1u);
     EXPECT_EQ(bytes[0].start, 2000);
     EXPECT_EQ(bytes[0].end, 12000);
@@ -121,8 +115,8 @@ TEST_F(UartTest, JsonlOutputGetsTheFieldsWithoutSummary) {
     t = gen.sendChar(t + 1000, 0x7E, {.bad_stop = true});
     const Waveform w = wb.build(wb.ticksFromNs(t + 30000));
     const std::vector<DecoderRequest> uart = {{"uart", {}, {{"baud", "1e6"}}}};
-    const auto both = ofType(decodeWaveform(w, uart), "byte");
-    const auto json = ofType(test::decodeForFields(w, uart), "byte");
+    const auto both = test::eventsOfType(decodeWaveform(w, uart), "byte");
+    const auto json = test::eventsOfType(test::decodeForFields(w, uart), "byte");
     ASSERT_EQ(both.size(), 2u);
     ASSERT_EQ(json.size(), 2u);
     for (std::size_t i = 0; i < 2; ++i) {
@@ -143,9 +137,10 @@ TEST_F(UartTest, ParityAndFramingErrors) {
     t = gen.sendChar(t + 1000, 0x32, {.bad_parity = true});
     t = gen.sendChar(t + 1000, 0x33, {.bad_stop = true});
     t = gen.sendChar(t + 1e5, 0x34);
-    auto bytes = ofType(decodeWaveform(wb.build(wb.ticksFromNs(t + 1e6)),
-                                       {{"uart", {}, {{"baud", "19200"}, {"parity", "even"}}}}),
-                        "byte");
+    auto bytes =
+        test::eventsOfType(decodeWaveform(wb.build(wb.ticksFromNs(t + 1e6)),
+                                          {{"uart", {}, {{"baud", "19200"}, {"parity", "even"}}}}),
+                           "byte");
     ASSERT_EQ(bytes.size(), 4u);
     EXPECT_TRUE(bytes[0].errors.empty());
     EXPECT_EQ(bytes[1].errors, std::vector<std::string>{"parity"});
@@ -165,8 +160,8 @@ TEST_F(UartTest, BreakIsReportedWithItsLength) {
     t = gen.sendBreak(t + 10000, 30 * gen.bitNs());
     t = gen.sendChar(t + 2 * gen.bitNs(), 'B');
     auto events = decodeWaveform(wb.build(wb.ticksFromNs(t + 1e6)), {{"uart", {}, {}}});
-    auto bytes = ofType(events, "byte");
-    auto breaks = ofType(events, "break");
+    auto bytes = test::eventsOfType(events, "byte");
+    auto breaks = test::eventsOfType(events, "break");
     ASSERT_EQ(bytes.size(), 3u);
     EXPECT_EQ(asInt(*bytes[1].get("value")), 0);
     EXPECT_TRUE(bytes[1].hasError("framing"));
@@ -186,7 +181,7 @@ TEST_F(UartTest, ToleratesTransmitterClockError) {
         double t = 500;
         for (auto v : values)
             t = gen.sendChar(t, v, {.rate_error = err});
-        auto bytes = ofType(
+        auto bytes = test::eventsOfType(
             decodeWaveform(wb.build(wb.ticksFromNs(t + 1e5)), {{"uart", {}, {{"baud", "57600"}}}}),
             "byte");
         ASSERT_EQ(bytes.size(), values.size());
@@ -207,10 +202,10 @@ TEST_F(UartTest, AutoBaudFindsTheRateFromTheShortestPulse) {
         const double end = gen.sendChars(3000, values, 2 * gen.bitNs());
         auto events =
             decodeWaveform(wb.build(wb.ticksFromNs(end + 1e6)), {{"uart", {}, {{"baud", "auto"}}}});
-        auto bauds = ofType(events, "baud");
+        auto bauds = test::eventsOfType(events, "baud");
         ASSERT_EQ(bauds.size(), 1u);
         EXPECT_DOUBLE_EQ(asDouble(*bauds[0].get("baud")), baud);
-        auto bytes = ofType(events, "byte");
+        auto bytes = test::eventsOfType(events, "byte");
         ASSERT_EQ(bytes.size(), values.size()) << baud;
         for (std::size_t i = 0; i < values.size(); ++i)
             EXPECT_EQ(asInt(*bytes[i].get("value")), values[i]);
@@ -225,7 +220,7 @@ TEST_F(UartTest, AutoBaudOnAShortCaptureDecidesAtTheEnd) {
     const double end = gen.sendChars(1000, {'U', 'h', 'i'});
     auto events =
         decodeWaveform(wb.build(wb.ticksFromNs(end + 1e5)), {{"uart", {}, {{"baud", "auto"}}}});
-    auto bytes = ofType(events, "byte");
+    auto bytes = test::eventsOfType(events, "byte");
     ASSERT_EQ(bytes.size(), 3u);
     EXPECT_EQ(asInt(*bytes[2].get("value")), 'i');
 }
@@ -237,7 +232,7 @@ TEST_F(UartTest, CharacterCutShortByTheCaptureEnd) {
     UartGenerator gen(wb, 0, f);
     const double t = gen.sendChar(1000, 'x');
     gen.sendChar(t, 'y');
-    auto bytes = ofType(
+    auto bytes = test::eventsOfType(
         decodeWaveform(wb.build(wb.ticksFromNs(t + 4 * gen.bitNs())), {{"uart", {}, {}}}), "byte");
     ASSERT_EQ(bytes.size(), 2u);
     EXPECT_EQ(asInt(*bytes[0].get("value")), 'x');
@@ -253,8 +248,8 @@ TEST_F(UartTest, GlitchShorterThanHalfABitIsNoCharacter) {
     wb.setNs(0, 1000, false);
     wb.setNs(0, 1000 + 0.3 * gen.bitNs(), true);
     const double end = gen.sendChar(5 * gen.bitNs(), 'k');
-    auto bytes =
-        ofType(decodeWaveform(wb.build(wb.ticksFromNs(end + 1e5)), {{"uart", {}, {}}}), "byte");
+    auto bytes = test::eventsOfType(
+        decodeWaveform(wb.build(wb.ticksFromNs(end + 1e5)), {{"uart", {}, {}}}), "byte");
     ASSERT_EQ(bytes.size(), 1u);
     EXPECT_EQ(asInt(*bytes[0].get("value")), 'k');
 }
@@ -266,7 +261,7 @@ TEST_F(UartTest, MsbFirstBitOrder) {
     WaveBuilder wb(Timebase{1, 1'000'000'000}, {"tx"}, {1});
     UartGenerator gen(wb, 0, f);
     const double end = gen.sendChars(1000, {0x01, 0x80, 0x3C});
-    auto bytes = ofType(
+    auto bytes = test::eventsOfType(
         decodeWaveform(wb.build(wb.ticksFromNs(end + 1e5)), {{"uart", {}, {{"lsb_first", "0"}}}}),
         "byte");
     ASSERT_EQ(bytes.size(), 3u);
@@ -303,10 +298,11 @@ TEST_F(UartTest, GlitchFilterRemovesASpikeAtTheSamplePoint) {
     spiked.setNs(0, 1000 + 4.5 * bit + 150, false);
     spiked.setNs(0, 1000 + 9 * bit, true);
     const auto w = spiked.build(spiked.ticksFromNs(1e6));
-    auto raw = ofType(decodeWaveform(w, {{"uart", {}, {}}}), "byte");
+    auto raw = test::eventsOfType(decodeWaveform(w, {{"uart", {}, {}}}), "byte");
     ASSERT_EQ(raw.size(), 1u);
     EXPECT_EQ(asInt(*raw[0].get("value")), 0x08);
-    auto filtered = ofType(decodeWaveform(w, {{"uart", {}, {{"glitch_ns", "500"}}}}), "byte");
+    auto filtered =
+        test::eventsOfType(decodeWaveform(w, {{"uart", {}, {{"glitch_ns", "500"}}}}), "byte");
     ASSERT_EQ(filtered.size(), 1u);
     EXPECT_EQ(asInt(*filtered[0].get("value")), 0x00);
 }
@@ -326,11 +322,11 @@ TEST_F(UartTest, AutoBaudIsNotFooledByGlitches) {
     const double end = gen.sendChars(50000, values, gen.bitNs());
     auto events =
         decodeWaveform(wb.build(wb.ticksFromNs(end + 1e5)), {{"uart", {}, {{"baud", "auto"}}}});
-    auto bauds = ofType(events, "baud");
+    auto bauds = test::eventsOfType(events, "baud");
     ASSERT_EQ(bauds.size(), 1u);
     EXPECT_DOUBLE_EQ(asDouble(*bauds[0].get("baud")), 57600);
     std::vector<std::uint32_t> got;
-    for (const auto& e : ofType(events, "byte"))
+    for (const auto& e : test::eventsOfType(events, "byte"))
         if (e.errors.empty()) got.push_back(std::uint32_t(asInt(*e.get("value"))));
     EXPECT_EQ(got, values);  // the spikes are too short to pass the start-bit check
 }
