@@ -11,6 +11,7 @@ import pandas as pd
 import pytest
 
 import busdecode
+from busdecode import _busdecode
 from conftest import CAPTURES, cli_events, run_cli, BIN
 
 
@@ -103,6 +104,13 @@ def test_read_tables_hold_the_cli_events(case):
             # A row holds every column of its table; a field this event lacks is null.
             assert {k: v for k, v in full.items() if k in ev} == ev
             assert all(full[k] is None for k in full if k not in ev)
+
+
+def test_count_events_counts_the_cli_events(case):
+    # bench/python_read.py's floor: read()'s decoding with the events only counted.
+    capture, protos, opts = case
+    args = busdecode._capture_args(CAPTURES / capture, protos, None, opts, None, 2)
+    assert _busdecode.count_events(args) == len(cli_events(capture, protos, opts))
 
 
 def write_uart_vcd(path, data, baud=1_000_000):
