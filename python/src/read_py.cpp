@@ -120,13 +120,16 @@ pyb::dict tablesToPython(std::vector<Table>& tables) {
     return out;
 }
 
-pyb::dict readColumns(const CaptureArgs& a) {
+// A whole capture into `sink`, the GIL released: read_columns' decoding, and its floor's.
+void decodeWithoutGil(const CaptureArgs& a, OutputSink& sink) {
     const DecodeJob job = jobFor(a, false);
+    pyb::gil_scoped_release nogil;
+    decodeCapture(job.path, job.requests, job.open, {&sink});
+}
+
+pyb::dict readColumns(const CaptureArgs& a) {
     TableSink sink;
-    {
-        pyb::gil_scoped_release nogil;
-        decodeCapture(job.path, job.requests, job.open, {&sink});
-    }
+    decodeWithoutGil(a, sink);
     return tablesToPython(sink.tables);
 }
 
@@ -140,10 +143,8 @@ public:
 };
 
 std::uint64_t countEvents(const CaptureArgs& a) {
-    const DecodeJob job = jobFor(a, false);
     CountingSink sink;
-    pyb::gil_scoped_release nogil;
-    decodeCapture(job.path, job.requests, job.open, {&sink});
+    decodeWithoutGil(a, sink);
     return sink.events;
 }
 
