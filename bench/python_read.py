@@ -5,14 +5,15 @@
                          [--opt KEY=VALUE]
 
 Makes a SIZE_MB capture with the project's generator (make_capture BUS vcd; default a
-500 MB BiSS-C VCD, as bench/run.sh), reads it once into the page cache, then times, RUNS
-times in turn, `decode CAPTURE --proto BUS --format jsonl > /dev/null` and
-busdecode.read(CAPTURE, proto=BUS) in a fresh interpreter (so that its peak resident
-memory is its own), and read()'s floor: the same decoding with each event counted and
-dropped (no columns). Prints the medians: wall and CPU seconds (user + system, all
-threads), events per second, read's speed against the others', the peak memories; read's
-time split into decoding into columns (C++, GIL released) and making the DataFrames.
-Wall times on a shared machine are noisy: the CPU seconds are the steadier figure.
+500 MB BiSS-C VCD, as bench/run.sh), reads it once into the page cache, then times, RUNS times
+in turn, `decode CAPTURE --proto BUS --format jsonl > /dev/null` and
+busdecode.read(CAPTURE, proto=BUS) in a fresh interpreter (so that its peak resident memory
+is its own), and read()'s floors: the same decoding with each event counted and dropped (no
+columns), and so again with the decoders told to leave out the fields (what the decoding
+costs without them). Prints the medians: wall and CPU seconds (user + system, all threads),
+events per second, read's speed against the others', the peak memories; read's time split
+into decoding into columns (C++, GIL released) and making the DataFrames. Wall times on a
+shared machine are noisy: the CPU seconds are the steadier figure.
 """
 
 import argparse
@@ -30,7 +31,7 @@ SRC = Path(__file__).resolve().parents[1]
 
 
 def child(capture, bus, opts, floor):
-    """Runs in the fresh interpreter: one read(), timed by stage, or its floor."""
+    """Runs in the fresh interpreter: one read(), timed by stage, or a floor of it."""
     if not floor:
         import pandas as pd  # before the clock starts, as for a user who has it loaded
 
@@ -41,7 +42,7 @@ def child(capture, bus, opts, floor):
     c0 = time.process_time()
     args = busdecode._capture_args(capture, bus, None, opts, None, 2)
     if floor:
-        events = _busdecode.count_events(args)
+        events = _busdecode.count_events(args, fields=floor == "fields")
         print(json.dumps({"wall": time.perf_counter() - t0, "cpu": time.process_time() - c0,
                           "events": events,
                           "peak_mb": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024}))
@@ -78,10 +79,10 @@ def opt_args(opts):
     return [a for k, v in opts.items() for a in ("--opt", f"{k}={v}")]
 
 
-def run_read(build, capture, bus, opts, floor=False):
+def run_read(build, capture, bus, opts, floor=None):
     env = dict(os.environ, PYTHONPATH=str(build / "python"))
     out = subprocess.run([sys.executable, __file__, "--child", capture, "--bus", bus] +
-                         opt_args(opts) + (["--floor"] if floor else []), env=env,
+                         opt_args(opts) + (["--floor", floor] if floor else []), env=env,
                          check=True, capture_output=True, text=True).stdout
     return json.loads(out)
 
@@ -102,7 +103,7 @@ def main():
     ap.add_argument("--capture", help="an existing capture instead of a generated one")
     ap.add_argument("--opt", action="append", default=[], help="decoder option KEY=VALUE")
     ap.add_argument("--child", help=argparse.SUPPRESS)
-    ap.add_argument("--floor", action="store_true", help=argparse.SUPPRESS)
+    ap.add_argument("--floor", choices=["fields", "bare"], help=argparse.SUPPRESS)
     a = ap.parse_args()
     opts = dict(o.split("=", 1) for o in a.opt)
     if a.child:
@@ -123,18 +124,19 @@ def main():
             while f.read(1 << 24):
                 pass
         events = count_lines(decode, capture, a.bus, opts)
-        dec, rd, floor = [], [], []
+        dec, rd, floor, bare = [], [], [], []
         for _ in range(a.runs):
             dec.append(run_decode(decode, capture, a.bus, opts))
             rd.append(run_read(build, capture, a.bus, opts))
-            floor.append(run_read(build, capture, a.bus, opts, floor=True))
-        assert all(r["events"] == events for r in rd + floor), "decode and read() count apart"
+            floor.append(run_read(build, capture, a.bus, opts, floor="fields"))
+            bare.append(run_read(build, capture, a.bus, opts, floor="bare"))
+        assert all(r["events"] == events for r in rd + floor + bare), "decode and read() differ"
         med = lambda runs, k: statistics.median(r[k] for r in runs)  # noqa: E731
         mb = os.path.getsize(capture) / 1e6
         print(f"capture: {capture if a.capture else a.bus + ' vcd'} {mb:.0f} MB, {events} events, "
               f"{a.runs} runs each, medians")
         for name, runs in (("decode --format jsonl", dec), ("busdecode.read", rd),
-                           ("floor: events dropped", floor)):
+                           ("floor: events dropped", floor), ("floor: without fields", bare)):
             print(f"  {name:<22} wall {med(runs, 'wall'):6.2f} s  cpu {med(runs, 'cpu'):6.2f} s  "
                   f"{events / med(runs, 'wall') / 1e6:5.2f} M events/s (wall)  "
                   f"{events / med(runs, 'cpu') / 1e6:5.2f} M events/s (cpu)  "

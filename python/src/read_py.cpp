@@ -133,17 +133,23 @@ pyb::dict readColumns(const CaptureArgs& a) {
     return tablesToPython(sink.tables);
 }
 
-// bench/python_read.py's floor: read_columns' decoding, each event counted and dropped,
-// which tells the columns' share of read()'s time from the decoding's.
+// bench/python_read.py's floors: read_columns' decoding, each event counted and dropped,
+// which tells the columns' share of read()'s time from the decoding's; with `fields`
+// false the decoders leave out the fields too (summaries go already), which tells theirs.
 class CountingSink final : public OutputSink {
 public:
+    explicit CountingSink(bool fields) : fields_(fields) {}
     void onEvent(const Event&, const CaptureFacts&) override { ++events; }
+    bool readsFields() const override { return fields_; }
     bool readsSummaries() const override { return false; }  // as TableSink: fields only
     std::uint64_t events = 0;
+
+private:
+    bool fields_;
 };
 
-std::uint64_t countEvents(const CaptureArgs& a) {
-    CountingSink sink;
+std::uint64_t countEvents(const CaptureArgs& a, bool fields) {
+    CountingSink sink(fields);
     decodeWithoutGil(a, sink);
     return sink.events;
 }
@@ -152,7 +158,7 @@ std::uint64_t countEvents(const CaptureArgs& a) {
 
 void bindRead(pyb::module_& m) {
     m.def("read_columns", &readColumns, pyb::arg("args"));
-    m.def("count_events", &countEvents, pyb::arg("args"));
+    m.def("count_events", &countEvents, pyb::arg("args"), pyb::arg("fields") = true);
 }
 
 }  // namespace busdecode::py

@@ -106,11 +106,13 @@ def test_read_tables_hold_the_cli_events(case):
             assert all(full[k] is None for k in full if k not in ev)
 
 
-def test_count_events_counts_the_cli_events(case):
-    # bench/python_read.py's floor: read()'s decoding with the events only counted.
+@pytest.mark.parametrize("fields", [True, False])
+def test_count_events_counts_the_cli_events(case, fields):
+    # bench/python_read.py's floors: read()'s decoding with the events only counted, with
+    # and without their fields; leaving the fields out must not lose or add an event.
     capture, protos, opts = case
     args = busdecode._capture_args(CAPTURES / capture, protos, None, opts, None, 2)
-    assert _busdecode.count_events(args) == len(cli_events(capture, protos, opts))
+    assert _busdecode.count_events(args, fields) == len(cli_events(capture, protos, opts))
 
 
 def write_uart_vcd(path, data, baud=1_000_000):
