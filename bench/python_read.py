@@ -43,10 +43,7 @@ def child(capture, bus, opts, floor):
     args = busdecode._capture_args(capture, bus, None, opts, None, 2)
     if floor:
         events = _busdecode.count_events(args, fields=floor == "fields")
-        print(json.dumps({"wall": time.perf_counter() - t0, "cpu": time.process_time() - c0,
-                          "events": events,
-                          "peak_mb": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024}))
-        return
+        return report(t0, c0, events)
     with busdecode._collector_paused():  # as read() does
         columns = _busdecode.read_columns(args)
         t1 = time.perf_counter()
@@ -55,15 +52,17 @@ def child(capture, bus, opts, floor):
             data = {k: busdecode._pandas_array(pd, kind, v, m) for k, kind, v, m in cols}
             frames[name] = pd.DataFrame(data, copy=False)
     t2 = time.perf_counter()
-    cpu = time.process_time() - c0
-    events = sum(len(f) for f in frames.values())
-    print(json.dumps({"wall": t2 - t0, "cpu": cpu, "columns": t1 - t0, "frames": t2 - t1,
+    report(t0, c0, sum(len(f) for f in frames.values()), columns=t1 - t0, frames=t2 - t1)
+
+
+def report(t0, c0, events, **stages):
+    """The child's one line of JSON: wall and CPU seconds since t0 and c0, and its peak."""
+    print(json.dumps({"wall": time.perf_counter() - t0, "cpu": time.process_time() - c0, **stages,
                       "events": events,
                       "peak_mb": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024}))
 
 
 def run_decode(decode, capture, bus, opts):
-    before = resource.getrusage(resource.RUSAGE_CHILDREN)
     t0 = time.perf_counter()
     with open(os.devnull, "w") as null:
         p = subprocess.Popen([str(decode), capture, "--proto", bus, "--format", "jsonl"] +
@@ -71,7 +70,6 @@ def run_decode(decode, capture, bus, opts):
         _, status, usage = os.wait4(p.pid, 0)
     wall = time.perf_counter() - t0
     assert status == 0, "decode failed"
-    del before
     return {"wall": wall, "cpu": usage.ru_utime + usage.ru_stime, "peak_mb": usage.ru_maxrss / 1024}
 
 

@@ -5,14 +5,10 @@
 
 #include "bench_captures.h"
 #include "capture/capture_reader.h"
+#include "sinks/counting_sink.h"
 
 namespace busdecode::bench {
 namespace {
-
-struct CountingSink : OutputSink {
-    std::uint64_t events = 0;
-    void onEvent(const Event&, const CaptureFacts&) override { ++events; }
-};
 
 void decodeBus(benchmark::State& state, const std::string& id, int units) {
     registerDecoders();
@@ -25,7 +21,7 @@ void decodeBus(benchmark::State& state, const std::string& id, int units) {
         session.addSink(&sink);
         session.run();
         edges += session.facts().edges;
-        events += sink.events;
+        events += sink.events();
     }
     state.SetItemsProcessed(std::int64_t(edges));
     state.counters["ns/edge"] = benchmark::Counter(

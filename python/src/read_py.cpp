@@ -13,6 +13,7 @@
 #include "decode_args_py.h"
 #include "event_columns.h"
 #include "event_dict.h"
+#include "sinks/counting_sink.h"
 
 namespace busdecode::py {
 
@@ -135,23 +136,12 @@ pyb::dict readColumns(const CaptureArgs& a) {
 
 // bench/python_read.py's floors: read_columns' decoding, each event counted and dropped,
 // which tells the columns' share of read()'s time from the decoding's; with `fields`
-// false the decoders leave out the fields too (summaries go already), which tells theirs.
-class CountingSink final : public OutputSink {
-public:
-    explicit CountingSink(bool fields) : fields_(fields) {}
-    void onEvent(const Event&, const CaptureFacts&) override { ++events; }
-    bool readsFields() const override { return fields_; }
-    bool readsSummaries() const override { return false; }  // as TableSink: fields only
-    std::uint64_t events = 0;
-
-private:
-    bool fields_;
-};
-
+// false the decoders leave out the fields too, which tells theirs. Summaries are never
+// read, as by TableSink.
 std::uint64_t countEvents(const CaptureArgs& a, bool fields) {
-    CountingSink sink(fields);
+    CountingSink sink({.fields = fields, .summaries = false});
     decodeWithoutGil(a, sink);
-    return sink.events;
+    return sink.events();
 }
 
 }  // namespace
