@@ -10,6 +10,7 @@
 #include "core/session.h"
 #include "core/stacked.h"
 #include "core/waveform.h"
+#include "sinks/counting_sink.h"
 #include "sinks/stream_sinks.h"
 #include "support/decode_events.h"
 
@@ -255,15 +256,8 @@ TEST(Session, CorrelationSeesOtherDecodersEventsByTime) {
 
 namespace {
 
-// A sink that never reads fields (as text output) beside sinks that do.
-struct SummarySink : OutputSink {
-    int events = 0;
-    void onEvent(const Event&, const CaptureFacts&) override { ++events; }
-    bool readsFields() const override { return false; }
-};
-struct FieldSink : OutputSink {
-    void onEvent(const Event&, const CaptureFacts&) override {}
-};
+// What a sink that never reads fields reads: summaries only, as text output.
+constexpr CountingSink::Reads kSummariesOnly{.fields = false};
 
 // Runs a session over twoLines() with these decoders and sinks: RiseDecoder's vectors
 // then hold what each decoder was told.
@@ -300,10 +294,10 @@ TEST(Session, FieldsAreWantedWhenASinkReadsThemOrADecoderCorrelates) {
     const std::vector<DecoderRequest> correlating = {
         {"rise", {{"in", "a"}}, {{"tag", "other"}}},
         {"rise", {{"in", "input"}}, {{"correlate", "1"}}}};
-    SummarySink text, text2;
-    FieldSink json;
+    CountingSink text(kSummariesOnly), text2(kSummariesOnly);
+    CountingSink json;
     EXPECT_EQ(fieldsWantedWith(two, {&text}), (std::vector<bool>{false, false}));
-    EXPECT_EQ(text.events, 4);  // the events still come out
+    EXPECT_EQ(text.events(), 4u);  // the events still come out
     EXPECT_EQ(fieldsWantedWith(two, {&text, &text2}), (std::vector<bool>{false, false}));
     EXPECT_EQ(fieldsWantedWith(two, {&text, &json}), (std::vector<bool>{true, true}));
     EXPECT_EQ(fieldsWantedWith(two, {&json}), (std::vector<bool>{true, true}));
@@ -320,8 +314,8 @@ TEST(Session, SummariesAreWantedWhenASinkReadsThem) {
     const std::vector<DecoderRequest> correlating = {
         {"rise", {{"in", "a"}}, {{"tag", "other"}}},
         {"rise", {{"in", "input"}}, {{"correlate", "1"}}}};
-    SummarySink text;
-    FieldSink report;                  // reads both, as the HTML report
+    CountingSink text(kSummariesOnly);
+    CountingSink report;               // reads both, as the HTML report
     test::FieldCollector json, json2;  // reads fields, never summaries (as jsonl)
     EXPECT_EQ(summariesWantedWith(correlating, {&json}), (std::vector<bool>{false, false}));
     EXPECT_EQ(summariesWantedWith(correlating, {&json, &json2}), (std::vector<bool>{false, false}));
