@@ -127,10 +127,9 @@ int main(int argc, char** argv) {
             style.snr_db = 24;
             style.differential = id == "uart";
             for (const ScopeDialect d : kScopeDialects)
-                writeScopeCsv(w,
-                              (out / "csv_saleae" / (id + "_" + scopeDialectName(d) + ".csv"))
-                                  .string(),
-                              d, style);
+                writeScopeCsv(
+                    w, (out / "csv_saleae" / (id + "_" + scopeDialectName(d) + ".csv")).string(), d,
+                    style);
         }
         put(out / "sr" / (id + ".bin"), srSeed(w));
         for (const auto* f : Registry::instance().all()) {

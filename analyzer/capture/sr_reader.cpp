@@ -48,7 +48,9 @@ std::string trim(const std::string& s) {
 class alignas(kOwnLineBytes) SrReader : public CaptureReader {
 public:
     SrReader(std::unique_ptr<ZipArchive> archive, const OpenOptions& opts)
-        : name_(archive->name()), opts_(opts), archive_(std::move(archive)),
+        : name_(archive->name()),
+          opts_(opts),
+          archive_(std::move(archive)),
           zip_(archive_->handle()) {
         readMetadata();
         findChunks();

@@ -980,8 +980,8 @@ private:
         // and the block is cut back to what was written at the end.
         std::vector<Edge>& edges = block.edges;
         const std::size_t used = edges.size();
-        const std::size_t room = std::min<std::size_t>(
-            kEdgeBlockSize, used + max_targets_ * (std::size_t(e_ - p_) + 1));
+        const std::size_t room =
+            std::min<std::size_t>(kEdgeBlockSize, used + max_targets_ * (std::size_t(e_ - p_) + 1));
         edges.resize(room);
         FastCursor at{p_,
                       e_ - 32,

@@ -174,8 +174,7 @@ TEST(Stdin, DashReadsStandardInput) {
     }
     const std::string vcd = tempDir() + "/stdin.vcd";
     writeVcd(w, vcd);
-    const std::string sr =
-        realCaptures() + "/sigrok-dumps/uart/rxtx_overlapped/rxtx_overlapped.sr";
+    const std::string sr = realCaptures() + "/sigrok-dumps/uart/rxtx_overlapped/rxtx_overlapped.sr";
     const auto want_sr = collectFile(sr, {"RX", "TX"});
     for (const std::string& src : {vcd, sr}) {
         int saved = dup(0);

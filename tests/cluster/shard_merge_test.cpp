@@ -134,10 +134,10 @@ TEST(MergeJunit, AMissingShardIsAnErrorForExactlyItsCaptures) {
         // With the list, the shard's captures under the class names a single run gives them.
         const auto names = junitClassNames(run.captures);
         const auto [first, last] = shardRange(names.size(), {3, 3});
-        const auto expected =
-            with_list ? std::vector<std::string>(names.begin() + std::ptrdiff_t(first),
-                                                 names.begin() + std::ptrdiff_t(last))
-                      : std::vector<std::string>{"shard 3/3"};
+        const auto expected = with_list
+                                  ? std::vector<std::string>(names.begin() + std::ptrdiff_t(first),
+                                                             names.begin() + std::ptrdiff_t(last))
+                                  : std::vector<std::string>{"shard 3/3"};
         EXPECT_EQ(errors, expected);
     }
 }

@@ -13,11 +13,11 @@
 #include <vector>
 
 #include "core/block_decoding.h"
-#include "support/feed/direct_feed.h"
 #include "core/registry.h"
 #include "sinks/event_format.h"
 #include "spi_generator.h"
 #include "spi_info.h"
+#include "support/feed/direct_feed.h"
 
 namespace busdecode {
 namespace {
