@@ -259,8 +259,9 @@ struct ControlCase {
 
 class BisscControlCapture : public ::testing::TestWithParam<ControlCase> {};
 
-TEST_P(BisscControlCapture, AllFramesAndAccessesExact) {
-    const ControlCase c = GetParam();
+// One access or command of every kind and outcome: read, write, busy, bad data CRC, bad
+// header CRC, refused, abandoned, command.
+std::vector<ControlItemSpec> controlItemsOfEveryKind() {
     std::vector<ControlItemSpec> items;
     ControlItemSpec rd;
     rd.address = 0x7E;
@@ -305,8 +306,11 @@ TEST_P(BisscControlCapture, AllFramesAndAccessesExact) {
     cmd.command = 2;
     cmd.ida = 1;
     items.push_back(cmd);
-    const ControlSequence seq = buildControlSequence(items);
+    return items;
+}
 
+// A frame per CDM bit of `seq`, random positions, every 37th frame's CRC bad.
+BisscGenerator captureCarrying(const ControlCase& c, const ControlSequence& seq) {
     BisscGenConfig cfg;
     cfg.clock_hz = c.clock_hz;
     cfg.bits = c.bits;
@@ -328,6 +332,38 @@ TEST_P(BisscControlCapture, AllFramesAndAccessesExact) {
         f.corrupt_crc = i % 37 == 11;  // bad frame CRCs do not disturb the control bits
         gen.addFrame(f);
     }
+    return gen;
+}
+
+void expectControlEvent(const Event& e, const ControlEventTruth& t, const BisscGenerator& gen) {
+    EXPECT_EQ(e.type, t.type);
+    EXPECT_EQ(e.start, gen.frames()[t.first_frame].start);
+    EXPECT_EQ(e.end, gen.frames()[t.last_frame].end);
+    EXPECT_EQ(std::get<bool>(*e.get("crc_ok")), t.crc_ok);
+    if (t.error.empty())
+        EXPECT_TRUE(e.errors.empty());
+    else
+        EXPECT_TRUE(e.hasError(t.error));
+    if (t.type == "register") {
+        EXPECT_EQ(std::get<std::string>(*e.get("op")), t.op);
+        EXPECT_EQ(intField(e, "id"), t.id);
+        EXPECT_EQ(intField(e, "address"), t.address);
+        EXPECT_EQ(intField(e, "busy_frames"), t.busy);
+        if (t.error != "abandoned")
+            EXPECT_EQ(intField(e, "data"), t.data);
+        else
+            EXPECT_TRUE(nullField(e, "data"));
+    } else {
+        EXPECT_EQ(intField(e, "id"), t.id);
+        EXPECT_EQ(intField(e, "command"), t.data);
+        EXPECT_EQ(std::get<bool>(*e.get("executed")), t.executed);
+    }
+}
+
+TEST_P(BisscControlCapture, AllFramesAndAccessesExact) {
+    const ControlCase c = GetParam();
+    const ControlSequence seq = buildControlSequence(controlItemsOfEveryKind());
+    const BisscGenerator gen = captureCarrying(c, seq);
     const auto events = decodeBissc(gen.build(), {{"bits", std::to_string(c.bits)}});
     const auto frames = ofType(events, "frame");
     ASSERT_EQ(frames.size(), gen.frames().size());
@@ -344,31 +380,8 @@ TEST_P(BisscControlCapture, AllFramesAndAccessesExact) {
         if (e.type == "register" || e.type == "command") control.push_back(e);
     ASSERT_EQ(control.size(), seq.events.size());
     for (std::size_t i = 0; i < control.size(); ++i) {
-        const Event& e = control[i];
-        const ControlEventTruth& t = seq.events[i];
-        SCOPED_TRACE(::testing::Message() << "control event " << i << " " << e.summary);
-        EXPECT_EQ(e.type, t.type);
-        EXPECT_EQ(e.start, gen.frames()[t.first_frame].start);
-        EXPECT_EQ(e.end, gen.frames()[t.last_frame].end);
-        EXPECT_EQ(std::get<bool>(*e.get("crc_ok")), t.crc_ok);
-        if (t.error.empty())
-            EXPECT_TRUE(e.errors.empty());
-        else
-            EXPECT_TRUE(e.hasError(t.error));
-        if (t.type == "register") {
-            EXPECT_EQ(std::get<std::string>(*e.get("op")), t.op);
-            EXPECT_EQ(intField(e, "id"), t.id);
-            EXPECT_EQ(intField(e, "address"), t.address);
-            EXPECT_EQ(intField(e, "busy_frames"), t.busy);
-            if (t.error != "abandoned")
-                EXPECT_EQ(intField(e, "data"), t.data);
-            else
-                EXPECT_TRUE(nullField(e, "data"));
-        } else {
-            EXPECT_EQ(intField(e, "id"), t.id);
-            EXPECT_EQ(intField(e, "command"), t.data);
-            EXPECT_EQ(std::get<bool>(*e.get("executed")), t.executed);
-        }
+        SCOPED_TRACE(::testing::Message() << "control event " << i << " " << control[i].summary);
+        expectControlEvent(control[i], seq.events[i], gen);
     }
     // Events come out in time order.
     for (std::size_t i = 1; i < events.size(); ++i)

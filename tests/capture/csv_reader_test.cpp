@@ -183,77 +183,87 @@ TEST(CsvReaderErrors, Messages) {
     check("nohdr.csv", "; only a comment\n", ": no CSV header (only comment lines)");
 }
 
+struct TwoLayouts {
+    std::string plain, spaced;  // "t,1,0" and "t, 1, 0"
+};
+
+// A random file of 40 rows in both layouts (std::rand()); half of them get one fault.
+TwoLayouts randomRowsInTwoLayouts() {
+    auto rnd = [](int n) { return std::rand() % n; };
+    const int cols = 1 + rnd(9);
+    std::string head = "Time [s]";
+    for (int c = 0; c < cols; ++c)
+        head += ",S" + std::to_string(c);
+    std::string plain = head + "\n", spaced = head + "\n";
+    // Times rise by random steps, counted in units of 1e-13 s and written with 0 to 13
+    // decimals (rounded up, and the count taken to what was written, so that they
+    // never go back): beyond the file's finest 12, rounding.
+    constexpr long long kUnit = 10'000'000'000'000;  // units per second
+    const int decimals = 9 + rnd(5);
+    long long now = (rnd(3) == 0 ? -rnd(5) : rnd(100)) * kUnit + rnd(1000000);
+    auto written = [&](long long v, int k, bool point, int zeros) {
+        long long step = 1;
+        for (int i = k; i < 13; ++i)
+            step *= 10;
+        // Up to the next multiple of step (toward +inf for negatives too).
+        long long q = v >= 0 ? (v + step - 1) / step * step : -((-v) / step * step);
+        now = q;
+        const long long a = q < 0 ? -q : q;
+        std::string t =
+            (q < 0 ? "-" : "") + std::string(std::size_t(zeros), '0') + std::to_string(a / kUnit);
+        if (point) t += ".";
+        if (k > 0) {
+            const std::string f = std::to_string(a % kUnit / step);
+            t += std::string(std::size_t(k) - f.size(), '0') + f;
+        }
+        return t;
+    };
+    // Half of the files get one fault in one row: a bad value or a time going back.
+    const int fault = rnd(4), fault_row = 1 + rnd(39);
+    for (int row = 0; row < 40; ++row) {
+        const bool here = fault_row == row;
+        now += rnd(4) == 0 ? 0 : rnd(2000000);
+        std::string t;
+        if (here && fault == 0) {
+            t = std::to_string(now / kUnit - 1) + ".5";  // a second or so back
+        } else {
+            switch (rnd(8)) {
+                case 0:  // no point
+                    t = written(now, 0, false, 0);
+                    break;
+                case 1:  // a point and nothing after it
+                    t = written(now, 0, true, 0);
+                    break;
+                case 2:  // leading zeros, up to 20 digits in all
+                    t = written(now, rnd(14), true, rnd(6));
+                    break;
+                default:
+                    t = written(now, rnd(4) ? decimals : rnd(14), true, 0);
+            }
+        }
+        plain += t;
+        spaced += t;
+        const int bad_col = here && fault == 1 ? rnd(cols) : -1;
+        for (int c = 0; c < cols; ++c) {
+            const char v = c == bad_col ? "x2"[rnd(2)] : char('0' + rnd(2));
+            plain += std::string(",") + v;
+            spaced += std::string(", ") + v;
+        }
+        plain += "\n";
+        spaced += "\n";
+    }
+    return {plain, spaced};
+}
+
 // Plain rows ("0.000001250,1,0") take a fast path; the same rows with a blank after each
 // separator take the general one. Random rows of 1 to 9 signals, times of 0 to 20 digits,
 // negative, with and without a point, more decimals than the tick: both files must give
 // the same edges, timebase and end, or the same error.
 TEST(CsvReader, PlainRowsReadAsTheGeneralPathReadsThem) {
     std::srand(20261124);
-    auto rnd = [](int n) { return std::rand() % n; };
     int compared = 0, failed = 0;
     for (int file = 0; file < 300; ++file) {
-        const int cols = 1 + rnd(9);
-        std::string head = "Time [s]";
-        for (int c = 0; c < cols; ++c)
-            head += ",S" + std::to_string(c);
-        std::string plain = head + "\n", spaced = head + "\n";
-        // Times rise by random steps, counted in units of 1e-13 s and written with 0 to 13
-        // decimals (rounded up, and the count taken to what was written, so that they
-        // never go back): beyond the file's finest 12, rounding.
-        constexpr long long kUnit = 10'000'000'000'000;  // units per second
-        const int decimals = 9 + rnd(5);
-        long long now = (rnd(3) == 0 ? -rnd(5) : rnd(100)) * kUnit + rnd(1000000);
-        auto written = [&](long long v, int k, bool point, int zeros) {
-            long long step = 1;
-            for (int i = k; i < 13; ++i)
-                step *= 10;
-            // Up to the next multiple of step (toward +inf for negatives too).
-            long long q = v >= 0 ? (v + step - 1) / step * step : -((-v) / step * step);
-            now = q;
-            const long long a = q < 0 ? -q : q;
-            std::string t = (q < 0 ? "-" : "") + std::string(std::size_t(zeros), '0') +
-                            std::to_string(a / kUnit);
-            if (point) t += ".";
-            if (k > 0) {
-                const std::string f = std::to_string(a % kUnit / step);
-                t += std::string(std::size_t(k) - f.size(), '0') + f;
-            }
-            return t;
-        };
-        // Half of the files get one fault in one row: a bad value or a time going back.
-        const int fault = rnd(4), fault_row = 1 + rnd(39);
-        for (int row = 0; row < 40; ++row) {
-            const bool here = fault_row == row;
-            now += rnd(4) == 0 ? 0 : rnd(2000000);
-            std::string t;
-            if (here && fault == 0) {
-                t = std::to_string(now / kUnit - 1) + ".5";  // a second or so back
-            } else {
-                switch (rnd(8)) {
-                    case 0:  // no point
-                        t = written(now, 0, false, 0);
-                        break;
-                    case 1:  // a point and nothing after it
-                        t = written(now, 0, true, 0);
-                        break;
-                    case 2:  // leading zeros, up to 20 digits in all
-                        t = written(now, rnd(14), true, rnd(6));
-                        break;
-                    default:
-                        t = written(now, rnd(4) ? decimals : rnd(14), true, 0);
-                }
-            }
-            plain += t;
-            spaced += t;
-            const int bad_col = here && fault == 1 ? rnd(cols) : -1;
-            for (int c = 0; c < cols; ++c) {
-                const char v = c == bad_col ? "x2"[rnd(2)] : char('0' + rnd(2));
-                plain += std::string(",") + v;
-                spaced += std::string(", ") + v;
-            }
-            plain += "\n";
-            spaced += "\n";
-        }
+        const auto [plain, spaced] = randomRowsInTwoLayouts();
         const std::string a = tempCapture("plain" + std::to_string(file) + ".csv", plain);
         const std::string b = tempCapture("spaced" + std::to_string(file) + ".csv", spaced);
         const std::string ea = errorOf(a), eb = errorOf(b);
@@ -381,8 +391,8 @@ struct Vendor {
 };
 
 std::vector<std::vector<std::int64_t>> firstTransaction(const Vendor& v) {
-    auto c = collectFile(realCaptures() + "/sigrok-dumps/spi/spiflash_read16/" + v.file,
-                         v.cs_clk_mosi);
+    auto c =
+        collectFile(realCaptures() + "/sigrok-dumps/spi/spiflash_read16/" + v.file, v.cs_clk_mosi);
     std::vector<std::vector<std::int64_t>> per_line(3);
     std::int64_t t0 = 0;
     bool in = false;

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
 #include <lcm/lcm-cpp.hpp>
 
 #include "busdecode_lcm/bissc_command_t.hpp"
@@ -71,99 +72,104 @@ std::optional<MessageView> typed(const std::string& ch, const void* data, int si
     return v;
 }
 
-}  // namespace
+using Viewer = std::function<std::optional<MessageView>(const std::string&, const void*, int)>;
+using Viewers = std::map<std::string, Viewer>;
+namespace M = busdecode_lcm;
+using F = std::map<std::string, Value>;
 
-std::optional<MessageView> viewEventMessage(const std::string& ch, const void* data, int size) {
-    namespace M = busdecode_lcm;
-    using F = std::map<std::string, Value>;
-    if (ch == "DECODE_SSI_FRAME")
-        return typed<M::ssi_frame_t>(ch, data, size, [](F& f, const M::ssi_frame_t& m) {
-            f = {{"raw", I(m.raw)},
-                 {"bits", I(m.bits)},
-                 {"position", I(m.position)},
-                 {"st", I(m.st)},
-                 {"mt", I(m.mt)},
-                 {"angle", D(m.angle)},
-                 {"repeats", I(m.repeats)},
-                 {"repeat_match", B(m.repeat_match)},
-                 {"clock_hz", D(m.clock_hz)},
-                 {"tm_ns", m.has_tm_ns ? D(m.tm_ns) : Value{Null{}}}};
-        });
-    if (ch == "DECODE_BISSC_FRAME")
-        return typed<M::bissc_frame_t>(ch, data, size, [](F& f, const M::bissc_frame_t& m) {
-            f = {{"position", I(m.position)},
-                 {"st", I(m.st)},
-                 {"mt", I(m.mt)},
-                 {"nE", I(m.nE)},
-                 {"nW", I(m.nW)},
-                 {"crc_rx", I(m.crc_rx)},
-                 {"crc_ok", B(m.crc_ok)},
-                 {"cds", I(m.cds)},
-                 {"cdm", I(m.cdm)},
-                 {"line_delay_ns", D(m.line_delay_ns)},
-                 {"proc_cycles", I(m.proc_cycles)},
-                 {"clock_hz", D(m.clock_hz)},
-                 {"timeout_ns", D(m.timeout_ns)}};
-        });
-    if (ch == "DECODE_BISSC_REGISTER")
-        return typed<M::bissc_register_t>(ch, data, size, [](F& f, const M::bissc_register_t& m) {
+// A channel's typed message, its fields set by `fill`.
+template <class Msg, class Fill>
+Viewer viewAs(Fill fill) {
+    return [fill](const std::string& ch, const void* data, int size) {
+        return typed<Msg>(ch, data, size, fill);
+    };
+}
+
+void addEncoderViewers(Viewers& v) {
+    v["DECODE_SSI_FRAME"] = viewAs<M::ssi_frame_t>([](F& f, const M::ssi_frame_t& m) {
+        f = {{"raw", I(m.raw)},
+             {"bits", I(m.bits)},
+             {"position", I(m.position)},
+             {"st", I(m.st)},
+             {"mt", I(m.mt)},
+             {"angle", D(m.angle)},
+             {"repeats", I(m.repeats)},
+             {"repeat_match", B(m.repeat_match)},
+             {"clock_hz", D(m.clock_hz)},
+             {"tm_ns", m.has_tm_ns ? D(m.tm_ns) : Value{Null{}}}};
+    });
+    v["DECODE_BISSC_FRAME"] = viewAs<M::bissc_frame_t>([](F& f, const M::bissc_frame_t& m) {
+        f = {{"position", I(m.position)},
+             {"st", I(m.st)},
+             {"mt", I(m.mt)},
+             {"nE", I(m.nE)},
+             {"nW", I(m.nW)},
+             {"crc_rx", I(m.crc_rx)},
+             {"crc_ok", B(m.crc_ok)},
+             {"cds", I(m.cds)},
+             {"cdm", I(m.cdm)},
+             {"line_delay_ns", D(m.line_delay_ns)},
+             {"proc_cycles", I(m.proc_cycles)},
+             {"clock_hz", D(m.clock_hz)},
+             {"timeout_ns", D(m.timeout_ns)}};
+    });
+    v["DECODE_BISSC_REGISTER"] =
+        viewAs<M::bissc_register_t>([](F& f, const M::bissc_register_t& m) {
             f = {{"op", S(m.op)},
                  {"id", I(m.id)},
                  {"address", I(m.address)},
                  {"data", Value{m.data}},
                  {"crc_ok", B(m.crc_ok)}};
         });
-    if (ch == "DECODE_BISSC_COMMAND")
-        return typed<M::bissc_command_t>(ch, data, size, [](F& f, const M::bissc_command_t& m) {
-            f = {{"id", I(m.id)}, {"command", I(m.command)}, {"crc_ok", B(m.crc_ok)}};
-        });
-    if (ch == "DECODE_SPI_TRANSFER")
-        return typed<M::spi_transfer_t>(ch, data, size, [](F& f, const M::spi_transfer_t& m) {
-            f = {{"mosi", I(m.mosi)}, {"miso", I(m.miso)}, {"bits", I(m.bits)}};
-        });
-    if (ch == "DECODE_TMC8100_COMMAND")
-        return typed<M::tmc8100_command_t>(ch, data, size, [](F& f, const M::tmc8100_command_t& m) {
+    v["DECODE_BISSC_COMMAND"] = viewAs<M::bissc_command_t>([](F& f, const M::bissc_command_t& m) {
+        f = {{"id", I(m.id)}, {"command", I(m.command)}, {"crc_ok", B(m.crc_ok)}};
+    });
+}
+
+void addDriveViewers(Viewers& v) {
+    v["DECODE_SPI_TRANSFER"] = viewAs<M::spi_transfer_t>([](F& f, const M::spi_transfer_t& m) {
+        f = {{"mosi", I(m.mosi)}, {"miso", I(m.miso)}, {"bits", I(m.bits)}};
+    });
+    v["DECODE_TMC8100_COMMAND"] =
+        viewAs<M::tmc8100_command_t>([](F& f, const M::tmc8100_command_t& m) {
             f = {{"code", I(m.code)}, {"name", S(m.name)}};
         });
-    if (ch == "DECODE_TMC8100_REPLY")
-        return typed<M::tmc8100_reply_t>(ch, data, size, [](F& f, const M::tmc8100_reply_t& m) {
-            f = {{"tag", I(m.tag)}, {"value", I(m.value)}, {"meaning", S(m.meaning)}};
+    v["DECODE_TMC8100_REPLY"] = viewAs<M::tmc8100_reply_t>([](F& f, const M::tmc8100_reply_t& m) {
+        f = {{"tag", I(m.tag)}, {"value", I(m.value)}, {"meaning", S(m.meaning)}};
+    });
+    v["DECODE_TMC8100_ENCODER_READ"] =
+        viewAs<M::tmc8100_encoder_read_t>([](F& f, const M::tmc8100_encoder_read_t& m) {
+            f = {{"gray", I(m.gray)},
+                 {"binary", I(m.binary)},
+                 {"flags", I(m.flags)},
+                 {"consistent", B(m.consistent)}};
+            if (m.has_ssi_match) f["ssi_match"] = B(m.ssi_match);
         });
-    if (ch == "DECODE_TMC8100_ENCODER_READ")
-        return typed<M::tmc8100_encoder_read_t>(ch, data, size,
-                                                [](F& f, const M::tmc8100_encoder_read_t& m) {
-                                                    f = {{"gray", I(m.gray)},
-                                                         {"binary", I(m.binary)},
-                                                         {"flags", I(m.flags)},
-                                                         {"consistent", B(m.consistent)}};
-                                                    if (m.has_ssi_match)
-                                                        f["ssi_match"] = B(m.ssi_match);
-                                                });
-    if (ch == "DECODE_UART_BYTE")
-        return typed<M::uart_byte_t>(ch, data, size, [](F& f, const M::uart_byte_t& m) {
-            f = {{"value", I(m.value)}, {"line", S(m.line)}};
-        });
-    if (ch == "DECODE_TMCL_COMMAND")
-        return typed<M::tmcl_command_t>(ch, data, size, [](F& f, const M::tmcl_command_t& m) {
-            f = {{"address", I(m.address)},
-                 {"command", I(m.command)},
-                 {"mnemonic", S(m.mnemonic)},
-                 {"type_no", I(m.type_no)},
-                 {"motor", I(m.motor)},
-                 {"value", I(m.value)},
-                 {"checksum_ok", B(m.checksum_ok)}};
-        });
-    if (ch == "DECODE_TMCL_REPLY")
-        return typed<M::tmcl_reply_t>(ch, data, size, [](F& f, const M::tmcl_reply_t& m) {
-            f = {{"reply_address", I(m.reply_address)},
-                 {"module_address", I(m.module_address)},
-                 {"status", I(m.status)},
-                 {"status_text", S(m.status_text)},
-                 {"command", I(m.command)},
-                 {"value", I(m.value)},
-                 {"checksum_ok", B(m.checksum_ok)}};
-        });
-    // Anything else: the generic key/value message.
+    v["DECODE_UART_BYTE"] = viewAs<M::uart_byte_t>([](F& f, const M::uart_byte_t& m) {
+        f = {{"value", I(m.value)}, {"line", S(m.line)}};
+    });
+    v["DECODE_TMCL_COMMAND"] = viewAs<M::tmcl_command_t>([](F& f, const M::tmcl_command_t& m) {
+        f = {{"address", I(m.address)},
+             {"command", I(m.command)},
+             {"mnemonic", S(m.mnemonic)},
+             {"type_no", I(m.type_no)},
+             {"motor", I(m.motor)},
+             {"value", I(m.value)},
+             {"checksum_ok", B(m.checksum_ok)}};
+    });
+    v["DECODE_TMCL_REPLY"] = viewAs<M::tmcl_reply_t>([](F& f, const M::tmcl_reply_t& m) {
+        f = {{"reply_address", I(m.reply_address)},
+             {"module_address", I(m.module_address)},
+             {"status", I(m.status)},
+             {"status_text", S(m.status_text)},
+             {"command", I(m.command)},
+             {"value", I(m.value)},
+             {"checksum_ok", B(m.checksum_ok)}};
+    });
+}
+
+// A channel without a typed message: the generic key/value message.
+std::optional<MessageView> viewGenericMessage(const std::string& ch, const void* data, int size) {
     M::event_fields_t m;
     if (!decodeInto(m, data, size)) {
         ADD_FAILURE() << "message on " << ch << " does not decode as event_fields_t";
@@ -199,6 +205,19 @@ std::optional<MessageView> viewEventMessage(const std::string& ch, const void* d
         }
     }
     return v;
+}
+
+}  // namespace
+
+std::optional<MessageView> viewEventMessage(const std::string& ch, const void* data, int size) {
+    static const Viewers viewers = [] {
+        Viewers v;
+        addEncoderViewers(v);
+        addDriveViewers(v);
+        return v;
+    }();
+    const auto it = viewers.find(ch);
+    return it != viewers.end() ? it->second(ch, data, size) : viewGenericMessage(ch, data, size);
 }
 
 Collector::Collector(lcm::LCM& lc) {
