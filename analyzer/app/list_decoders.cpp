@@ -23,6 +23,20 @@ const char* optionKindName(OptionSpec::Kind k) {
     return "";
 }
 
+namespace {
+
+// "position:int, crc_ok:bool, ...": each field with the kind of its values.
+std::string fieldList(const std::vector<FieldSpec>& fields) {
+    std::vector<std::string> shown;
+    for (const auto& f : fields)
+        shown.push_back(f.kind == FieldSpec::Kind::Any
+                            ? f.name
+                            : fmt::format("{}:{}", f.name, fieldKindName(f.kind)));
+    return fmt::format("{}", fmt::join(shown, ", "));
+}
+
+}  // namespace
+
 void printDecoderList(std::FILE* out) {
     const auto all = Registry::instance().all();
     if (all.empty()) fmt::print(out, "no decoders found (plugins directory missing?)\n");
@@ -57,7 +71,7 @@ void printDecoderList(std::FILE* out) {
         fmt::print(out, "  events:\n");
         for (const auto& e : d.events)
             fmt::print(out, "    {:<14} {}{}\n", e.type, e.help,
-                       e.fields.empty() ? "" : fmt::format(" ({})", fmt::join(e.fields, ", ")));
+                       e.fields.empty() ? "" : fmt::format(" ({})", fieldList(e.fields)));
         fmt::print(out, "\n");
     }
 }

@@ -53,4 +53,28 @@ OptionSpec textOption(std::string key, std::string def, std::string help) {
     return make(std::move(key), OptionSpec::Kind::String, std::move(def), std::move(help));
 }
 
+const char* fieldKindName(FieldSpec::Kind kind) {
+    switch (kind) {
+        case FieldSpec::Kind::Int:
+            return "int";
+        case FieldSpec::Kind::Number:
+            return "number";
+        case FieldSpec::Kind::Bool:
+            return "bool";
+        case FieldSpec::Kind::Text:
+            return "text";
+        case FieldSpec::Kind::IntList:
+            return "list";
+        case FieldSpec::Kind::Any:
+            break;
+    }
+    return "any";
+}
+
+const EventTypeSpec* findEventType(const DecoderInfo& d, const std::string& type) {
+    for (const auto& e : d.events)
+        if (e.type == type) return &e;
+    return nullptr;
+}
+
 }  // namespace busdecode

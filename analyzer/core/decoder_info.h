@@ -3,6 +3,7 @@
 // defaults and allowed values, event types. `decode --list`, option validation and
 // automatic role binding all work from this declaration.
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace busdecode {
@@ -36,10 +37,24 @@ OptionSpec choiceOption(std::string key, std::vector<std::string> choices, std::
                         std::string def = "");
 OptionSpec textOption(std::string key, std::string def, std::string help);
 
+// A field of an event type and the kind of its values (null aside): `decode --list` shows
+// it, and read() types a DataFrame column by it when no event of the capture had a value,
+// so that a table has the same columns and types from capture to capture. A name in angle
+// brackets, "<status_bits>", stands for the fields that option's value names.
+struct FieldSpec {
+    enum class Kind { Any, Int, Number, Bool, Text, IntList };
+    FieldSpec(const char* n, Kind k = Kind::Any) : name(n), kind(k) {}
+    FieldSpec(std::string n, Kind k = Kind::Any) : name(std::move(n)), kind(k) {}
+    std::string name;
+    Kind kind = Kind::Any;
+};
+
+const char* fieldKindName(FieldSpec::Kind kind);  // "int", "number", "bool", "text", "list"
+
 struct EventTypeSpec {
     std::string type;
     std::string help;
-    std::vector<std::string> fields;  // field names besides the common ones
+    std::vector<FieldSpec> fields;  // besides the common ones, in the order events list them
 };
 
 struct DecoderInfo {
@@ -52,5 +67,8 @@ struct DecoderInfo {
     // At least one of these optional roles must be bound (e.g. uart: rx or tx).
     std::vector<std::string> need_one_of;
 };
+
+// The declaration of `type` among `d`'s events, or null.
+const EventTypeSpec* findEventType(const DecoderInfo& d, const std::string& type);
 
 }  // namespace busdecode

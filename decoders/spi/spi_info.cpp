@@ -38,10 +38,11 @@ DecoderInfo spiInfo() {
         "LSB first, framed by chip select or (without cs) by bit count only";
     info.roles = spiRoleSpecs();
     info.options = spiOptionSpecs();
+    using K = FieldSpec::Kind;
     info.events = {{"transfer",
                     "one word: mosi and miso (null for an unbound line), bits; a word cut short "
                     "by cs or by the end of the capture has the error short_frame",
-                    {"mosi", "miso", "bits"}}};
+                    {{"mosi", K::Int}, {"miso", K::Int}, {"bits", K::Int}}}};
     info.need_one_of = {"mosi", "miso"};
     return info;
 }

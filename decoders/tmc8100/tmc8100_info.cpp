@@ -27,15 +27,38 @@ DecoderInfo tmc8100Info() {
         choiceOption("encoder", {"auto", "ssi", "biss"},
                      "encoder protocol of the firmware (auto: from the get_protocol reply, or "
                      "a 0x71 word after the flags)"));
+    using K = FieldSpec::Kind;
+    // A reply's fields after `word` depend on the command it answers.
     info.events = {
-        {"command", "a host datagram on MOSI", {"code", "name", "word", "address", "data"}},
+        {"command",
+         "a host datagram on MOSI",
+         {{"code", K::Int},
+          {"name", K::Text},
+          {"word", K::Int},
+          {"address", K::Int},
+          {"data", K::Int}}},
         {"reply",
          "a reply word on MISO paired with its command",
-         {"tag", "value", "meaning", "command", "word"}},
+         {{"tag", K::Int},     {"value", K::Int},       {"meaning", K::Text}, {"command", K::Text},
+          {"address", K::Int}, {"word", K::Int},        {"position", K::Int}, {"nE", K::Int},
+          {"nW", K::Int},      {"crc_rx", K::Int},      {"crc_calc", K::Int}, {"crc_ok", K::Bool},
+          {"flags", K::Int},   {"clock_edges", K::Int}, {"major", K::Int},    {"minor", K::Int},
+          {"text", K::Text},   {"version", K::Int},     {"revision", K::Int}, {"data", K::Int}}},
         {"encoder_read",
          "one complete 0x80 read",
-         {"gray", "binary", "flags", "consistent", "ssi_match", "encoder_st"}},
-        {"avail", "GPIO6 behaviour that contradicts the traffic", {"level"}},
+         {{"gray", K::Int},
+          {"binary", K::Int},
+          {"flags", K::Int},
+          {"consistent", K::Bool},
+          {"nE", K::Int},
+          {"nW", K::Int},
+          {"crc_rx", K::Int},
+          {"crc_calc", K::Int},
+          {"crc_ok", K::Bool},
+          {"clock_edges", K::Int},
+          {"ssi_match", K::Bool},
+          {"encoder_st", K::Int}}},
+        {"avail", "GPIO6 behaviour that contradicts the traffic", {{"level", K::Int}}},
     };
     info.need_one_of = {"mosi", "miso"};
     return info;

@@ -29,10 +29,15 @@ std::shared_ptr<const DecoderFactory> makeUartFactory() {
         boolOption("invert", "0", "1: the lines idle low (inverted levels)"),
         boolOption("lsb_first", "1", "bit order of the data bits (UART sends LSB first)"),
     };
+    using K = FieldSpec::Kind;
     info.events = {
-        {"byte", "one character", {"value", "line", "parity_ok"}},
-        {"break", "the line held low for at least a whole frame", {"line", "duration_ns"}},
-        {"baud", "baud=auto: the detected rate", {"baud", "measured_baud"}},
+        {"byte", "one character", {{"value", K::Int}, {"line", K::Text}, {"parity_ok", K::Bool}}},
+        {"break",
+         "the line held low for at least a whole frame",
+         {{"line", K::Text}, {"duration_ns", K::Int}}},
+        {"baud",
+         "baud=auto: the detected rate",
+         {{"baud", K::Number}, {"measured_baud", K::Number}}},
     };
     return std::make_shared<SimpleFactory<UartDecoder>>(std::move(info));
 }

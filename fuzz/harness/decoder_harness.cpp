@@ -32,6 +32,7 @@
 #include "core/session.h"
 #include "core/splicing.h"
 #include "core/waveform.h"
+#include "declared_fields.h"
 #include "fuzz_harness.h"
 #include "reader_targets.h"
 #include "sinks/event_format.h"
@@ -146,6 +147,7 @@ std::uint64_t deltaOf(int kind, ByteStream& in) {
 }
 
 struct CheckingSink : OutputSink {
+    std::vector<DecoderRequest> requests;
     std::uint64_t events = 0;
     Tick last_start = std::numeric_limits<Tick>::min();
     bool reads_fields = true;  // false: as text output, which prints the summary
@@ -160,6 +162,7 @@ struct CheckingSink : OutputSink {
                                 e.start));
         if (e.start < last_start) failure(fmt::format("{} {} out of time order", e.proto, e.type));
         last_start = e.start;
+        if (const std::string wrong = undeclaredField(e, requests); !wrong.empty()) failure(wrong);
     }
 };
 
@@ -338,6 +341,7 @@ DecodeStats decodeChecked(const Waveform& w, const DecoderRequest& req, bool rea
         return stats;
     }
     CheckingSink sink;
+    sink.requests = {req};
     sink.reads_fields = reads_fields;
     session->addSink(&sink);
     try {

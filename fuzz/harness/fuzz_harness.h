@@ -33,7 +33,8 @@ void runTarget(const std::string& target, const std::uint8_t* data, std::size_t 
 
 // Decodes `w` with one decoder through a real Session and checks what the fuzz
 // decoder targets check: no exception out of run(), events in time order and never
-// ending before they start, at most 4 events per edge (+64), advice in single lines.
+// ending before they start, at most 4 events per edge (+64), advice in single lines,
+// every field declared by its decoder with a value of its kind (declared_fields.h).
 // reads_fields = false: the output reads no fields, as text output (the decoders may
 // leave them out), and every event must have a summary or fields. Throws HarnessFailure.
 struct DecodeStats {

@@ -7,7 +7,7 @@ if(NOT TARGET busdecode_fuzz_harness)
   add_library(busdecode_fuzz_harness STATIC
     ${_h}/fuzz_harness.cpp ${_h}/reader_harness.cpp ${_h}/decoder_harness.cpp
     ${_h}/rules_harness.cpp ${_h}/vcd_pieces_harness.cpp ${_h}/zip_builder.cpp
-    ${_h}/cli_args_harness.cpp ${_h}/formats_harness.cpp)
+    ${_h}/cli_args_harness.cpp ${_h}/formats_harness.cpp ${_h}/declared_fields.cpp)
   target_include_directories(busdecode_fuzz_harness PUBLIC ${_h} ${CMAKE_SOURCE_DIR}/analyzer)
   include(${CMAKE_SOURCE_DIR}/tests/support/feed/direct_feed.cmake)
   target_link_libraries(busdecode_fuzz_harness PUBLIC busdecode_direct_feed)

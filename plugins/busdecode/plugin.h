@@ -28,6 +28,7 @@ public:
 // Decoder has edgeReference(), a virtual before advance() (the later ones moved). 4.0:
 // an Edge (Decoder::edges()) is one 8-byte word with packed fields (core/edge.h). 5.0:
 // Decoder is the small interface alone (edges(), edgeReference() and splicing moved to
-// the opt-in FastDecoder and SpliceableDecoder; newEvent() replaces freshEvent()).
-#define BUSDECODE_PLUGIN_IID "org.busdecode.DecoderPlugin/5.0"
+// the opt-in FastDecoder and SpliceableDecoder; newEvent() replaces freshEvent()). 6.0:
+// an event type's fields are FieldSpecs, each with the kind of its values.
+#define BUSDECODE_PLUGIN_IID "org.busdecode.DecoderPlugin/6.0"
 Q_DECLARE_INTERFACE(busdecode::DecoderPlugin, BUSDECODE_PLUGIN_IID)

@@ -43,7 +43,7 @@ std::shared_ptr<const DecoderFactory> makePulseFactory() {
     d.roles = {{"line", true, {"line", "in", "sig"}, "the line to watch"}};
     d.options = {choiceOption("active", {"high", "low"}, "which level is a pulse"),
                  numberOption("min_ns", "0", 0, 1e300, "flag pulses shorter than this as `short`")};
-    d.events = {{"pulse", "one active pulse", {"width_ns"}}};
+    d.events = {{"pulse", "one active pulse", {{"width_ns", FieldSpec::Kind::Number}}}};
     return std::make_shared<SimpleFactory<PulseDecoder>>(std::move(d));
 }
 

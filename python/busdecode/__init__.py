@@ -110,8 +110,10 @@ def decoders() -> List[Dict[str, Any]]:
 
     Each is a dict: id, name, description, roles (name, required, aliases, help),
     options (key, kind, default, choices, min, max, auto, help), events (type, help,
-    fields) and need_one_of (optional roles of which one must be bound). Every decoder
-    also takes the option glitch_ns (ignore pulses shorter than this, in ns).
+    fields, kinds: each field's kind of value, "int", "number", "bool", "text", "list"
+    or "any") and need_one_of (optional roles of which one must be bound). A field
+    "<status_bits>" stands for the fields that option names. Every decoder also takes
+    the option glitch_ns (ignore pulses shorter than this, in ns).
     """
     return _busdecode.decoders()
 
@@ -200,7 +202,10 @@ def read(path: PathLike, proto: Protos, map: Assignments = None, opts: Assignmen
     UInt64 beyond int64), flags nullable booleans, other numbers float64 (NaN for
     null), text and lists objects. The columns are built in C++ as flat buffers while
     decoding, not as a Python object per field. A field an event lacks is null in its
-    row.
+    row. Every field the decoder declares (decoders(), "kinds") is a column of its
+    declared type, also when no event of the capture had a value for it (after the
+    fields the events gave): a table's columns and types do not change from capture to
+    capture.
 
     Without pandas, returns {"proto/type": [event dict, ...]} instead.
     """

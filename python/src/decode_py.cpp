@@ -102,9 +102,16 @@ pyb::list decoderList() {
                           pyb::arg("min") = lo, pyb::arg("max") = hi,
                           pyb::arg("auto") = o.allow_auto, pyb::arg("help") = o.help));
         }
-        for (const auto& e : d.events)
+        for (const auto& e : d.events) {
+            pyb::list fields;
+            pyb::dict kinds;
+            for (const auto& f : e.fields) {
+                fields.append(f.name);
+                kinds[pyb::str(f.name)] = fieldKindName(f.kind);
+            }
             events.append(pyb::dict(pyb::arg("type") = e.type, pyb::arg("help") = e.help,
-                                    pyb::arg("fields") = e.fields));
+                                    pyb::arg("fields") = fields, pyb::arg("kinds") = kinds));
+        }
         out.append(pyb::dict(pyb::arg("id") = d.id, pyb::arg("name") = d.name,
                              pyb::arg("description") = d.description, pyb::arg("roles") = roles,
                              pyb::arg("options") = options, pyb::arg("events") = events,

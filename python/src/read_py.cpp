@@ -6,10 +6,12 @@
 
 #include <bit>
 #include <cmath>
+#include <set>
 #include <type_traits>
 
 #include "app/decode_args.h"
 #include "bindings.h"
+#include "core/registry.h"
 #include "decode_args_py.h"
 #include "event_columns.h"
 #include "event_dict.h"
@@ -48,8 +50,32 @@ pyb::array objectColumn(const std::vector<Value>& values) {
                        [&](std::size_t i) { return valueToPython(values[i]).release().ptr(); });
 }
 
-// (key, kind, values, mask): kind names the pandas array to make.
-pyb::tuple columnToPython(Column& c) {
+// A column without a value in any row, typed by the field's declaration (FieldSpec), so
+// that a table's columns and their types do not depend on what one capture held.
+pyb::tuple nullColumn(const std::string& key, FieldSpec::Kind kind, std::size_t rows) {
+    using K = FieldSpec::Kind;
+    auto all_null = [rows] { return ownedArray(std::vector<std::uint8_t>(rows, 1), "bool"); };
+    switch (kind) {
+        case K::Int:
+            return pyb::make_tuple(
+                key, "Int64", ownedArray(std::vector<std::int64_t>(rows), "int64"), all_null());
+        case K::Bool:
+            return pyb::make_tuple(key, "boolean",
+                                   ownedArray(std::vector<std::uint8_t>(rows), "bool"), all_null());
+        case K::Number:
+            return pyb::make_tuple(key, "float64",
+                                   ownedArray(std::vector<double>(rows, std::nan("")), "float64"),
+                                   pyb::none());
+        default:
+            return pyb::make_tuple(
+                key, "object", objectArray(rows, [](std::size_t) { return Py_NewRef(Py_None); }),
+                pyb::none());
+    }
+}
+
+// (key, kind, values, mask): kind names the pandas array to make. `declared` types a
+// column that no row gave a value.
+pyb::tuple columnToPython(Column& c, FieldSpec::Kind declared) {
     using K = Column::Kind;
     switch (c.kind) {
         case K::Int:
@@ -80,10 +106,7 @@ pyb::tuple columnToPython(Column& c) {
             return pyb::make_tuple(c.key, "object", out, pyb::none());
         }
         case K::Empty:
-            return pyb::make_tuple(
-                c.key, "object",
-                objectArray(c.nulls.size(), [](std::size_t) { return Py_NewRef(Py_None); }),
-                pyb::none());
+            return nullColumn(c.key, declared, c.rows());
         case K::Object:
             break;
     }
@@ -105,19 +128,40 @@ pyb::array errorColumn(const Table& t) {
     });
 }
 
+// The columns of `t`: its times, the fields the events gave, the declared fields no
+// event had, and the errors.
+pyb::list tableColumns(Table& t) {
+    const DecoderFactory* decoder = Registry::instance().find(t.proto);
+    const EventTypeSpec* declared = decoder ? findEventType(decoder->info(), t.type) : nullptr;
+    auto declaredKind = [&](const std::string& key) {
+        if (declared)
+            for (const auto& f : declared->fields)
+                if (f.name == key) return f.kind;
+        return FieldSpec::Kind::Any;
+    };
+    const std::size_t rows = t.start_ns.size();
+    pyb::list columns;
+    columns.append(pyb::make_tuple("start_ns", "int64", ownedArray(std::move(t.start_ns), "int64"),
+                                   pyb::none()));
+    columns.append(
+        pyb::make_tuple("end_ns", "int64", ownedArray(std::move(t.end_ns), "int64"), pyb::none()));
+    std::set<std::string> seen;
+    for (auto& c : t.columns) {
+        seen.insert(c.key);
+        columns.append(columnToPython(c, declaredKind(c.key)));
+    }
+    if (declared)
+        for (const auto& f : declared->fields)
+            if (!f.name.starts_with('<') && !seen.count(f.name))
+                columns.append(nullColumn(f.name, f.kind, rows));
+    columns.append(pyb::make_tuple("errors", "object", errorColumn(t), pyb::none()));
+    return columns;
+}
+
 pyb::dict tablesToPython(std::vector<Table>& tables) {
     pyb::dict out;
-    for (auto& t : tables) {
-        pyb::list columns;
-        columns.append(pyb::make_tuple("start_ns", "int64",
-                                       ownedArray(std::move(t.start_ns), "int64"), pyb::none()));
-        columns.append(pyb::make_tuple("end_ns", "int64", ownedArray(std::move(t.end_ns), "int64"),
-                                       pyb::none()));
-        for (auto& c : t.columns)
-            columns.append(columnToPython(c));
-        columns.append(pyb::make_tuple("errors", "object", errorColumn(t), pyb::none()));
-        out[pyb::str(t.proto + "/" + t.type)] = columns;
-    }
+    for (auto& t : tables)
+        out[pyb::str(t.proto + "/" + t.type)] = tableColumns(t);
     return out;
 }
 

@@ -220,3 +220,39 @@ def test_help_is_useful():
     doc = busdecode.decode.__doc__
     for word in ("proto", "map", "opts", "rate", "jsonl", "InputError", "constant"):
         assert word in doc
+
+
+def test_read_types_columns_by_the_declarations():
+    # bissc_errors.vcd read as 26-bit frames: no frame is complete, so no event has a
+    # position or a CRC; the columns are still those of a capture that has them.
+    full = busdecode.read(CAPTURES / "bissc_1mhz_26bit.vcd", proto="bissc")["bissc/frame"]
+    short = busdecode.read(CAPTURES / "bissc_errors.vcd", proto="bissc")["bissc/frame"]
+    assert short["position"].isna().all() and short["crc_ok"].isna().all()
+    assert list(short.columns) == list(full.columns)
+    assert dict(short.dtypes) == dict(full.dtypes)
+    # A declared field no event gave (parity_ok: no parity on this encoder) is a column
+    # of its kind, all null, after the fields the events gave.
+    ssi = busdecode.read(CAPTURES / "ssi_posital_lead.csv", proto="ssi",
+                         opts={"bits": 24})["ssi/frame"]
+    assert str(ssi["parity_ok"].dtype) == "boolean" and ssi["parity_ok"].isna().all()
+    declared = next(e for e in busdecode.decoders()[2]["events"] if e["type"] == "frame")
+    named = [f for f in declared["fields"] if not f.startswith("<")]
+    assert sorted(ssi.columns) == sorted(["start_ns", "end_ns", "errors"] + named)
+
+
+def test_decoders_declare_each_fields_kind_as_decode_list_shows_it():
+    rc, out, _ = run_cli([str(BIN / "decode"), "--list"])
+    assert rc == 0
+    dtype_of = {"int": "Int64", "bool": "boolean", "number": "float64"}
+    for d in busdecode.decoders():
+        for e in d["events"]:
+            assert list(e["kinds"]) == e["fields"]
+            shown = ", ".join(f if k == "any" else f"{f}:{k}" for f, k in e["kinds"].items())
+            assert f"    {e['type']:<14} {e['help']} ({shown})" in out
+            assert set(e["kinds"].values()) <= {"int", "number", "bool", "text", "list", "any"}
+    bissc = busdecode.decoders()[0]["events"][0]["kinds"]
+    assert (bissc["position"], bissc["crc_ok"], bissc["clock_hz"]) == ("int", "bool", "number")
+    frame = busdecode.read(CAPTURES / "bissc_1mhz_26bit.vcd", proto="bissc")["bissc/frame"]
+    for field, kind in bissc.items():
+        if kind in dtype_of:
+            assert str(frame[field].dtype) == dtype_of[kind], field

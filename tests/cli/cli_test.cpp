@@ -46,6 +46,14 @@ TEST(Cli, ListShowsEveryBuiltInDecoderWithRolesAndOptions) {
     EXPECT_NE(r.out.find("cpol"), std::string::npos);
 }
 
+// docs/decoders.txt is what `decode --list` prints, field kinds and all.
+TEST(Cli, DocsDecodersTxtIsTheList) {
+    auto r = runDecode({"--list"});
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(readFile(sourceDir() + "/docs/decoders.txt"), r.out)
+        << "docs/decoders.txt: remake it with `build/bin/decode --list > docs/decoders.txt`";
+}
+
 // The built-in plugins Qt loaded in a run (QT_DEBUG_PLUGINS=1 makes it say so on stderr:
 // `qt.core.library: ".../busdecode_spi.so" loaded library`).
 std::vector<std::string> pluginsLoaded(const std::vector<std::string>& args, int status = 0) {
