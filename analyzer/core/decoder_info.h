@@ -39,8 +39,8 @@ OptionSpec textOption(std::string key, std::string def, std::string help);
 
 // A field of an event type and the kind of its values (null aside): `decode --list` shows
 // it, and read() types a DataFrame column by it when no event of the capture had a value,
-// so that a table has the same columns and types from capture to capture. A name in angle
-// brackets, "<status_bits>", stands for the fields that option's value names.
+// so that a table's columns do not depend on which fields a capture's events filled. A
+// name in angle brackets, "<status_bits>", stands for the fields that option's value names.
 struct FieldSpec {
     enum class Kind { Any, Int, Number, Bool, Text, IntList };
     FieldSpec(const char* n, Kind k = Kind::Any) : name(n), kind(k) {}

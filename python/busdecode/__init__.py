@@ -204,8 +204,8 @@ def read(path: PathLike, proto: Protos, map: Assignments = None, opts: Assignmen
     decoding, not as a Python object per field. A field an event lacks is null in its
     row. Every field the decoder declares (decoders(), "kinds") is a column of its
     declared type, also when no event of the capture had a value for it (after the
-    fields the events gave): a table's columns and types do not change from capture to
-    capture.
+    fields the events gave): a table's columns and types do not depend on which fields
+    a capture's events happened to fill.
 
     Without pandas, returns {"proto/type": [event dict, ...]} instead.
     """
