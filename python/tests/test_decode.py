@@ -222,6 +222,12 @@ def test_help_is_useful():
         assert word in doc
 
 
+def _declared(proto, type_):
+    """The declaration of one event type, as busdecode.decoders() gives it."""
+    decoder = next(d for d in busdecode.decoders() if d["id"] == proto)
+    return next(e for e in decoder["events"] if e["type"] == type_)
+
+
 def test_read_types_columns_by_the_declarations():
     # bissc_errors.vcd read as 26-bit frames: no frame is complete, so no event has a
     # position or a CRC; the columns are still those of a capture that has them.
@@ -235,7 +241,7 @@ def test_read_types_columns_by_the_declarations():
     ssi = busdecode.read(CAPTURES / "ssi_posital_lead.csv", proto="ssi",
                          opts={"bits": 24})["ssi/frame"]
     assert str(ssi["parity_ok"].dtype) == "boolean" and ssi["parity_ok"].isna().all()
-    declared = next(e for e in busdecode.decoders()[2]["events"] if e["type"] == "frame")
+    declared = _declared("ssi", "frame")
     named = [f for f in declared["fields"] if not f.startswith("<")]
     assert sorted(ssi.columns) == sorted(["start_ns", "end_ns", "errors"] + named)
 
@@ -250,7 +256,7 @@ def test_decoders_declare_each_fields_kind_as_decode_list_shows_it():
             shown = ", ".join(f if k == "any" else f"{f}:{k}" for f, k in e["kinds"].items())
             assert f"    {e['type']:<14} {e['help']} ({shown})" in out
             assert set(e["kinds"].values()) <= {"int", "number", "bool", "text", "list", "any"}
-    bissc = busdecode.decoders()[0]["events"][0]["kinds"]
+    bissc = _declared("bissc", "frame")["kinds"]
     assert (bissc["position"], bissc["crc_ok"], bissc["clock_hz"]) == ("int", "bool", "number")
     frame = busdecode.read(CAPTURES / "bissc_1mhz_26bit.vcd", proto="bissc")["bissc/frame"]
     for field, kind in bissc.items():

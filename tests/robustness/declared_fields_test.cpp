@@ -3,6 +3,8 @@
 // and on hostile traffic and the fuzzers' inputs through fuzz::decodeChecked().
 #include <gtest/gtest.h>
 
+#include <iostream>
+
 #include "core/registry.h"
 #include "declared_fields.h"
 #include "example.h"
@@ -25,6 +27,7 @@ TEST(DeclaredFields, EveryExampleCapturesFieldsAreDeclaredWithTheirKinds) {
             ++captures;
         }
     }
+    std::cout << captures << " example captures, " << events << " events checked\n";
     EXPECT_EQ(listedExamples().size(), Registry::instance().all().size());
     EXPECT_GT(captures, 10u);
     EXPECT_GT(events, 400u);
