@@ -56,6 +56,26 @@ struct Mix {
     Tick first = 0, last = 0;
 };
 
+// What separates two tokens: mostly a newline, sometimes CRLF, spaces, a tab or a blank line.
+std::string randomSeparator(std::mt19937& rng) {
+    switch (rng() % 12u) {
+        case 0:
+            return "\r\n";
+        case 1:
+            return "  ";
+        case 2:
+            return "\t";
+        case 3:
+            return "\n\n";
+        case 4:
+        case 5:
+        case 6:
+            return " ";
+        default:
+            return "\n";
+    }
+}
+
 Mix randomMix(std::uint32_t seed, Tick t0, int stamps) {
     std::mt19937 rng(seed);
     auto pick = [&](int n) { return int(rng() % unsigned(n)); };
@@ -64,24 +84,6 @@ Mix randomMix(std::uint32_t seed, Tick t0, int stamps) {
     int vec = 0b1111;
     Tick t = t0;
     m.first = t0;
-    auto sep = [&]() -> std::string {
-        switch (pick(12)) {
-            case 0:
-                return "\r\n";
-            case 1:
-                return "  ";
-            case 2:
-                return "\t";
-            case 3:
-                return "\n\n";
-            case 4:
-            case 5:
-            case 6:
-                return " ";
-            default:
-                return "\n";
-        }
-    };
     auto change = [&](std::size_t line, std::uint8_t v, bool initial) {
         if (level[line] != v && !initial) m.truth.push_back({t, std::uint32_t(line), v});
         level[line] = v;
@@ -91,7 +93,7 @@ Mix randomMix(std::uint32_t seed, Tick t0, int stamps) {
         m.text += "#" + std::to_string(t);
         const int n = initial ? 8 : pick(4);  // (the initial row: one of each of 0..7)
         for (int k = 0; k < n; ++k) {
-            m.text += sep();
+            m.text += randomSeparator(rng);
             const int what = initial ? k : pick(24);
             const std::uint8_t v = std::uint8_t(pick(2));
             if (what < 3 || what >= 14) {  // a plain scalar: the bulk
@@ -134,7 +136,7 @@ Mix randomMix(std::uint32_t seed, Tick t0, int stamps) {
                 m.text += std::string(1, char('0' + level[0])) + "!";
             }
         }
-        m.text += sep();
+        m.text += randomSeparator(rng);
         if (initial) m.initial = level;
         m.last = t;
         // Gaps of every size, so timestamps cross 8 and 16 digits when t0 is near them.
