@@ -6,16 +6,19 @@
 #include <unistd.h>
 #include <cmath>
 #include <cstdio>
+#include <map>
 #include <system_error>
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
+
 #include <QCommandLineParser>
 #include <QCoreApplication>
 
 #include "app/decode_args.h"
 #include "app/interruption.h"
 #include "app/list_decoders.h"
+#include "app/output_guard.h"
 #include "app/plugin_loader.h"
 #include "app/report_paths.h"
 #include "app/standard_streams.h"
@@ -40,10 +43,31 @@ namespace busdecode {
 
 namespace {
 
+// QString is UTF-16: argument bytes that are not UTF-8 (a Latin-1 file name) come back
+// from it as U+FFFD and name no file. So each value maps back to the bytes it came from.
+std::map<QString, std::string>& rawArguments() {
+    static std::map<QString, std::string> raw;
+    return raw;
+}
+
+void rememberRawArguments(int argc, char** argv) {
+    for (int i = 1; i < argc; ++i) {
+        const std::string raw = argv[i];
+        rawArguments().emplace(QString::fromLocal8Bit(raw), raw);
+        if (const auto eq = raw.find('='); raw.rfind("--", 0) == 0 && eq != std::string::npos)
+            rawArguments().emplace(QString::fromLocal8Bit(raw.substr(eq + 1)), raw.substr(eq + 1));
+    }
+}
+
+std::string bytesOf(const QString& s) {
+    const auto it = rawArguments().find(s);
+    return it == rawArguments().end() ? s.toStdString() : it->second;
+}
+
 std::vector<std::string> toStd(const QStringList& l) {
     std::vector<std::string> out;
     for (const auto& s : l)
-        out.push_back(s.toStdString());
+        out.push_back(bytesOf(s));
     return out;
 }
 
@@ -145,12 +169,12 @@ bool printedHelpOrVersion(const QCommandLineParser& p) {
 }
 
 void readLiveArgs(const QCommandLineParser& p, DecodeArgs& a) {
-    a.device = p.value("device").toStdString();
-    a.samplerate = p.value("samplerate").toStdString();
-    a.channels = p.value("channels").toStdString();
-    a.samples = p.value("samples").toStdString();
-    a.seconds = p.value("time").toStdString();
-    a.save = p.value("save").toStdString();
+    a.device = bytesOf(p.value("device"));
+    a.samplerate = bytesOf(p.value("samplerate"));
+    a.channels = bytesOf(p.value("channels"));
+    a.samples = bytesOf(p.value("samples"));
+    a.seconds = bytesOf(p.value("time"));
+    a.save = bytesOf(p.value("save"));
     if (a.device.empty() && (p.isSet("samplerate") || p.isSet("channels") || p.isSet("samples") ||
                              p.isSet("time") || p.isSet("save")))
         throw InputError("--samplerate, --channels, --samples, --time and --save need --device");
@@ -161,39 +185,62 @@ void readDecodeArgs(const QCommandLineParser& p, DecodeArgs& a) {
     a.protos = toStd(p.values("proto"));
     a.maps = toStd(p.values("map"));
     a.opts = toStd(p.values("opt"));
-    a.format = p.value("format").toStdString();
+    a.format = bytesOf(p.value("format"));
     if (a.format != "text" && a.format != "jsonl")
         throw InputError(fmt::format("--format {}: expected text or jsonl", a.format));
-    a.report = p.value("report").toStdString();
+    a.report = bytesOf(p.value("report"));
     if (p.isSet("lcm"))
-        a.lcm_url = p.value("lcm") == "default" ? std::string() : p.value("lcm").toStdString();
+        a.lcm_url = p.value("lcm") == "default" ? std::string() : bytesOf(p.value("lcm"));
     if (p.isSet("rate")) {
-        a.rate_hz = rateArgument("--rate", p.value("rate").toStdString());
+        a.rate_hz = rateArgument("--rate", bytesOf(p.value("rate")));
     }
     for (const auto& t : toStd(p.values("threshold")))
         a.thresholds.push_back(parseThresholdOption(t));
-    if (p.isSet("hysteresis"))
-        a.hysteresis = parseHysteresisOption(p.value("hysteresis").toStdString());
+    if (p.isSet("hysteresis")) a.hysteresis = parseHysteresisOption(bytesOf(p.value("hysteresis")));
     a.follow = p.isSet("follow");
     a.realtime = p.isSet("realtime");
 }
 
 void readVerifyAndThreadArgs(const QCommandLineParser& p, DecodeArgs& a) {
-    a.rules = p.value("rules").toStdString();
-    a.junit = p.value("junit").toStdString();
-    a.shard = p.value("shard").toStdString();
-    a.from_list = p.value("from-list").toStdString();
-    auto j = parseInteger(p.value("jobs").toStdString());
+    a.rules = bytesOf(p.value("rules"));
+    a.junit = bytesOf(p.value("junit"));
+    a.shard = bytesOf(p.value("shard"));
+    a.from_list = bytesOf(p.value("from-list"));
+    auto j = parseInteger(bytesOf(p.value("jobs")));
     if (!j || *j < 0 || *j > 256)
         throw InputError("--jobs: expected a whole number from 0 (all cores) to 256");
     a.jobs = int(*j);
-    const std::string t = p.value("threads").toStdString();
+    const std::string t = bytesOf(p.value("threads"));
     if (t != "1" && t != "2")
         throw InputError(fmt::format(
             "--threads {}: expected 1 (read and decode on one thread) or 2 (read ahead on a "
             "second)",
             t));
     a.threads = t == "1" ? 1 : 2;
+}
+
+// An option of one value given twice (the last would win without a word), a file option
+// or a capture given as "" (read or written nowhere), or plain decode's outputs given to
+// verify (which prints verdicts and writes JUnit only).
+void checkOptionValues(const QCommandLineParser& p, bool verify) {
+    for (const char* name :
+         {"format", "report", "lcm", "rate", "hysteresis", "rules", "junit", "jobs", "shard",
+          "from-list", "threads", "device", "samplerate", "channels", "samples", "time", "save"})
+        if (p.isSet(name) && p.values(name).size() > 1)
+            throw InputError(fmt::format("--{} is given {} times: it takes one value", name,
+                                         p.values(name).size()));
+    for (const char* name : {"report", "rules", "junit", "from-list", "save"})
+        if (p.isSet(name) && p.value(name).isEmpty())
+            throw InputError(fmt::format("--{}: the file name is empty", name));
+    for (const auto& capture : p.positionalArguments())
+        if (capture.isEmpty()) throw InputError("a capture's name is empty (\"\")");
+    if (verify)
+        for (const char* name : {"format", "report", "lcm", "follow", "realtime"})
+            if (p.isSet(name))
+                throw InputError(fmt::format(
+                    "decode verify: --{} belongs to plain 'decode' (verify prints a verdict a "
+                    "capture; --junit writes them)",
+                    name));
 }
 
 // Options that belong to another command, or a run with nothing to read.
@@ -215,6 +262,7 @@ Parsed parse(const QStringList& argv, bool verify) {
     addOptions(p);
     if (!p.parse(argv)) throw InputError(p.errorText().toStdString());
     if (printedHelpOrVersion(p)) return {{}, false, true};
+    checkOptionValues(p, verify);
     Parsed out;
     out.list = p.isSet("list");
     out.formats = p.isSet("formats");
@@ -248,6 +296,21 @@ struct OutputSinks {
         if (lcm) sinks.push_back(lcm);
     }
 };
+
+// Refuses, before anything is opened, an output on an input or two outputs on one file:
+// the reports, the --save session and the LCM log.
+void guardOutputs(const DecodeArgs& a, const std::vector<NamedFile>& inputs,
+                  const std::vector<std::string>& reports) {
+    std::vector<NamedFile> outputs;
+    for (const auto& report : reports)
+        if (!report.empty()) outputs.push_back({"--report", report});
+    if (!a.save.empty()) outputs.push_back({"--save", a.save});
+    if (a.lcm_url && !lcmLogFile(*a.lcm_url).empty())
+        outputs.push_back({"--lcm", lcmLogFile(*a.lcm_url)});
+    for (const auto& out : outputs)
+        refuseOutputOnInputs(out.what, out.path, inputs);
+    refuseSharedOutputs(outputs);
+}
 
 // Live output wants every line at once; a batch run wants big writes.
 void bufferStandardOutput(bool live) {
@@ -297,6 +360,10 @@ int runLive(const DecodeArgs& a) {
     const LiveSettings settings = liveSettings(a);
     auto requests = buildRequests(a.protos, a.maps, a.opts);
     bufferStandardOutput(true);
+    std::vector<NamedFile> inputs;
+    for (const auto& [key, value] : settings.options)
+        if (key == "file") inputs.push_back({"playback file", value});
+    guardOutputs(a, inputs, {a.report});
     std::unique_ptr<OutputSink> lcm;
     if (a.lcm_url) lcm = makeLcmSink(*a.lcm_url, false);
     if (!a.report.empty()) checkWritable(a.report);
@@ -330,13 +397,12 @@ int runDecode(const DecodeArgs& a) {
     open.stop = interruptionFlag();
     bufferStandardOutput(a.follow || a.realtime || a.lcm_url);
 
-    std::unique_ptr<OutputSink> lcm;
-    if (a.lcm_url) lcm = makeLcmSink(*a.lcm_url, a.captures.size() > 1);
     const std::vector<std::string> reports = a.report.empty()
                                                  ? std::vector<std::string>(a.captures.size())
                                                  : reportPaths(a.report, a.captures);
-    for (const auto& report : reports)
-        if (!report.empty()) refuseOutputOnCapture("--report", report, a.captures);
+    guardOutputs(a, runInputs(a, a.captures), reports);
+    std::unique_ptr<OutputSink> lcm;
+    if (a.lcm_url) lcm = makeLcmSink(*a.lcm_url, a.captures.size() > 1);
     for (std::size_t i = 0; i < a.captures.size(); ++i) {
         const std::string& capture = a.captures[i];
         const OutputSinks out(a, reports[i], a.captures.size() > 1, lcm.get());
@@ -361,6 +427,7 @@ int run(int argc, char** argv, DecodeArgs& args) {
     if (argc > 1 && std::string(argv[1]) == "monitor") return runMonitor(argc - 1, argv + 1);
     if (argc > 1 && std::string(argv[1]) == "merge-junit") return runMergeJunit(argc - 1, argv + 1);
     const bool verify = argc > 1 && std::string(argv[1]) == "verify";
+    rememberRawArguments(argc, argv);
     QStringList argl = normaliseArgs(argc, argv);
     if (verify) argl.removeAt(1);
     Parsed parsed = parse(argl, verify);

@@ -3,10 +3,6 @@
 #include <sys/stat.h>
 #include <set>
 
-#include <fmt/format.h>
-
-#include "core/options.h"
-
 namespace busdecode {
 
 namespace {
@@ -29,7 +25,9 @@ std::string fileName(const std::string& path) {
 
 std::vector<std::string> reportPaths(const std::string& report,
                                      const std::vector<std::string>& captures) {
-    if (captures.size() <= 1) return std::vector<std::string>(captures.size(), report);
+    struct stat st {};
+    const bool through = ::stat(report.c_str(), &st) == 0 && !S_ISREG(st.st_mode);
+    if (captures.size() <= 1 || through) return std::vector<std::string>(captures.size(), report);
     const auto [stem, ext] = splitExtension(report);
     std::vector<std::string> out;
     std::set<std::string> used;
@@ -42,19 +40,6 @@ std::vector<std::string> reportPaths(const std::string& report,
         out.push_back(path);
     }
     return out;
-}
-
-void refuseOutputOnCapture(const std::string& option, const std::string& output,
-                           const std::vector<std::string>& captures) {
-    struct stat out {};
-    if (::stat(output.c_str(), &out) != 0 || !S_ISREG(out.st_mode)) return;
-    for (const auto& capture : captures) {
-        struct stat in {};
-        if (capture != "-" && ::stat(capture.c_str(), &in) == 0 && in.st_dev == out.st_dev &&
-            in.st_ino == out.st_ino)
-            throw InputError(
-                fmt::format("{} {}: is the capture {}, not an output", option, output, capture));
-    }
 }
 
 }  // namespace busdecode

@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 #include <QXmlStreamReader>
 
+#include "app/output_guard.h"
 #include "core/atomic_file.h"
 #include "core/options.h"
 #include "shard.h"
@@ -264,6 +265,11 @@ MergeArgs parseMergeArgs(int argc, char** argv) {
     if (a.inputs.empty() && a.from_list.empty()) throw InputError("no JUnit file given");
     for (const auto& in : a.inputs)
         if (in == a.output) throw InputError(fmt::format("-o {}: is also an input", in));
+    std::vector<NamedFile> inputs;
+    for (const auto& in : a.inputs)
+        inputs.push_back({"JUnit file", in});
+    if (!a.from_list.empty()) inputs.push_back({"capture list", a.from_list});
+    refuseOutputOnInputs("-o", a.output, inputs);  // another spelling or a link of one
     return a;
 }
 

@@ -44,6 +44,7 @@ std::vector<std::string> readCaptureList(const std::string& path) {
     std::string line;
     for (std::size_t number = 1; std::getline(in, line); ++number) {
         if (!line.empty() && line.back() == '\r') line.pop_back();
+        if (number == 1 && line.rfind("\xEF\xBB\xBF", 0) == 0) line.erase(0, 3);  // Windows' BOM
         if (line.find('\0') != std::string::npos)
             throw InputError(fmt::format("{}:{}: a NUL byte in a capture path", path, number));
         if (line.empty() || line[0] == '#') continue;

@@ -8,8 +8,8 @@
 
 #include "app/decode_args.h"
 #include "app/interruption.h"
+#include "app/output_guard.h"
 #include "app/plugin_loader.h"
-#include "app/report_paths.h"
 #include "app/standard_streams.h"
 #include "batch.h"
 #include "core/atomic_file.h"
@@ -36,25 +36,32 @@ VerifyPlan planVerify(const DecodeArgs& args) {
     return plan;
 }
 
-std::vector<std::string> capturesToVerify(const DecodeArgs& args) {
+namespace {
+
+// The command line's captures, then --from-list's: every shard's.
+std::vector<std::string> allCaptures(const DecodeArgs& args) {
     std::vector<std::string> all = args.captures;
     if (!args.from_list.empty()) {
         auto listed = readCaptureList(args.from_list);
         all.insert(all.end(), listed.begin(), listed.end());
     }
-    return args.shard.empty() ? all : shardOf(all, parseShard(args.shard));
+    return all;
 }
+
+}  // namespace
 
 int runVerify(const DecodeArgs& args) {
     try {
         const std::string shard = args.shard.empty() ? "" : parseShard(args.shard).text();
         const VerifyPlan plan = planVerify(args);
         const Rules& rules = plan.rules;
-        const std::vector<std::string> captures = capturesToVerify(args);
+        const std::vector<std::string> named = allCaptures(args);
+        const std::vector<std::string> captures =
+            args.shard.empty() ? named : shardOf(named, parseShard(args.shard));
         if (captures.empty() && args.shard.empty())
             throw InputError("decode verify: no capture given");
         if (!args.junit.empty()) {
-            refuseOutputOnCapture("--junit", args.junit, captures);
+            refuseOutputOnInputs("--junit", args.junit, runInputs(args, named));
             checkWritable(args.junit);  // before a long batch, not after
         }
 

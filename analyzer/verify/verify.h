@@ -8,9 +8,6 @@ namespace busdecode {
 
 int runVerify(const DecodeArgs& args);
 
-// The command line's captures, then --from-list's, then only --shard's slice of them.
-std::vector<std::string> capturesToVerify(const DecodeArgs& args);
-
 // What a verify run decodes with: the rules, the decoders they and the arguments choose,
 // and how captures are opened. Throws InputError (bad rules, decoder, option).
 struct VerifyPlan {

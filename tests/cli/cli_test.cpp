@@ -229,7 +229,51 @@ INSTANTIATE_TEST_SUITE_P(
         BadInput{{"@", "--proto", "spi", "--threads", "3"},
                  "--threads 3: expected 1 (read and decode on one thread) or 2"},
         BadInput{{"@"}, "no decoder chosen"}, BadInput{{"--proto", "spi"}, "no capture given"},
-        BadInput{{"@", "--proto", "spi", "--bogus"}, "bogus"}));
+        BadInput{{"@", "--proto", "spi", "--bogus"}, "bogus"},
+        BadInput{{"@", "--proto", "spi", "--report", "a.txt", "--report", "b.txt"},
+                 "--report is given 2 times: it takes one value"},
+        BadInput{{"@", "--proto", "spi", "--report", ""}, "--report: the file name is empty"},
+        BadInput{{"", "--proto", "spi"}, "a capture's name is empty"},
+        BadInput{{"verify", "@", "--report", "r.txt"},
+                 "decode verify: --report belongs to plain 'decode'"},
+        BadInput{{"verify", "@", "--format", "jsonl"},
+                 "decode verify: --format belongs to plain 'decode'"},
+        BadInput{{"@", "--proto", "spi", "--lcm", "nosuch://x"},
+                 "--lcm: cannot open LCM URL 'nosuch://x': LCM provider \"nosuch\" not found"},
+        BadInput{{"@", "--proto", "spi", "--lcm", "udpm://239.255.76.67:99999"},
+                 "LCM URL 'udpm://239.255.76.67:99999': Bad multicast port"}));
+
+TEST(Cli, JsonlIsUtf8WhateverTheCaptureHolds) {
+    // A $date in Latin-1 and a signal name with a byte that is never UTF-8.
+    const auto path = writeTemp("latin1.vcd",
+                                "$date 29 d\xE9"
+                                "cembre $end\n$timescale 1 ns $end\n"
+                                "$var wire 1 ! tx\xFF $end\n$enddefinitions $end\n#0 1!\n#10 0!\n");
+    auto r = runDecode({path, "--proto", "uart", "--map", "tx=0", "--format", "jsonl"});
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(r.out.find('\xE9'), std::string::npos);
+    EXPECT_EQ(r.out.find('\xFF'), std::string::npos);
+    EXPECT_NE(r.out.find("d\xEF\xBF\xBD"
+                         "cembre"),
+              std::string::npos)
+        << r.out;
+    for (const auto& line : splitLines(r.out)) {
+        QJsonParseError error;
+        QJsonDocument::fromJson(QByteArray::fromStdString(line), &error);
+        EXPECT_EQ(error.error, QJsonParseError::NoError) << line;
+    }
+}
+
+TEST(Cli, TimesPastWhatNanosecondsHoldAreAnError) {
+    // At 1 s a tick, 10^10 ticks are 317 years: start_ns would not fit 64 bits.
+    const auto path = writeTemp("centuries.vcd",
+                                "$timescale 1 s $end\n$var wire 1 ! tx $end\n$enddefinitions $end\n"
+                                "#0 1!\n#5 0!\n#10000000000 1!\n");
+    auto r = runDecode({path, "--proto", "uart", "--format", "jsonl"});
+    EXPECT_EQ(r.status, 2);
+    EXPECT_EQ(countLines(r.err), 1) << r.err;
+    EXPECT_NE(r.err.find(path + ":6: time beyond 4611686018 ticks"), std::string::npos) << r.err;
+}
 
 TEST(Cli, MalformedVcdNamesFileAndLine) {
     const auto path = writeTemp(

@@ -8,6 +8,8 @@
 #include <unistd.h>
 
 #include <filesystem>
+#include <tuple>
+#include <vector>
 
 #include "spi_vcd.h"
 #include "support/paths.h"
@@ -165,6 +167,74 @@ TEST(OutputSafety, ReportOnTheCaptureIsRefused) {
     EXPECT_EQ(v.err, "decode verify: --junit " + capture + ": is the capture " + capture +
                          ", not an output\n");
     EXPECT_EQ(readFile(capture), before);
+}
+
+TEST(OutputSafety, JunitOnTheRulesOrTheListIsRefused) {
+    const std::string capture = spiCapture("listed.vcd", 3, 10'000);
+    const std::string rules = tempDir() + "/own_rules.toml";
+    writeFile(rules, readFile(spiRules()));
+    const std::string list = tempDir() + "/captures.txt";
+    writeFile(list, capture + "\n");
+    for (const auto& [args, junit, what] :
+         {std::tuple<std::string, std::string, std::string>{shellQuote(capture), rules,
+                                                            "rules file"},
+          {"--from-list " + shellQuote(list), list, "capture list"}}) {
+        const std::string before = readFile(junit);
+        const RunResult r = runCommand(decode() + " verify " + args + " --rules " +
+                                       shellQuote(rules) + " --junit " + shellQuote(junit));
+        EXPECT_EQ(r.status, 2);
+        EXPECT_EQ(r.err, "decode verify: --junit " + junit + ": is the " + what + " " + junit +
+                             ", not an output\n");
+        EXPECT_EQ(readFile(junit), before);
+    }
+}
+
+TEST(OutputSafety, LcmLogOnTheCaptureIsRefused) {
+    const std::string capture = spiCapture("logged.vcd", 3, 10'000);
+    const std::string before = readFile(capture);
+    const RunResult r = runCommand(decode() + " " + shellQuote(capture) + " --proto spi --lcm " +
+                                   shellQuote("file://" + capture + "?mode=w"));
+    EXPECT_EQ(r.status, 2);
+    EXPECT_EQ(r.err,
+              "decode: --lcm " + capture + ": is the capture " + capture + ", not an output\n");
+    EXPECT_EQ(readFile(capture), before);
+}
+
+TEST(OutputSafety, TwoOutputsOnOneFileAreRefused) {
+    const std::string log = tempDir() + "/both.out";
+    const RunResult r =
+        runCommand(decode() + " " + shellQuote(smallCapture()) + " --proto spi --report " +
+                   shellQuote(log) + " --lcm " + shellQuote("file://" + log + "?mode=w"));
+    EXPECT_EQ(r.status, 2);
+    EXPECT_EQ(r.err, "decode: --lcm " + log + ": --report writes there too\n");
+    EXPECT_FALSE(fs::exists(log));
+}
+
+TEST(OutputSafety, ReportsOfSeveralCapturesOnADeviceAreWrittenThrough) {
+    const std::string dir = tempDir() + "/device_reports";
+    fs::create_directories(dir);
+    const std::string null = deviceNode("device_reports/null", 3);
+    if (null.empty()) GTEST_SKIP() << "mknod needs root";
+    const RunResult r = runCommand(decode() + " " + shellQuote(smallCapture()) + " " +
+                                   shellQuote(spiCapture("second.vcd", 3, 10'000)) +
+                                   " --proto spi --report " + shellQuote(null) + " >/dev/null");
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(typeOf(null), S_IFCHR);
+    std::vector<std::string> made;  // no "null-words.vcd" beside the device
+    for (const auto& entry : fs::directory_iterator(dir))
+        made.push_back(entry.path().filename().string());
+    EXPECT_EQ(made, std::vector<std::string>{"null"});
+}
+
+TEST(OutputSafety, PathsThatAreNotUtf8AreUsedAsGiven) {
+    // A Latin-1 name ("café.vcd", "ré.txt") must not turn into U+FFFD on the way.
+    const std::string capture = tempDir() + "/caf\xE9.vcd";
+    writeFile(capture, readFile(smallCapture()));
+    const std::string report = tempDir() + "/r\xE9.txt";
+    const RunResult r = runCommand(decode() + " " + shellQuote(capture) + " --proto spi --report " +
+                                   shellQuote(report) + " >/dev/null");
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(readFile(report).rfind("busdecode report\n", 0), 0u);
 }
 
 }  // namespace
