@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "core/number_text.h"
+#include "core/utf8.h"
 
 namespace busdecode {
 
@@ -15,7 +16,8 @@ namespace {
 
 void appendJsonString(std::string& out, const std::string& s) {
     out += '"';
-    for (unsigned char c : s) {
+    for (std::size_t i = 0; i < s.size(); ++i) {
+        const auto c = static_cast<unsigned char>(s[i]);
         switch (c) {
             case '"':
                 out += "\\\"";
@@ -35,8 +37,10 @@ void appendJsonString(std::string& out, const std::string& s) {
             default:
                 if (c < 0x20)
                     out += fmt::format("\\u{:04x}", c);
-                else
+                else if (c < 0x80)
                     out += char(c);
+                else
+                    i += appendUtf8OrReplacement(out, s, i) - 1;
         }
     }
     out += '"';

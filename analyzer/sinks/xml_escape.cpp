@@ -1,11 +1,14 @@
 #include "xml_escape.h"
 
+#include "core/utf8.h"
+
 namespace busdecode {
 
 std::string xmlEscape(const std::string& s) {
     std::string out;
     out.reserve(s.size());
-    for (unsigned char c : s) {
+    for (std::size_t i = 0; i < s.size(); ++i) {
+        const auto c = static_cast<unsigned char>(s[i]);
         switch (c) {
             case '&':
                 out += "&amp;";
@@ -30,7 +33,10 @@ std::string xmlEscape(const std::string& s) {
                 break;
             default:
                 if (c < 0x20) continue;  // not allowed in XML 1.0
-                out += char(c);
+                if (c < 0x80)
+                    out += char(c);
+                else
+                    i += appendUtf8OrReplacement(out, s, i) - 1;
         }
     }
     return out;
