@@ -84,6 +84,9 @@ private:
     Tick checkedTick(std::uint64_t t) const {
         if (t > std::uint64_t(kMaxEdgeTick))
             throw InputError(fmt::format("{}: time beyond 2^55 - 1 ticks ({})", name_, t));
+        if (t > std::uint64_t(lastTickOf(tb_)))
+            throw InputError(fmt::format(
+                "{}: time {} beyond what times in ns can hold at this timescale", name_, t));
         return Tick(t);
     }
 

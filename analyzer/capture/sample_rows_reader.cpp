@@ -33,7 +33,8 @@ public:
     SampleRowsReader(std::unique_ptr<TextSource> src, SampleColumns c, double rate_hz)
         : src_(std::move(src)),
           c_(std::move(c)),
-          tb_(rowTimebase(src_->name(), c_.dialect, rate_hz)) {}
+          tb_(rowTimebase(src_->name(), c_.dialect, rate_hz)),
+          last_row_(lastTickOf(tb_)) {}
 
     const std::vector<SignalInfo>& signals() const override { return c_.signals; }
     Timebase timebase() const override { return tb_; }
@@ -103,8 +104,10 @@ private:
         if (fields_.size() != c_.fields)
             throw InputError(src_->at(fmt::format("{}: a row of {} fields, the first had {}",
                                                   c_.dialect, fields_.size(), c_.fields)));
-        if (rows_ >= std::uint64_t(kMaxEdgeTick))
-            throw InputError(src_->at(c_.dialect + ": more than 2^55 rows"));
+        if (rows_ >= std::uint64_t(last_row_))
+            throw InputError(src_->at(fmt::format(
+                "{}: more than {} rows, past 2^55 or what times in ns can hold at this rate",
+                c_.dialect, last_row_)));
         ++rows_;
         for (std::size_t i = 0; i < lines_.size(); ++i) {
             const int s = lines_[i].signal;
@@ -174,6 +177,7 @@ private:
     std::unique_ptr<TextSource> src_;
     SampleColumns c_;
     Timebase tb_;
+    Tick last_row_;
     std::vector<LineRef> lines_;
     std::vector<std::uint8_t> levels_, row_levels_;
     std::vector<std::string_view> fields_;

@@ -118,8 +118,11 @@ public:
             const std::size_t words = (len_ - pos_) / unit_;
             // Sample indices are ticks, and an Edge holds 2^55 of them: centuries of
             // decompression away, but a crafted session must not wrap them.
-            if (sample_ + words > std::uint64_t(kMaxEdgeTick))
-                throw InputError(fmt::format("{}: more than 2^55 samples", name_));
+            if (sample_ + words > std::uint64_t(lastTickOf(tb_)))
+                throw InputError(fmt::format(
+                    "{}: more than {} samples, past 2^55 or what times in ns can hold at this "
+                    "samplerate",
+                    name_, lastTickOf(tb_)));
             std::size_t k = scanPacked(p, words, out, full);
             p += k * unit_;
             for (; k < words && out <= full; ++k, p += unit_) {

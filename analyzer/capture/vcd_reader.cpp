@@ -272,6 +272,8 @@ private:
           unkept_code_(o.unkept_code_),
           start_(o.start_),
           time_digits_(o.time_digits_),
+          last_tick_(o.last_tick_),
+          fast_digits_(o.fast_digits_),
           vivado_(o.vivado_),
           first_step_(o.first_step_) {
         scalar1_.assign(o.scalar1_.size(), 0);
@@ -388,6 +390,7 @@ private:
                                    unkept_ids_->end());
                 unkept_ids_->shrink_to_fit();
                 if (opts_.rate_hz > 0) rateOverridesTimescale();
+                limitTicks();
                 break;
             } else if (tok == "$timescale") {
                 parseTimescale(blockTokens(tok, line), line);
@@ -421,6 +424,17 @@ private:
         const SampleRate r = sampleRateOf(opts_.rate_hz);
         if (!r.timebase) throw InputError(fmt::format("--rate {}: {}", opts_.rate_hz, r.problem));
         tb_ = *r.timebase;
+    }
+
+    // The last time this timebase allows (lastTickOf()), and the longest times fastRun()
+    // may take unchecked: all of its 15 digits but where a coarse $timescale makes fewer
+    // the limit.
+    void limitTicks() {
+        last_tick_ = lastTickOf(tb_);
+        fast_digits_ = 0;
+        for (Tick all_nines = 9; fast_digits_ < 15 && all_nines <= last_tick_;
+             all_nines = all_nines * 10 + 9)
+            ++fast_digits_;
     }
 
     void skipBlock() {
@@ -708,6 +722,11 @@ private:
         // digits, the fast loop's, are below it.
         if (overflow || t > std::uint64_t(kMaxEdgeTick))
             fail("time beyond 2^55 - 1 ticks (36028797018963967)");
+        if (t > std::uint64_t(last_tick_))
+            fail(
+                fmt::format("time beyond {} ticks: 146 years at this $timescale, past what "
+                            "times in ns can hold",
+                            last_tick_));
         p_ = q;
         const Tick tt = Tick(t);
         if (!seen_time_) {
@@ -993,8 +1012,11 @@ private:
         // written): each switch is one more call here.
         static constexpr std::array<TimesOf, 16> kTimesOf =
             timesOfTable(std::make_index_sequence<16>());
-        while (const int digits = (this->*kTimesOf[time_digits_])(at))
+        if (time_digits_ > fast_digits_) time_digits_ = 1;
+        while (const int digits = (this->*kTimesOf[time_digits_])(at)) {
+            if (digits > fast_digits_) break;  // takeTime() checks it against last_tick_
             time_digits_ = digits;
+        }
         edges.resize(std::size_t(at.out - edges.data()));
         p_ = at.p;
         line_ = at.line;
@@ -1054,7 +1076,9 @@ private:
     bool initial_done_ = false;
     bool done_ = false;
     Tick start_ = 0, cur_ = 0, end_ = 0;
-    int time_digits_ = 1;               // fastRun()'s loop: for times of this many digits
+    int time_digits_ = 1;            // fastRun()'s loop: for times of this many digits
+    Tick last_tick_ = kMaxEdgeTick;  // limitTicks()
+    int fast_digits_ = 15;
     std::uint64_t unknown_states_ = 0;  // x z u w - on selected lines (VcdTokenState)
     bool vivado_ = false;               // $version names Vivado
     Tick first_step_ = 0;               // from the first timestamp to the second (0: none)

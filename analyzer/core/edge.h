@@ -22,6 +22,15 @@ inline constexpr bool edgeTickFits(Tick t) {
     return t >= kMinEdgeTick && t <= kMaxEdgeTick;
 }
 
+// The last tick a reader may hand on in timebase `tb`: kMaxEdgeTick, or less where the
+// tick's time in ns would pass half of an int64 (146 years, with a $timescale of 1 s or a
+// --rate below 1 Hz), so that no event's start_ns or end_ns is clamped without a word.
+inline constexpr Tick lastTickOf(const Timebase& tb) {
+    if (tb.num <= 0 || tb.den <= 0) return kMaxEdgeTick;
+    const __int128 last = __int128(INT64_MAX / 2) * tb.den / (__int128(tb.num) * 1'000'000'000);
+    return last < kMaxEdgeTick ? Tick(last) : kMaxEdgeTick;
+}
+
 // One edge in 8 bytes, not 16: the reading thread writes every edge and the decoding
 // thread reads it on the other core, and moving the blocks between the two cores' caches
 // cost time in proportion to their bytes (bench/README.md, "Edges in 8 bytes"). Read the

@@ -498,6 +498,16 @@ void Session::abandonWhenStopped() {
     impl_->abandon_when_stopped = true;
 }
 
+namespace {
+
+// A capture whose times in ns would not fit (readers that know the line say it first).
+std::string timeTooLate(const std::string& file, Tick t, Tick last) {
+    return fmt::format("{}: time {} ticks beyond {}, past what times in ns can hold", file, t,
+                       last);
+}
+
+}  // namespace
+
 void Session::run() {
     Impl& im = *impl_;
     CaptureReader& reader = *im.reader;
@@ -517,7 +527,10 @@ void Session::run() {
     EdgeBlock block;
     block.edges.reserve(kEdgeBlockSize);
     std::uint64_t edges = 0;
+    const Tick last_tick = lastTickOf(reader.timebase());
     while (!im.stopped() && reader.next(block)) {
+        if (!block.edges.empty() && block.edges.back().t > last_tick)
+            throw InputError(timeTooLate(facts_.file, block.edges.back().t, last_tick));
         edges = decodeBlock(block, edges);
         facts_.edges = edges;
         facts_.acquisition = reader.acquisition();
@@ -531,6 +544,7 @@ void Session::run() {
     }
     // Drain the reader's end (a stopped follow has no end tick yet).
     facts_.end = im.stopped() ? im.now : std::max(reader.endTick(), im.now);
+    if (facts_.end > last_tick) throw InputError(timeTooLate(facts_.file, facts_.end, last_tick));
     finishDecoders();
     facts_.bytes = reader.bytesRead();
     facts_.acquisition = reader.acquisition();

@@ -42,10 +42,6 @@ namespace busdecode::fuzz {
 
 namespace {
 
-// Times stay within what an Edge holds (2^55 - 1 ticks): readers refuse nothing below
-// that, and decoders add timeouts to edge times.
-constexpr Tick kMaxTick = kMaxEdgeTick;
-
 [[noreturn]] void failure(const std::string& what) {
     throw HarnessFailure(what);
 }
@@ -308,14 +304,16 @@ void runDecoderTarget(const std::string& id, const std::uint8_t* data, std::size
     static const char* kGlitch[] = {nullptr, "5", "100", "1e6"};
     if (const char* g = kGlitch[(flags >> 4) & 3]) req.options["glitch_ns"] = g;
 
-    // Edges.
+    // Edges, within what readers hand on (lastTickOf: what an Edge holds, and times in ns
+    // an int64 holds); decoders add timeouts to edge times.
+    const Tick max_tick = lastTickOf(w.timebase);
     std::vector<std::uint8_t> level(w.initial);
     Tick t = start;
     while (!in.empty() && nlines > 0) {
         const std::uint8_t b = in.byte();
         const std::uint32_t line = std::uint32_t((b & 7) % nlines);
         const std::uint64_t d = deltaOf(b >> 5, in);
-        t = (d >= std::uint64_t(kMaxTick - t)) ? kMaxTick : t + Tick(d);
+        t = (d >= std::uint64_t(max_tick - t)) ? max_tick : t + Tick(d);
         const std::uint8_t lv = (b & 8) ? ((b >> 4) & 1) : std::uint8_t(!level[line]);
         level[line] = lv;
         w.edges.push_back({t, line, lv});
