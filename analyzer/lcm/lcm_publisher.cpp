@@ -2,8 +2,12 @@
 
 #include <fmt/format.h>
 
+#include <unistd.h>
+
+#include <cctype>
 #include <chrono>
 #include <condition_variable>
+#include <cstdio>
 #include <cstdlib>
 #include <deque>
 #include <lcm/lcm-cpp.hpp>
@@ -38,20 +42,53 @@ using Item = std::variant<EventItem, StatusItem>;
 
 }  // namespace
 
+namespace {
+
+// LCM prints why a URL failed ("Error: Bad multicast port ...") on stderr itself; its
+// words are caught here to go into the run's one line of error.
+std::shared_ptr<lcm::LCM> openCatchingItsMessage(const std::string& url, std::string& message) {
+    std::fflush(stderr);
+    std::FILE* caught = std::tmpfile();
+    const int saved = caught ? ::dup(STDERR_FILENO) : -1;
+    if (saved >= 0) ::dup2(::fileno(caught), STDERR_FILENO);
+    auto lc = std::make_shared<lcm::LCM>(url);
+    if (saved >= 0) {
+        std::fflush(stderr);
+        ::dup2(saved, STDERR_FILENO);
+        ::close(saved);
+        std::rewind(caught);
+        char line[512] = {};
+        while (std::fgets(line, sizeof line, caught))  // the last line: the failure
+            if (line[0] != '\n') message = line;
+    }
+    if (caught) std::fclose(caught);
+    if (message.rfind("Error: ", 0) == 0) message.erase(0, 7);
+    while (!message.empty() && std::isspace(static_cast<unsigned char>(message.back())))
+        message.pop_back();
+    return lc;
+}
+
+}  // namespace
+
 std::shared_ptr<lcm::LCM> openLcm(const std::string& url) {
     const std::string shown = url.empty() ? kDefaultUrl : url;
-    auto lc = std::make_shared<lcm::LCM>(url);
-    if (!lc->good()) {
+    std::string why;
+    auto lc = openCatchingItsMessage(url, why);
+    // LCM 1.4's tcpq:// without a server stays good() with no socket, and waiting on that
+    // aborts the process (FD_SET of -1).
+    const bool unconnected = shown.rfind("tcpq://", 0) == 0 && lc->good() && lc->getFileno() < 0;
+    if (!lc->good() || unconnected) {
         std::string hint;
-        if (shown.rfind("udpm://", 0) == 0)
+        if (shown.rfind("udpm://", 0) == 0 && why.rfind("Bad ", 0) != 0)
             hint =
                 " (udpm needs a multicast route; on a machine without a network: "
                 "`ip link set lo multicast on; ip route add 224.0.0.0/4 dev lo`)";
-        else
+        else if (shown.rfind("udpm://", 0) != 0)
             hint =
                 " (LCM URLs look like udpm://239.255.76.67:7667?ttl=0, file://log.lcm?mode=w, "
                 "memq://)";
-        throw InputError(fmt::format("--lcm: cannot open LCM URL '{}'{}", shown, hint));
+        throw InputError(fmt::format("--lcm: cannot open LCM URL '{}'{}{}", shown,
+                                     why.empty() ? "" : ": " + why, hint));
     }
     return lc;
 }
