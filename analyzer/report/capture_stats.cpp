@@ -24,6 +24,14 @@ bool isActiveLowFlag(const std::string& key) {
     return key == "nE" || key == "nW";
 }
 
+// A position as received in Gray code (a TMC8100 raw_position reply, whose binary twin
+// follows it): counted with the binary ones, it would make steps of thousands of counts.
+bool isGrayWord(const Event& e) {
+    const Value* meaning = e.get("meaning");
+    return meaning && std::holds_alternative<std::string>(*meaning) &&
+           std::get<std::string>(*meaning) == "raw_position";
+}
+
 }  // namespace
 
 bool isTimingField(const std::string& key) {
@@ -136,19 +144,30 @@ GroupStats& CaptureStats::group(const Event& e) {
     return groups_.back();
 }
 
+void CaptureStats::addPause(GroupStats& g, const Event& e) {
+    const Value* line = e.get("line");
+    const std::string name = line && std::holds_alternative<std::string>(*line)
+                                 ? std::get<std::string>(*line)
+                                 : std::string();
+    auto it = std::find_if(g.line_ends.begin(), g.line_ends.end(),
+                           [&](const auto& l) { return l.first == name; });
+    if (it == g.line_ends.end()) {
+        g.line_ends.emplace_back(name, e.end);
+        return;
+    }
+    // Events that overlap the ones before (the register accesses one control frame
+    // sequence carries, spanning the same frames) have no pause between them.
+    if (e.start >= it->second) g.pause_ns.add(facts_.timebase.toNsF(double(e.start - it->second)));
+    it->second = std::max(it->second, e.end);
+}
+
 void CaptureStats::add(const Event& e) {
     const Timebase& tb = facts_.timebase;
     if (signal_.add(e, tb)) return;
     GroupStats& g = group(e);
-    if (g.count == 0) {
-        g.first_start = e.start;
-    } else if (e.start >= g.last_end) {
-        // Events that overlap the ones before (the register accesses one control frame
-        // sequence carries, spanning the same frames) have no pause between them.
-        g.pause_ns.add(tb.toNsF(double(e.start - g.last_end)));
-    }
+    if (g.count == 0) g.first_start = e.start;
+    addPause(g, e);
     ++g.count;
-    g.last_end = std::max(g.last_end, e.end);
     ++total_events_;
 
     for (const auto& f : e.fields) {
@@ -165,7 +184,7 @@ void CaptureStats::add(const Event& e) {
     }
 
     const std::string& inst = g.instance;
-    if (const Value* pos = e.get("position"); pos && isNumber(*pos))
+    if (const Value* pos = e.get("position"); pos && isNumber(*pos) && !isGrayWord(e))
         addPosition(inst, e, asDouble(*pos));
 
     if (e.type == "register") {

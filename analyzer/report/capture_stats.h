@@ -56,10 +56,13 @@ struct GroupStats {
         std::uint64_t false_count = 0, true_count = 0;
     };
     std::vector<std::pair<std::string, FlagCount>> flags;
-    // From the end of the events so far to the start of the next, for events that start
-    // after that end (overlapping events have no pause between them).
+    // From the end of the events so far to the start of the next on the same line (a
+    // UART's rx and tx each have their own), for events that start after that end
+    // (overlapping events have no pause between them).
     QuantileSketch pause_ns;
-    Tick first_start = 0, last_end = 0;
+    Tick first_start = 0;
+    // The latest end so far on each line (the event's `line` field; "" without one).
+    std::vector<std::pair<std::string, Tick>> line_ends;
 
     QuantileSketch& timingField(const std::string& key);
     FlagCount& flag(const std::string& key);
@@ -156,6 +159,7 @@ private:
     GroupStats& group(const Event& e);
     void noteInstance(const std::string& instance);
     void addPosition(const std::string& inst, const Event& e, double value);
+    void addPause(GroupStats& g, const Event& e);
 
     CaptureFacts facts_;
     SignalSection signal_;

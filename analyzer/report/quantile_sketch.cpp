@@ -65,8 +65,9 @@ double QuantileSketch::quantile(double q) const {
     if (count_ == 0) return std::numeric_limits<double>::quiet_NaN();
     if (q <= 0) return min_;
     if (q >= 1) return max_;
-    // The value of rank floor(q * (n - 1)), 0-based, as numpy's "lower" method.
-    const auto rank = std::uint64_t(q * double(count_ - 1));
+    // The nearest rank, ceil(q * n) (1-based): the smallest value with at least q of the
+    // values at or below it, so that a p99 of fewer than 100 values is their maximum.
+    const auto rank = std::uint64_t(std::max(1.0, std::ceil(q * double(count_)))) - 1;
     std::uint64_t seen = 0;
     double result = max_;
     bool found = false;

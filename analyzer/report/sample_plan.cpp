@@ -62,21 +62,43 @@ SamplePlan bisscPlan(const FrameWave& w, const Timebase& tb) {
     return p;
 }
 
+// How long after each sampling edge the SSI decoder read the data line: the delay_ns
+// option, or with delay_ns=auto the middle of each bit's window, from the measured data
+// delay as the decoder places it. (The event's delay_ns is the measured delay, which the
+// decoder applies only when asked to.)
+double ssiSampleOffset(const FrameWave& w, const Timebase& tb,
+                       const std::map<std::string, std::string>& o,
+                       const std::vector<double>& sampling) {
+    const std::string delay = option(o, "delay_ns", "0");
+    if (delay != "auto") return std::atof(delay.c_str());
+    const auto clock_hz = number(w.event, "clock_hz");
+    if (!clock_hz || *clock_hz <= 0) return 0;
+    const double period = 1e9 / *clock_hz;
+    const bool rising = option(o, "sample_edge", "falling") == "rising";
+    const auto launches = clockEdges(w, tb, "clk", 1);
+    double to_sample = 0;
+    std::size_t n = 0;
+    for (std::size_t k = 0; k + 1 < sampling.size() && k < launches.size(); ++k, ++n)
+        to_sample += sampling[k + 1] - launches[k];
+    to_sample = n > 0 ? to_sample / double(n) : (rising ? period : period / 2);
+    return number(w.event, "delay_ns").value_or(0) + period / 2 - to_sample;
+}
+
 SamplePlan ssiPlan(const FrameWave& w, const Timebase& tb,
                    const std::map<std::string, std::string>& o) {
     SamplePlan p{"clk", "data"};
     const int level = option(o, "sample_edge", "falling") == "rising" ? 1 : 0;
     auto edges = clockEdges(w, tb, "clk", level);
-    const double delay = number(w.event, "delay_ns").value_or(0);
+    const double offset = ssiSampleOffset(w, tb, o, edges);
     const bool lead = option(o, "lead", "0") == "1";
     // Without a lead bit the first sampling edge latches the word: no bit.
     if (!lead && !edges.empty()) {
-        p.delay_ns = delay;
+        p.delay_ns = number(w.event, "delay_ns").value_or(0);
         p.delay_from_ns = edges.front();
         edges.erase(edges.begin());
     }
     for (double t : edges)
-        p.t_ns.push_back(t + delay);
+        p.t_ns.push_back(t + offset);
     if (p.t_ns.empty()) return p;
     const std::size_t bits = std::size_t(std::max(1, std::atoi(option(o, "bits", "25").c_str())));
     const std::size_t gap = std::size_t(std::atoi(option(o, "ring_gap", "1").c_str()));

@@ -23,6 +23,19 @@ double niceStep(double span, int target) {
     return 10 * mag;
 }
 
+// Tick labels are 11 px monospace (html_report.cpp's style): 0.6 em a character.
+constexpr double kCharWidth = 6.6;
+
+// The widest y tick label's width, the values times `scale`.
+double widestTickLabel(const PlotAxis& axis, double scale) {
+    const auto ticks = niceTicks(axis.lo, axis.hi, 5);
+    const double step = ticks.size() > 1 ? ticks[1] - ticks[0] : 1;
+    std::size_t chars = 0;
+    for (double v : ticks)
+        chars = std::max(chars, tickText(v * scale, step * scale).size());
+    return double(chars) * kCharWidth;
+}
+
 }  // namespace
 
 std::vector<double> niceTicks(double lo, double hi, int target) {
@@ -63,6 +76,8 @@ SvgPlot::SvgPlot(std::string css_class, double width, double height, std::string
             a->lo -= 0.5;
             a->hi += 0.5;
         }
+    // Room for the y labels between the rotated axis title (to x = 24) and the frame.
+    L_ = std::max(L_, 29 + widestTickLabel(ya_, 1));
 }
 
 double SvgPlot::x(double v) const {
@@ -76,7 +91,8 @@ double SvgPlot::y(double v) const {
 void SvgPlot::secondYAxis(double scale, std::string title) {
     second_scale_ = scale;
     second_title_ = std::move(title);
-    R_ = 70;
+    // Room for its labels between the frame and its rotated title (from W - 22).
+    R_ = std::max(70.0, 27 + widestTickLabel(ya_, scale));
 }
 
 std::string SvgPlot::svg() const {

@@ -173,7 +173,10 @@ std::string formatDuration(double ns) {
     if (a >= 1e9) return fmt::format("{:.6f} s", ns / 1e9);
     if (a >= 1e6) return fmt::format("{:.3f} ms", ns / 1e6);
     if (a >= 1e3) return fmt::format("{:.3f} us", ns / 1e3);
-    return fmt::format("{:.0f} ns", ns);
+    if (a >= 1 || a == 0) return fmt::format("{:.0f} ns", ns);
+    // A VCD's timescale goes down to 1 fs.
+    if (a >= 1e-3) return fmt::format("{:.0f} ps", ns * 1e3);
+    return fmt::format("{:.0f} fs", ns * 1e6);
 }
 
 std::string eventToText(const Event& e, const Timebase& tb) {

@@ -81,6 +81,33 @@ TEST(CaptureStats, PositionRangeAndLargestJump) {
     EXPECT_EQ(p->max_jump_at, 600 * 100000);
 }
 
+TEST(CaptureStats, TmcGrayRepliesAreNotPositions) {
+    // The TMC8100 answers read_encoder with the word as received (Gray) and then converted
+    // to binary; only the binary one is a position.
+    CaptureStats s;
+    s.begin(test::facts(1'000'000'000));
+    auto reply = [](Tick t, const char* meaning, std::int64_t position) {
+        Event e;
+        e.proto = e.instance = "tmc8100";
+        e.type = "reply";
+        e.start = t;
+        e.end = t + 1000;
+        e.set("meaning", std::string(meaning)).set("position", position);
+        return e;
+    };
+    for (int i = 0; i < 6; ++i) {
+        const std::int64_t binary = 0x8000 + i;
+        s.add(reply(Tick(i) * 100000, "raw_position", binary ^ (binary >> 1)));
+        s.add(reply(Tick(i) * 100000 + 50000, "binary_position", binary));
+    }
+    const auto* p = s.position("tmc8100");
+    ASSERT_NE(p, nullptr);
+    EXPECT_EQ(p->count, 6u);
+    EXPECT_DOUBLE_EQ(p->min, 0x8000);
+    EXPECT_DOUBLE_EQ(p->max, 0x8005);
+    EXPECT_DOUBLE_EQ(p->max_jump, 1);
+}
+
 TEST(CaptureStats, MemoryStaysBoundedOnLongCaptures) {
     CaptureStats s;
     s.begin(test::facts(0));
@@ -118,6 +145,28 @@ TEST(CaptureStats, OverlappingEventsHaveNoPauseBetweenThem) {
     EXPECT_EQ(g.count, 3u);
     ASSERT_EQ(g.pause_ns.count(), 1u);
     EXPECT_DOUBLE_EQ(g.pause_ns.min(), 1'000'000);
+}
+
+TEST(CaptureStats, PausesAreMeasuredOnEachLineApart) {
+    // rx and tx bytes of 10 us interleave: each line pauses 40 us between its bytes,
+    // though the other line's byte sits in between.
+    CaptureStats s;
+    s.begin(test::facts(1'000'000'000));
+    for (int i = 0; i < 10; ++i)
+        for (const char* line : {"rx", "tx"}) {
+            Event e;
+            e.proto = e.instance = "uart";
+            e.type = "byte";
+            e.start = Tick(i) * 50'000 + (line[0] == 't' ? 20'000 : 0);
+            e.end = e.start + 10'000;
+            e.set("line", std::string(line)).set("value", std::int64_t(0x41));
+            s.add(e);
+        }
+    const auto& g = *s.groupsOf("uart")[0];
+    EXPECT_EQ(g.count, 20u);
+    EXPECT_EQ(g.pause_ns.count(), 18u);  // 9 on each line
+    EXPECT_DOUBLE_EQ(g.pause_ns.min(), 40'000);
+    EXPECT_DOUBLE_EQ(g.pause_ns.max(), 40'000);
 }
 
 TEST(CaptureStats, MomentsAreNotTimingFields) {

@@ -11,9 +11,10 @@
 namespace busdecode {
 namespace {
 
-double exactLower(std::vector<double> v, double q) {
+// The nearest-rank quantile: the ceil(q * n)-th smallest value.
+double exactNearestRank(std::vector<double> v, double q) {
     std::sort(v.begin(), v.end());
-    return v[std::size_t(q * double(v.size() - 1))];
+    return v[std::size_t(std::max(1.0, std::ceil(q * double(v.size())))) - 1];
 }
 
 TEST(QuantileSketch, EmptyHasNoQuantiles) {
@@ -37,7 +38,7 @@ TEST(QuantileSketch, QuantilesWithinHalfAPercentOfExact) {
     EXPECT_DOUBLE_EQ(s.min(), *std::min_element(values.begin(), values.end()));
     EXPECT_DOUBLE_EQ(s.max(), *std::max_element(values.begin(), values.end()));
     for (double q : {0.01, 0.25, 0.5, 0.9, 0.99}) {
-        const double exact = exactLower(values, q);
+        const double exact = exactNearestRank(values, q);
         EXPECT_NEAR(s.quantile(q), exact, exact * 0.0051) << "q=" << q;
     }
     EXPECT_NEAR(s.mean(), std::accumulate(values.begin(), values.end(), 0.0) / 20000, 1e-6);
@@ -51,7 +52,7 @@ TEST(QuantileSketch, NegativeZeroAndPositiveValuesKeepTheirOrder) {
         values.push_back(i * 10.0);
     }
     for (double q : {0.1, 0.3, 0.5, 0.7, 0.9}) {
-        const double exact = exactLower(values, q);
+        const double exact = exactNearestRank(values, q);
         EXPECT_NEAR(s.quantile(q), exact, std::fabs(exact) * 0.0051 + 1e-12) << "q=" << q;
     }
     EXPECT_DOUBLE_EQ(s.median(), 0.0);
@@ -69,7 +70,7 @@ TEST(QuantileSketch, MemoryStaysBoundedOverAHugeRange) {
     for (int e = -120; e <= 120; ++e)
         for (int k = 1; k < 10; ++k)
             values.push_back(k * std::pow(10.0, e / 10.0));
-    const double exact = exactLower(values, 0.99);
+    const double exact = exactNearestRank(values, 0.99);
     EXPECT_NEAR(s.quantile(0.99), exact, exact * 0.0051);
 }
 
@@ -93,6 +94,16 @@ TEST(QuantileSketch, SmallIntegersAreExact) {
     EXPECT_DOUBLE_EQ(s.quantile(0.25), 2.0);
     EXPECT_DOUBLE_EQ(s.quantile(0.75), 3.0);
     EXPECT_DOUBLE_EQ(s.quantile(0.88), 150.0);
+}
+
+TEST(QuantileSketch, HighQuantilesOfFewValuesReachTheMaximum) {
+    // Four clock rates: the 99th percentile is the fastest, not the third (nearest rank).
+    busdecode::QuantileSketch s;
+    for (double v : {500146.0, 499819.0, 500660.0, 500091.0})
+        s.add(v);
+    EXPECT_DOUBLE_EQ(s.quantile(0.99), 500660.0);
+    EXPECT_DOUBLE_EQ(s.quantile(0.75), 500146.0);
+    EXPECT_DOUBLE_EQ(s.median(), 500091.0);
 }
 
 TEST(QuantileSketch, ConstantValueIsExact) {

@@ -84,6 +84,50 @@ TEST(SamplePoints, TwoStopBitsSampledTwice) {
     EXPECT_EQ(p.segments.back().count, 2u);
 }
 
+// An SSI burst at 1 MHz (1 ns ticks): the clock idles high, falls at 10 us + k us and
+// rises 0.5 us later, 14 times; the decoder measured the data 700 ns late.
+FrameWave ssiBurst() {
+    FrameWave w;
+    w.event.proto = w.event.instance = "ssi";
+    w.event.type = "frame";
+    w.event.start = 10'000;
+    w.event.end = 24'000;
+    w.event.set("delay_ns", std::int64_t(700)).set("clock_hz", 1e6);
+    w.from = 9'000;
+    w.to = 25'000;
+    LineWave clk;
+    clk.role = clk.signal = "clk";
+    clk.level_before = 1;
+    for (int k = 0; k < 14; ++k) {
+        clk.edges.emplace_back(Tick(10'000 + 1000 * k), std::uint8_t(0));
+        clk.edges.emplace_back(Tick(10'500 + 1000 * k), std::uint8_t(1));
+    }
+    w.lines.push_back(clk);
+    return w;
+}
+
+TEST(SamplePoints, SsiSampledWhereTheDecoderReads) {
+    // The points follow the delay_ns option (auto: mid-window from the measured delay), not
+    // the measured delay the event reports, which the decoder applies only when told.
+    struct Case {
+        std::string edge, delay;
+        double offset_ns;
+    };
+    for (const auto& c :
+         {Case{"falling", "0", 0}, Case{"falling", "300", 300}, Case{"falling", "auto", 700},
+          Case{"rising", "0", 0}, Case{"rising", "auto", 200}}) {
+        SCOPED_TRACE(c.edge + " delay_ns=" + c.delay);
+        const SamplePlan p = planFor(
+            ssiBurst(), kNs, {{"bits", "13"}, {"sample_edge", c.edge}, {"delay_ns", c.delay}});
+        ASSERT_EQ(p.t_ns.size(), 13u);  // the first sampling edge latches: no bit
+        const double first_edge = c.edge == "rising" ? 11'500 : 11'000;
+        for (std::size_t i = 0; i < p.t_ns.size(); ++i)
+            EXPECT_NEAR(p.t_ns[i], first_edge + 1000.0 * double(i) + c.offset_ns, 1e-6) << i;
+        ASSERT_TRUE(p.delay_ns);
+        EXPECT_EQ(*p.delay_ns, 700);  // the marker still shows the measured delay
+    }
+}
+
 // The report of a real example capture: the sample points in each waveform whose title
 // holds `kind` ("uart byte at").
 std::vector<int> samplePointsPerWaveform(const std::vector<std::string>& args,
