@@ -50,9 +50,17 @@ PathLike = Union[str, "os.PathLike[str]"]
 
 def _text(value: Any) -> str:
     """An option value as the command line writes it (True -> "1")."""
+    if hasattr(value, "item") and callable(value.item) and not isinstance(value, str):
+        value = value.item()  # a numpy scalar (np.bool_, np.float32) as pandas hands it out
     if isinstance(value, bool):
         return "1" if value else "0"
     return str(value)
+
+
+def _path(path: PathLike) -> bytes:
+    """A path as the file system's bytes: a name that is not UTF-8 (a Latin-1 one from
+    os.listdir or Path.glob) reaches the same file."""
+    return os.fsencode(path)
 
 
 def _assignments(what: str, given: Assignments) -> List[str]:
@@ -80,6 +88,8 @@ def _thresholds(threshold: Threshold) -> List[str]:
         return []
     if isinstance(threshold, Mapping):
         return [f"{name}={_text(volts)}" for name, volts in threshold.items()]
+    if hasattr(threshold, "item") and callable(threshold.item):
+        threshold = threshold.item()  # a numpy scalar
     if isinstance(threshold, (int, float, str)) and not isinstance(threshold, bool):
         return [_text(threshold)]
     raise UsageError("threshold: expected volts (1.5) or a dict of SIGNAL: volts, "
@@ -94,7 +104,7 @@ def _capture_args(path: PathLike, proto: Protos, map: Assignments, opts: Assignm
                   rate: Optional[float], threads: int, threshold: Threshold = None,
                   hysteresis: Optional[float] = None) -> "_busdecode.CaptureArgs":
     args = _busdecode.CaptureArgs()
-    args.path = os.fspath(path)
+    args.path = _path(path)
     args.protos = _protos(proto)
     args.maps = _assignments("map", map)
     args.opts = _assignments("opts", opts)
@@ -176,7 +186,7 @@ def follow(path_or_stream: Union[PathLike, Any], proto: Protos, map: Assignments
     if hasattr(path_or_stream, "fileno"):
         path = f"/dev/fd/{path_or_stream.fileno()}"
     else:
-        path = os.fspath(path_or_stream)
+        path = path_or_stream
     return _busdecode.decode_events(
         _capture_args(path, proto, map, opts, rate, threads, threshold, hysteresis), True,
         False)
@@ -322,14 +332,17 @@ def verify(paths: Union[PathLike, Iterable[PathLike]], rules: PathLike, proto: P
         result = busdecode.verify(captures, rules="rules.toml")
         assert result.passed, result.summary
 
-    An unreadable capture is a failed CaptureResult with its .error; a bad rules file,
-    decoder or option raises InputError.
+    An unreadable capture is a failed CaptureResult with its .error, and so is one its
+    decoder could not be set up for (an option value out of range, no decoder chosen):
+    `decode verify` exits 2 for both. A bad rules file, or an unknown decoder or option
+    (they may come from the rules) raises InputError; a bad jobs, rate or threads
+    argument UsageError.
     """
-    if isinstance(paths, (str, os.PathLike)):
+    if isinstance(paths, (str, bytes, os.PathLike)):
         paths = [paths]
-    captures = [os.fspath(p) for p in paths]
+    captures = [_path(p) for p in paths]
     verdicts, totals = _busdecode.verify_captures(
-        captures, os.fspath(rules), _protos(proto), _assignments("map", map),
+        captures, _path(rules), _protos(proto), _assignments("map", map),
         _assignments("opts", opts), None if rate is None else float(rate), int(jobs),
         int(threads), _thresholds(threshold), _hysteresis(hysteresis))
     results = []
@@ -358,4 +371,6 @@ def subscribe(url: Optional[str] = None, channels: Union[None, str, Sequence[str
     """
     if isinstance(channels, str):
         channels = [channels]
+    if timeout is not None and not float(timeout) >= 0:
+        raise UsageError(f"timeout: expected seconds, 0 or more, not {timeout}")
     return _busdecode.subscribe_feed(url or "", list(channels or []), timeout, bool(until_end))

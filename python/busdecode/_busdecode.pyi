@@ -1,6 +1,6 @@
 """Type stubs of the compiled half of busdecode (use the functions of the package)."""
 
-from typing import Any, Dict, Iterator, List, Optional, Tuple
+from typing import Any, Dict, Iterator, List, Optional, Tuple, Union
 
 Event = Dict[str, Any]
 
@@ -14,7 +14,7 @@ class UsageError(Error):
     """A wrong call: unknown decoder, option, role or argument value."""
 
 class CaptureArgs:
-    path: str
+    path: Union[str, bytes]  # bytes: the file system's own (os.fsencode)
     protos: List[str]
     maps: List[str]
     opts: List[str]
@@ -45,7 +45,7 @@ def decoders() -> List[Dict[str, Any]]: ...
 def decode_events(args: CaptureArgs, follow: bool, realtime: bool) -> Events: ...
 def read_columns(args: CaptureArgs) -> Dict[str, List[Tuple[str, str, Any, Any]]]: ...
 def count_events(args: CaptureArgs, fields: bool = True) -> int: ...
-def verify_captures(captures: List[str], rules: str, protos: List[str], maps: List[str],
+def verify_captures(captures: List[Union[str, bytes]], rules: Union[str, bytes], protos: List[str], maps: List[str],
                     opts: List[str], rate: Optional[float], jobs: int,
                     threads: int, thresholds: List[str],
                     hysteresis: Optional[str]) -> Tuple[List[Dict[str, Any]], str]: ...

@@ -3,8 +3,14 @@
 // what they share: the errors and the decoder requests.
 #include <pybind11/pybind11.h>
 
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <exception>
+#include <mutex>
 #include <stdexcept>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "core/session.h"
@@ -40,6 +46,42 @@ void waitInterruptibly(Wait&& wait) {
         if (ready) return;
         if (PyErr_CheckSignals() != 0) throw pyb::error_already_set();
     }
+}
+
+// Runs `work(stop)` on a thread of its own while this one waits with the GIL released, so
+// that Ctrl-C raises KeyboardInterrupt at once (read(), verify()): `stop` is then set,
+// and the work, which polls it, is waited for before the exception goes on. The work's
+// own exception is rethrown here. `work` must not touch Python.
+template <class Work>
+void runInterruptibly(Work&& work) {
+    std::atomic<bool> stop{false};
+    std::exception_ptr error;
+    std::mutex mu;
+    std::condition_variable cv;
+    bool done = false;
+    std::thread worker([&] {
+        try {
+            work(stop);
+        } catch (...) {
+            error = std::current_exception();
+        }
+        const std::lock_guard<std::mutex> lock(mu);
+        done = true;
+        cv.notify_all();
+    });
+    try {
+        waitInterruptibly([&] {
+            std::unique_lock<std::mutex> lock(mu);
+            return cv.wait_for(lock, std::chrono::milliseconds(100), [&] { return done; });
+        });
+    } catch (...) {
+        stop = true;
+        pyb::gil_scoped_release nogil;
+        worker.join();
+        throw;
+    }
+    worker.join();
+    if (error) std::rethrow_exception(error);
 }
 
 void bindErrors(pyb::module_& m);

@@ -1,5 +1,7 @@
 #include "decode_args_py.h"
 
+#include <cmath>
+
 #include <fmt/format.h>
 
 #include "bindings.h"
@@ -9,7 +11,7 @@
 namespace busdecode::py {
 
 DecodeJob jobFor(const CaptureArgs& a, bool follow) {
-    if (a.rate && !(*a.rate > 0))
+    if (a.rate && !(*a.rate > 0 && std::isfinite(*a.rate)))
         throw UsageError(fmt::format("--rate {}: expected a positive number of Hz", *a.rate));
     if (a.threads != 1 && a.threads != 2)
         throw UsageError(fmt::format(

@@ -23,7 +23,8 @@ pyb::dict factsToPython(const CaptureFacts& f) {
     for (const auto& b : f.bindings)
         bindings.append(pyb::dict(pyb::arg("proto") = b.proto, pyb::arg("instance") = b.instance,
                                   pyb::arg("role") = b.role, pyb::arg("signal") = b.signal));
-    return pyb::dict(pyb::arg("file") = f.file, pyb::arg("format") = f.format,
+    return pyb::dict(pyb::arg("file") = pathToPython(f.file), pyb::arg("format") = f.format,
+                     pyb::arg("capture_start") = textToPython(f.capture_start),
                      pyb::arg("ns_per_tick") = f.timebase.nsPerTick(),
                      pyb::arg("protos") = f.protos, pyb::arg("bindings") = bindings,
                      pyb::arg("edges") = f.edges, pyb::arg("advice") = f.advice);
@@ -34,12 +35,17 @@ public:
     Events(DecodeJob job, bool live)
         : stream_(std::make_unique<EventStream>(std::move(job), live ? 1 : kBatch)) {
         waitInterruptibly([&] { return stream_->waitStarted(kPollMs); });
+        dict_.setCaptureStart(stream_->facts().capture_start);
     }
     ~Events() { close(); }
 
     pyb::dict next() {
+        // As a generator: one reader at a time (the wait below releases the GIL).
+        if (busy_) throw pyb::value_error("decode(): already being read on another thread");
         while (at_ >= batch_.size()) {
             if (!stream_) throw pyb::stop_iteration();
+            // list(decode(...)) iterates in C, where Python checks for Ctrl-C never.
+            if (PyErr_CheckSignals() != 0) throw pyb::error_already_set();
             at_ = 0;  // next() takes the batch back
             EventStream::Got got = EventStream::Got::Waiting;
             busy_ = true;
@@ -50,9 +56,14 @@ public:
                 });
             } catch (...) {
                 busy_ = false;
+                if (closing_) close();
                 throw;
             }
             busy_ = false;
+            if (closing_) {  // close() came from another thread while this one waited
+                close();
+                throw pyb::stop_iteration();
+            }
             if (got == EventStream::Got::End) {
                 facts_ = stream_->facts();
                 close();
@@ -62,16 +73,19 @@ public:
         return dict_(batch_[at_++]);
     }
     void close() {
+        if (busy_) {  // another thread waits in next(), filling batch_: it ends the iteration
+            closing_ = true;
+            if (stream_) stream_->stop();
+            return;
+        }
         batch_.clear();
         at_ = 0;
         if (!stream_) return;
-        if (busy_) {  // another thread waits in next(): it ends the iteration
-            stream_->stop();
-            return;
-        }
-        facts_ = stream_->facts();
+        // Taken out with the GIL held: another thread's next() then sees no stream.
+        std::unique_ptr<EventStream> stream = std::move(stream_);
+        facts_ = stream->facts();
         pyb::gil_scoped_release nogil;
-        stream_.reset();  // stops the decode and joins its thread
+        stream.reset();  // stops the decode and joins its thread
     }
     pyb::dict facts() { return factsToPython(stream_ ? stream_->facts() : facts_); }
 
@@ -79,7 +93,8 @@ private:
     std::unique_ptr<EventStream> stream_;
     std::vector<TimedEvent> batch_;
     std::size_t at_ = 0;
-    bool busy_ = false;  // next() waits with the GIL released
+    bool busy_ = false;     // next() waits with the GIL released
+    bool closing_ = false;  // close() while busy_: next() closes when it wakes
     DictMaker dict_;
     CaptureFacts facts_;
 };

@@ -84,10 +84,12 @@ private:
 
 class TableSink : public OutputSink {
 public:
+    void begin(const CaptureFacts& facts) override { capture_start = facts.capture_start; }
     void onEvent(const Event& e, const CaptureFacts& facts) override;
     bool readsSummaries() const override { return false; }  // columns are the fields
     // Tables by "proto/type", in the order their first events came.
     std::vector<Table> tables;
+    std::string capture_start;  // every row's, as jsonl has it on every line ("": none)
 
 private:
     std::unordered_map<std::string, std::size_t> index_;

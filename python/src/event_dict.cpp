@@ -29,7 +29,7 @@ pyb::object valueToPython(const Value& v) {
                 }
                 return pyb::float_(x);
             } else if constexpr (std::is_same_v<T, std::string>) {
-                return pyb::str(x);
+                return textToPython(x);
             } else {
                 pyb::list out(x.size());
                 for (std::size_t i = 0; i < x.size(); ++i)
@@ -49,10 +49,26 @@ void TimedEvent::set(const Event& e, std::int64_t start, std::int64_t end) {
     end_ns = end;
 }
 
+pyb::str textToPython(const std::string& s) {
+    PyObject* text = PyUnicode_DecodeUTF8(s.data(), Py_ssize_t(s.size()), "replace");
+    if (!text) throw pyb::error_already_set();
+    return pyb::reinterpret_steal<pyb::str>(text);
+}
+
+pyb::str pathToPython(const std::string& path) {
+    PyObject* text = PyUnicode_DecodeFSDefaultAndSize(path.data(), Py_ssize_t(path.size()));
+    if (!text) throw pyb::error_already_set();
+    return pyb::reinterpret_steal<pyb::str>(text);
+}
+
 pyb::str DictMaker::name(const std::string& s) {
     auto it = names_.find(s);
-    if (it == names_.end()) it = names_.emplace(s, pyb::str(s)).first;
+    if (it == names_.end()) it = names_.emplace(s, textToPython(s)).first;
     return it->second;
+}
+
+void DictMaker::setCaptureStart(const std::string& start) {
+    capture_start_ = start.empty() ? pyb::object() : pyb::object(textToPython(start));
 }
 
 PyObject* DictMaker::fieldKey(const std::string& key, std::size_t position) {
@@ -84,6 +100,7 @@ pyb::dict DictMaker::operator()(const TimedEvent& te) {
     if (!d) throw pyb::error_already_set();
     put(d.ptr(), proto_.ptr(), repeatedName(e.proto, last_proto_));
     put(d.ptr(), type_.ptr(), repeatedName(e.type, last_type_));
+    if (capture_start_) put(d.ptr(), capture_start_key_.ptr(), capture_start_.ptr());
     put(d.ptr(), start_ns_, pyb::int_(te.start_ns));
     put(d.ptr(), end_ns_, pyb::int_(te.end_ns));
     std::size_t position = 0;

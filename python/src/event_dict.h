@@ -20,6 +20,12 @@ namespace pyb = pybind11;
 // A field value as jsonl writes it.
 pyb::object valueToPython(const Value& v);
 
+// Text out of a capture as a str; bytes that are not UTF-8 become U+FFFD, as in jsonl.
+pyb::str textToPython(const std::string& s);
+// A file's name as os.fsdecode() makes it (bytes that are not UTF-8 as surrogates), so
+// that it opens the same file again.
+pyb::str pathToPython(const std::string& path);
+
 // What a dict is made of: an event's proto, type, fields and errors (not its summary),
 // with its times already in ns (the session's timebase applied).
 struct TimedEvent {
@@ -36,6 +42,9 @@ struct TimedEvent {
 class DictMaker {
 public:
     pyb::dict operator()(const TimedEvent& e);
+    // The capture's wall-clock start, put in every dict as jsonl puts it in every line
+    // ("" for none: no key).
+    void setCaptureStart(const std::string& start);
 
 private:
     pyb::str name(const std::string& s);
@@ -48,7 +57,8 @@ private:
     // The keys every event has, made once (with the GIL: DictMaker is made from Python).
     const pyb::str proto_ = pyb::str("proto"), type_ = pyb::str("type"),
                    start_ns_ = pyb::str("start_ns"), end_ns_ = pyb::str("end_ns"),
-                   errors_ = pyb::str("errors");
+                   errors_ = pyb::str("errors"), capture_start_key_ = pyb::str("capture_start");
+    pyb::object capture_start_;  // null: none
     std::pair<std::string, pyb::str> last_proto_, last_type_;
     std::unordered_map<std::string, pyb::str> names_;
     FieldOrder<pyb::str> keys_at_;

@@ -11,6 +11,7 @@
 
 #include "app/decode_args.h"
 #include "bindings.h"
+#include "capture/capture_events.h"
 #include "core/registry.h"
 #include "decode_args_py.h"
 #include "event_columns.h"
@@ -128,11 +129,21 @@ pyb::array errorColumn(const Table& t) {
     });
 }
 
-// The columns of `t`: its times, the fields the events gave, the declared fields no
-// event had, and the errors.
-pyb::list tableColumns(Table& t) {
+// What the decoder (or the capture layer, proto "capture") declares of t's events.
+const EventTypeSpec* declarationOf(const Table& t) {
+    if (t.proto == "capture") {
+        for (const auto& type : captureEventTypes())
+            if (type.type == t.type) return &type;
+        return nullptr;
+    }
     const DecoderFactory* decoder = Registry::instance().find(t.proto);
-    const EventTypeSpec* declared = decoder ? findEventType(decoder->info(), t.type) : nullptr;
+    return decoder ? findEventType(decoder->info(), t.type) : nullptr;
+}
+
+// The columns of `t`: its times, the capture's start (when the file gave one), the fields
+// the events gave, the declared fields no event had, and the errors.
+pyb::list tableColumns(Table& t, const std::string& capture_start) {
+    const EventTypeSpec* declared = declarationOf(t);
     auto declaredKind = [&](const std::string& key) {
         if (declared)
             for (const auto& f : declared->fields)
@@ -145,6 +156,12 @@ pyb::list tableColumns(Table& t) {
                                    pyb::none()));
     columns.append(
         pyb::make_tuple("end_ns", "int64", ownedArray(std::move(t.end_ns), "int64"), pyb::none()));
+    if (!capture_start.empty()) {
+        const pyb::str start = textToPython(capture_start);
+        columns.append(pyb::make_tuple(
+            "capture_start", "object",
+            objectArray(rows, [&](std::size_t) { return Py_NewRef(start.ptr()); }), pyb::none()));
+    }
     std::set<std::string> seen;
     for (auto& c : t.columns) {
         seen.insert(c.key);
@@ -158,24 +175,26 @@ pyb::list tableColumns(Table& t) {
     return columns;
 }
 
-pyb::dict tablesToPython(std::vector<Table>& tables) {
+pyb::dict tablesToPython(TableSink& sink) {
     pyb::dict out;
-    for (auto& t : tables)
-        out[pyb::str(t.proto + "/" + t.type)] = tableColumns(t);
+    for (auto& t : sink.tables)
+        out[pyb::str(t.proto + "/" + t.type)] = tableColumns(t, sink.capture_start);
     return out;
 }
 
-// A whole capture into `sink`, the GIL released: read_columns' decoding, and its floor's.
+// A whole capture into `sink`, the GIL released and Ctrl-C heard: read_columns'
+// decoding, and its floor's.
 void decodeWithoutGil(const CaptureArgs& a, OutputSink& sink) {
     const DecodeJob job = jobFor(a, false);
-    pyb::gil_scoped_release nogil;
-    decodeCapture(job.path, job.requests, job.open, {&sink});
+    runInterruptibly([&](const std::atomic<bool>& stop) {
+        decodeCapture(job.path, job.requests, job.open, {&sink}, false, &stop);
+    });
 }
 
 pyb::dict readColumns(const CaptureArgs& a) {
     TableSink sink;
     decodeWithoutGil(a, sink);
-    return tablesToPython(sink.tables);
+    return tablesToPython(sink);
 }
 
 // bench/python_read.py's floors: read_columns' decoding, each event counted and dropped,

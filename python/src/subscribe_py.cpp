@@ -48,12 +48,16 @@ public:
     }
 
     pyb::object next() {
+        // As a generator: one reader at a time (the wait below releases the GIL).
+        if (busy_) throw pyb::value_error("subscribe(): already being read on another thread");
         while (pending_.empty()) {
             if (ended_ || timedOut()) throw pyb::stop_iteration();
             {
+                busy_ = true;
                 pyb::gil_scoped_release nogil;  // the handlers touch no Python
                 lc_->handleTimeout(kPollMs);
             }
+            busy_ = false;
             if (PyErr_CheckSignals() != 0) throw pyb::error_already_set();
         }
         std::string json = std::move(pending_.front());
@@ -85,6 +89,7 @@ private:
     std::deque<std::string> pending_;
     std::chrono::steady_clock::time_point last_;
     bool ended_ = false;
+    bool busy_ = false;  // next() waits in handleTimeout() with the GIL released
 };
 
 }  // namespace

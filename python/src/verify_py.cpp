@@ -2,9 +2,14 @@
 // handed to Python as plain data (busdecode/__init__.py makes them objects).
 #include <pybind11/stl.h>
 
+#include <cmath>
+
+#include <fmt/format.h>
+
 #include "bindings.h"
 #include "core/options.h"
 #include "decode_args_py.h"
+#include "event_dict.h"
 #include "verify/batch.h"
 #include "verify/verify.h"
 
@@ -24,11 +29,12 @@ pyb::dict verdictToPython(const CaptureVerdict& v) {
     pyb::list outcomes;
     for (const auto& o : v.outcomes)
         outcomes.append(outcomeToPython(o));
-    pyb::object error = v.input_error ? pyb::object(pyb::str(v.error)) : pyb::none();
-    return pyb::dict(pyb::arg("capture") = v.capture, pyb::arg("passed") = v.passed(),
+    pyb::object error = v.input_error ? pyb::object(textToPython(v.error)) : pyb::none();
+    return pyb::dict(pyb::arg("capture") = pathToPython(v.capture), pyb::arg("passed") = v.passed(),
                      pyb::arg("error") = error, pyb::arg("rules") = outcomes,
                      pyb::arg("events") = v.events, pyb::arg("seconds") = v.seconds,
-                     pyb::arg("hints") = v.hints, pyb::arg("summary") = verdictLine(v));
+                     pyb::arg("hints") = v.hints,
+                     pyb::arg("summary") = textToPython(verdictLine(v)));
 }
 
 // (verdicts, summary line)
@@ -40,7 +46,13 @@ pyb::tuple verify(const std::vector<std::string>& captures, const std::string& r
     if (captures.empty()) throw UsageError("decode verify: no capture given");
     if (jobs < 0 || jobs > 256)
         throw UsageError("--jobs: expected a whole number from 0 (all cores) to 256");
-    if (rate && !(*rate > 0)) throw UsageError("--rate: expected a positive number of Hz");
+    if (rate && !(*rate > 0 && std::isfinite(*rate)))
+        throw UsageError(fmt::format("--rate {}: expected a positive number of Hz", *rate));
+    if (threads != 1 && threads != 2)
+        throw UsageError(fmt::format(
+            "--threads {}: expected 1 (read and decode on one thread) or 2 (read ahead on a "
+            "second)",
+            threads));
     DecodeArgs args;
     args.captures = captures;
     args.rules = rules;
@@ -55,17 +67,17 @@ pyb::tuple verify(const std::vector<std::string>& captures, const std::string& r
     args.thresholds = analog.thresholds;
     args.hysteresis = analog.hysteresis;
     std::vector<CaptureVerdict> verdicts;
-    {
-        pyb::gil_scoped_release nogil;
-        const VerifyPlan plan = planVerify(args);
+    runInterruptibly([&](const std::atomic<bool>& stop) {
+        VerifyPlan plan = planVerify(args);
+        plan.open.stop = &stop;
         BatchOptions batch;
         batch.jobs = jobs;
         verdicts = verifyCaptures(captures, plan.rules, plan.requests, plan.open, batch, nullptr);
-    }
+    });
     pyb::list out;
     for (const auto& v : verdicts)
         out.append(verdictToPython(v));
-    return pyb::make_tuple(out, summaryLine(verdicts));
+    return pyb::make_tuple(out, textToPython(summaryLine(verdicts)));
 }
 
 }  // namespace

@@ -30,6 +30,8 @@ CASES = [
     ("tmcl_rs485_9600.vcd", ["tmcl"], {}),
     ("uart_rxtx_9600_8n1.vcd", ["uart"], {}),
     ("uart_7e1_faults.csv", ["uart"], {}),
+    # A $date: every event carries capture_start.
+    ("uart_rxtx_overlapped_sigrok-cli.vcd", ["uart"], {"baud": 115200}),
 ]
 
 

@@ -73,6 +73,21 @@ def test_read_takes_the_threshold(scope_csv):
     assert list(tables["uart/byte"]["value"]) == list(TEXT)
 
 
+def test_signal_columns_are_typed_by_their_declaration(tmp_path):
+    # A line that stays high measures no edge: its rise and fall columns are all null, and
+    # still float64 as for a line with edges.
+    path = tmp_path / "scope_two.csv"
+    rows = ["x-axis,1,2", "second,Volt,Volt"]
+    rows += [f"{i * SAMPLE_S:.9E},{v:+.6E},{3.2:+.6E}" for i, v in enumerate(uart_volts(TEXT))]
+    path.write_text("\n".join(rows) + "\n")
+    for line, edges in (("1", True), ("2", False)):
+        sig = busdecode.read(path, proto="uart", map={"rx": line})["capture/signal"]
+        assert str(sig["rise_median_ns"].dtype) == "float64"
+        assert str(sig["fall_p99_ns"].dtype) == "float64"
+        assert str(sig["rises"].dtype) == "Int64"
+        assert sig["rise_median_ns"].isna().all() != edges
+
+
 def test_verify_takes_the_threshold(scope_csv, tmp_path):
     rules = tmp_path / "rules.toml"
     rules.write_text('[decode]\nproto = "uart"\nmap = { rx = "1" }\n\n'

@@ -143,6 +143,50 @@ def test_decode_of_many_batches_equals_the_cli_jsonl(tmp_path):
     assert events == cli_events(path, ["uart"], {"baud": 1000000})
 
 
+def test_one_iterator_is_read_by_one_thread_at_a_time(tmp_path):
+    # As a generator: a second thread reading the same iterator while the first waits for
+    # events gets ValueError, never a crash, and no event is lost or given twice.
+    import threading
+    data = bytes(range(256)) * 200
+    path = tmp_path / "uart.vcd"
+    write_uart_vcd(path, data)
+    it = busdecode.decode(path, proto="uart", opts={"baud": 1000000})
+    got, refused = [[], []], []
+
+    def read(i):
+        while True:
+            try:
+                got[i].append(next(it)["value"])
+            except StopIteration:
+                return
+            except ValueError as e:
+                refused.append(str(e))
+
+    threads = [threading.Thread(target=read, args=(i,)) for i in range(2)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    assert sorted(got[0] + got[1]) == sorted(data)
+    assert all(r == "decode(): already being read on another thread" for r in refused)
+
+
+def test_close_from_another_thread_ends_the_iteration(tmp_path):
+    # A watchdog or GUI thread stops a long decode while the main thread iterates.
+    import threading
+    path = tmp_path / "uart.vcd"
+    write_uart_vcd(path, bytes(range(256)) * 100)
+    for delay in (0, 0.001, 0.005, 0.02):
+        it = busdecode.decode(path, proto="uart", opts={"baud": 1000000})
+        timer = threading.Timer(delay, it.close)
+        timer.start()
+        values = [e["value"] for e in it]
+        timer.join()
+        assert values == list(bytes(range(256)) * 100)[:len(values)]
+        with pytest.raises(StopIteration):
+            next(it)
+
+
 def test_read_column_types():
     frames = busdecode.read(CAPTURES / "bissc_1mhz_26bit.vcd", proto="bissc")
     df = frames["bissc/frame"]

@@ -63,3 +63,36 @@ def test_bad_arguments_are_usage_errors():
         busdecode.decode(GOOD, proto="bissc", opts=["bits=26"])
     with pytest.raises(busdecode.UsageError):
         busdecode.verify(GOOD, rules=CAPTURES / "rules_bissc.toml", jobs=-1)
+    with pytest.raises(busdecode.UsageError, match=r"^--threads 3: expected 1"):
+        busdecode.verify(GOOD, rules=CAPTURES / "rules_bissc.toml", threads=3)
+    with pytest.raises(busdecode.UsageError, match=r"^--rate inf: expected a positive number"):
+        busdecode.decode(GOOD, proto="bissc", rate=float("inf"))
+    with pytest.raises(busdecode.UsageError, match=r"^timeout: expected seconds"):
+        busdecode.subscribe("memq://", timeout=float("nan"))
+
+
+def test_numpy_scalars_are_values_as_the_python_ones():
+    # pandas hands out numpy scalars: np.bool_(True) is gray=1, np.float32 a threshold.
+    np = pytest.importorskip("numpy")
+    capture = CAPTURES / "ssi_tmc8100_gray25.vcd"
+    want = list(busdecode.decode(capture, proto="ssi", opts={"gray": True, "bits": 25}))
+    got = list(busdecode.decode(capture, proto="ssi",
+                                opts={"gray": np.bool_(True), "bits": np.int64(25)}))
+    assert got == want
+    assert list(busdecode.decode(GOOD, proto="bissc", threshold=np.float32(1.5))) == \
+        list(busdecode.decode(GOOD, proto="bissc", threshold=1.5))
+
+
+def test_a_file_name_that_is_not_utf8(tmp_path):
+    # os.listdir and Path.glob give such a name as a str with surrogates.
+    name = tmp_path / "caf\udce9.vcd"
+    name.write_bytes(GOOD.read_bytes())
+    it = busdecode.decode(name, proto="bissc")
+    assert len(list(it)) == len(list(busdecode.decode(GOOD, proto="bissc")))
+    assert it.facts["file"] == str(name)
+    assert busdecode.verify([name], rules=CAPTURES / "rules_bissc.toml").captures[0].capture \
+        == str(name)
+    missing = tmp_path / "caf\udce9-gone.vcd"
+    with pytest.raises(busdecode.InputError) as raised:
+        busdecode.decode(missing, proto="bissc")
+    assert "caf\ufffd-gone.vcd: cannot open" in str(raised.value)

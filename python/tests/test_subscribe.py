@@ -30,6 +30,13 @@ def test_a_bad_url_raises_the_clis_error():
     assert str(raised.value).startswith("--lcm: cannot open LCM URL 'nosuch://x'")
 
 
+def test_a_tcpq_url_without_a_server_raises():
+    # LCM's tcpq:// stays "good" without a connection, and waiting on it aborted Python.
+    with pytest.raises(busdecode.InputError) as raised:
+        busdecode.subscribe("tcpq://127.0.0.1:1", timeout=1)
+    assert "Unable to connect to server" in str(raised.value)
+
+
 def test_a_bad_channel_pattern_is_a_usage_error():
     with pytest.raises(busdecode.UsageError):
         busdecode.subscribe("memq://", channels="DECODE_(")

@@ -1,0 +1,31 @@
+#include "capture_events.h"
+
+namespace busdecode {
+
+const std::vector<EventTypeSpec>& captureEventTypes() {
+    using K = FieldSpec::Kind;
+    static const std::vector<EventTypeSpec> types = {
+        {"signal",
+         "one per analog line: its levels, edge times and reversals",
+         {{"line", K::Text},
+          {"low_v", K::Number},
+          {"high_v", K::Number},
+          {"swing_v", K::Number},
+          {"threshold_v", K::Number},
+          {"hysteresis_v", K::Number},
+          {"rise_median_ns", K::Number},
+          {"rise_p99_ns", K::Number},
+          {"fall_median_ns", K::Number},
+          {"fall_p99_ns", K::Number},
+          {"rises", K::Int},
+          {"falls", K::Int},
+          {"overshoot_pct", K::Number},
+          {"reversals", K::Int}}},
+        {"pair_fault",
+         "a differential pair that stopped being complementary",
+         {{"pair", K::Text}, {"wire", K::Text}, {"working", K::Text}, {"kind", K::Text}}},
+    };
+    return types;
+}
+
+}  // namespace busdecode
