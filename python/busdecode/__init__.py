@@ -181,7 +181,9 @@ def follow(path_or_stream: Union[PathLike, Any], proto: Protos, map: Assignments
     it, and ends only when closed), "-" for standard input, or an open pipe or file
     object (anything with fileno(); the iterator ends when the writer closes it).
     Each event comes out as soon as it is decoded. Otherwise as decode(); stop with
-    close(), a `with` block, or Ctrl-C.
+    close(), a `with` block, or Ctrl-C. The call itself returns once the capture's
+    header has arrived (the decoders are bound to its signals then): start the writer
+    first, or on another thread.
     """
     if hasattr(path_or_stream, "fileno"):
         path = f"/dev/fd/{path_or_stream.fileno()}"
