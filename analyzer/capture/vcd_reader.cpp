@@ -508,6 +508,12 @@ private:
         signals_.push_back({ref, full, width});
         if (!kept_only_ && signals_.size() > kKeepAllSignals && !opts_.wanted_signals.empty())
             keepOnlyWanted();
+        // A design may name a million instances' clocks "clk", but only a header made to
+        // exhaust memory declares the names asked for more often (126 bytes each).
+        if (kept_only_ && signals_.size() > kMaxKeptSignals)
+            failAt(line, fmt::format("more than {} declarations of the signals --map and the "
+                                     "roles name (of {} in all)",
+                                     kMaxKeptSignals, declared_));
     }
 
     // ---- wide headers: memory bounded by what is mapped ----------------------------
@@ -518,6 +524,7 @@ private:
     // their changes are skipped, not refused: a short one's code is unkept_code_, a long
     // one leaves only its hash in unkept_ids_ (8 bytes).
     static constexpr std::size_t kKeepAllSignals = std::size_t(1) << 17;
+    static constexpr std::size_t kMaxKeptSignals = std::size_t(1) << 20;
 
     bool wanted(const std::string& name, const std::string& full) const {
         return wanted_.count(lowerCase(name)) != 0 || wanted_.count(lowerCase(full)) != 0;

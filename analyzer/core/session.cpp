@@ -59,8 +59,13 @@ std::optional<LineRef> findSignal(const std::vector<SignalInfo>& sigs, const std
 
 // The capture's signals for a message: all of a short list; of a long one (a simulator's
 // VCD may declare 10^5), the few closest to `wanted` and how many there are.
-std::string signalList(const std::vector<SignalInfo>& sigs, const std::string& wanted) {
+std::string signalList(const CaptureReader& reader, const std::string& wanted) {
     constexpr std::size_t kAll = 24, kClosest = 8;
+    const std::vector<SignalInfo>& sigs = reader.signals();
+    // None kept: a huge VCD header keeps only what --map and the roles name, and its
+    // note says how many it declared.
+    if (sigs.empty() && !reader.notes().empty())
+        return fmt::format("none kept: {}", fmt::join(reader.notes(), "; "));
     auto shown = [](const SignalInfo& s) {
         return s.width > 1 ? fmt::format("{}[{}]", s.full_name, s.width) : s.full_name;
     };
@@ -336,8 +341,7 @@ struct Session::Impl : EventSink {
                 if (rs.required)
                     throw InputError(fmt::format(
                         "{}: decoder {}: role '{}' is not bound: use --map {}=SIGNAL (signals: {})",
-                        facts->file, info.id, rs.name, rs.name,
-                        signalList(reader->signals(), rs.name)));
+                        facts->file, info.id, rs.name, rs.name, signalList(*reader, rs.name)));
                 continue;
             }
             bound_refs.push_back(*ref);
@@ -379,7 +383,7 @@ struct Session::Impl : EventSink {
                                  it->second.find('=') != std::string::npos;
             throw InputError(fmt::format(
                 "{}: decoder {}: --map {}={}: no such signal in the capture (signals: {}){}",
-                facts->file, info.id, rs.name, it->second, signalList(sigs, it->second),
+                facts->file, info.id, rs.name, it->second, signalList(*reader, it->second),
                 several ? "; one --map per role: --map ROLE=SIGNAL --map ROLE=SIGNAL" : ""));
         }
         std::vector<std::string> names = {rs.name};
@@ -404,7 +408,7 @@ struct Session::Impl : EventSink {
             throw InputError(
                 fmt::format("{}: decoder {}: bind at least one of the roles {} (signals: {})",
                             facts->file, info.id, fmt::join(info.need_one_of, ", "),
-                            signalList(reader->signals(), info.need_one_of.front())));
+                            signalList(*reader, info.need_one_of.front())));
     }
 
     // The selected line of `ref`, selected now if no decoder has it yet.

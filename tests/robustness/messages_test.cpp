@@ -97,6 +97,35 @@ TEST(Messages, MapErrorOnAHugeVcdListsTheClosestFewAndTheCount) {
     EXPECT_NE(err.find("100000 in all; the closest: top.sig_4242"), std::string::npos) << err;
 }
 
+TEST(Messages, MapErrorPastTheSignalsKeptSaysHowManyWereDeclared) {
+    // Past 2^17 declarations only the signals --map or a role names are kept: none here.
+    std::string v = "$timescale 1 ns $end\n$scope module top $end\n";
+    for (int i = 0; i < 131'073; ++i)
+        v += "$var wire 1 s" + std::to_string(i) + " sig_" + std::to_string(i) + " $end\n";
+    v += "$upscope $end\n$enddefinitions $end\n#0\n";
+    const auto p = caseFile("wider.vcd", v);
+    const std::string err = oneLineFailure({p, "--proto", "spi", "--map", "sclk=sig_4242x"});
+    EXPECT_NE(err.find("(signals: none kept: 131073 signals declared: only the 0 that --map or "
+                       "a role names were kept)"),
+              std::string::npos)
+        << err;
+}
+
+TEST(Messages, AHeaderDeclaringARoleMillionsOfTimesIsRefused) {
+    // A decompression bomb's header: one name a role binds, declared without end. Memory
+    // stops at 2^20 declarations kept instead of growing with the file.
+    std::string v = "$timescale 1 ns $end\n";
+    for (int i = 0; i < (1 << 20) + 8; ++i)
+        v += "$var wire 1 ! ma $end\n";
+    v += "$enddefinitions $end\n#0\n";
+    const auto p = caseFile("bomb.vcd", v);
+    const std::string err = oneLineFailure({p, "--proto", "bissc"});
+    EXPECT_NE(err.find(p + ":1048578: more than 1048576 declarations of the signals --map and "
+                           "the roles name (of 1048577 in all)"),
+              std::string::npos)
+        << err;
+}
+
 TEST(Messages, RulesThatAreADirectory) {
     const auto p = caseFile("cap.vcd", kSpiVcd);
     const RunResult r = runDecode({"verify", p, "--rules", tempDir()});
