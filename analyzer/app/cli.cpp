@@ -237,10 +237,10 @@ void checkOptionValues(const QCommandLineParser& p, bool verify) {
     if (verify)
         for (const char* name : {"format", "report", "lcm", "follow", "realtime"})
             if (p.isSet(name))
-                throw InputError(fmt::format(
-                    "decode verify: --{} belongs to plain 'decode' (verify prints a verdict a "
-                    "capture; --junit writes them)",
-                    name));
+                throw InputError(
+                    fmt::format("--{} belongs to plain 'decode', not to 'decode verify' (which "
+                                "prints a verdict a capture; --junit writes them)",
+                                name));
 }
 
 // Options that belong to another command, or a run with nothing to read.

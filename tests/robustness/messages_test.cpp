@@ -86,12 +86,16 @@ TEST(Messages, ControlCharactersInNamesAndOptionsStayOnOneLine) {
     EXPECT_NE(err2.find("mo\\x1b[2Jsi"), std::string::npos) << err2;
 }
 
-TEST(Messages, MapErrorOnAHugeVcdListsTheClosestFewAndTheCount) {
+// A VCD declaring `n` one-bit signals top.sig_0, top.sig_1... and no value change.
+std::string wideVcd(int n) {
     std::string v = "$timescale 1 ns $end\n$scope module top $end\n";
-    for (int i = 0; i < 100'000; ++i)
+    for (int i = 0; i < n; ++i)
         v += "$var wire 1 s" + std::to_string(i) + " sig_" + std::to_string(i) + " $end\n";
-    v += "$upscope $end\n$enddefinitions $end\n#0\n";
-    const auto p = caseFile("wide.vcd", v);
+    return v + "$upscope $end\n$enddefinitions $end\n#0\n";
+}
+
+TEST(Messages, MapErrorOnAHugeVcdListsTheClosestFewAndTheCount) {
+    const auto p = caseFile("wide.vcd", wideVcd(100'000));
     const std::string err = oneLineFailure({p, "--proto", "spi", "--map", "sclk=sig_4242x"});
     EXPECT_LT(err.size(), 600u) << err.substr(0, 600);
     EXPECT_NE(err.find("100000 in all; the closest: top.sig_4242"), std::string::npos) << err;
@@ -99,11 +103,7 @@ TEST(Messages, MapErrorOnAHugeVcdListsTheClosestFewAndTheCount) {
 
 TEST(Messages, MapErrorPastTheSignalsKeptSaysHowManyWereDeclared) {
     // Past 2^17 declarations only the signals --map or a role names are kept: none here.
-    std::string v = "$timescale 1 ns $end\n$scope module top $end\n";
-    for (int i = 0; i < 131'073; ++i)
-        v += "$var wire 1 s" + std::to_string(i) + " sig_" + std::to_string(i) + " $end\n";
-    v += "$upscope $end\n$enddefinitions $end\n#0\n";
-    const auto p = caseFile("wider.vcd", v);
+    const auto p = caseFile("wider.vcd", wideVcd(131'073));
     const std::string err = oneLineFailure({p, "--proto", "spi", "--map", "sclk=sig_4242x"});
     EXPECT_NE(err.find("(signals: none kept: 131073 signals declared: only the 0 that --map or "
                        "a role names were kept)"),
