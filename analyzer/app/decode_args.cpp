@@ -98,6 +98,12 @@ std::vector<DecoderRequest> buildRequests(const std::vector<std::string>& protos
         apply("--map", m, true);
     for (const auto& o : opts)
         apply("--opt", o, false);
+    // Option values too, once here rather than when each capture is open: a wrong call.
+    for (std::size_t i = 0; i < reqs.size(); ++i) {
+        auto options = reqs[i].options;
+        options.erase("glitch_ns");  // the session's own option, checked there
+        Options::resolve(*infos[i], options);
+    }
     return reqs;
 }
 

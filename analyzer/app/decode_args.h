@@ -41,7 +41,8 @@ struct DecodeArgs {
 
 // Turns --proto/--map/--opt into one request per decoder. An unscoped key applies to
 // every decoder that declares it (an unscoped option no decoder declares is an error
-// naming the valid ones); `ssi.bits=25` applies to ssi only. Throws InputError.
+// naming the valid ones); `ssi.bits=25` applies to ssi only. Each decoder's option values
+// are checked here, once for every capture. Throws InputError.
 std::vector<DecoderRequest> buildRequests(const std::vector<std::string>& protos,
                                           const std::vector<std::string>& maps,
                                           const std::vector<std::string>& opts);

@@ -37,10 +37,18 @@ const char* compressionName(Compression c) {
             return "xz";
         case Compression::Zstd:
             return "zstd";
+        case Compression::CrLineEnds:
+            return "cr-lines";
         case Compression::None:
             break;
     }
     return "none";
+}
+
+bool hasBareCrLineEnds(std::string_view head) {
+    const std::size_t end = head.find_first_of("\r\n");
+    return end != std::string_view::npos && head[end] == '\r' && end + 1 < head.size() &&
+           head[end + 1] != '\n';
 }
 
 namespace {
@@ -160,6 +168,32 @@ private:
     bool frame_done_ = false;
 };
 
+// Not a compression: every CR, or CR LF, becomes one LF, so that each line keeps its number.
+class CrLineEndsCodec : public Codec {
+public:
+    std::size_t run(std::string_view& in, char* out, std::size_t cap) override {
+        std::size_t n = 0, i = 0;
+        for (; i < in.size() && n < cap; ++i) {
+            const char c = in[i];
+            if (c == '\n' && after_cr_) {
+                after_cr_ = false;
+                continue;
+            }
+            after_cr_ = c == '\r';
+            out[n++] = after_cr_ ? '\n' : c;
+        }
+        in.remove_prefix(i);
+        return n;
+    }
+    std::size_t finish(char*, std::size_t, bool& whole) override {
+        whole = true;
+        return 0;
+    }
+
+private:
+    bool after_cr_ = false;  // the LF of a CR LF pair split over two reads is still dropped
+};
+
 std::unique_ptr<Codec> makeCodec(Compression kind) {
     switch (kind) {
         case Compression::Gzip:
@@ -168,6 +202,8 @@ std::unique_ptr<Codec> makeCodec(Compression kind) {
             return std::make_unique<XzCodec>();
         case Compression::Zstd:
             return std::make_unique<ZstdCodec>();
+        case Compression::CrLineEnds:
+            return std::make_unique<CrLineEndsCodec>();
         case Compression::None:
             break;
     }

@@ -166,6 +166,8 @@ std::unique_ptr<CaptureReader> openSource(std::unique_ptr<TextSource> src, const
             src->name() +
             ": unknown format: binary data that is neither VCD, CSV nor a sigrok .sr session");
     if (!text.empty() && text.front() == '$') return openVcd(std::move(src), opts);
+    if (hasBareCrLineEnds(head))
+        return openCompressed(std::move(src), Compression::CrLineEnds, opts);
     if (auto r = openIlaCsv(src, head, opts)) return r;
     if (auto r = openSampleList(src, head, opts)) return r;
     if (auto scope = openScopeCsvIfScope(src, opts)) return scope;

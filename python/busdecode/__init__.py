@@ -335,10 +335,10 @@ def verify(paths: Union[PathLike, Iterable[PathLike]], rules: PathLike, proto: P
         assert result.passed, result.summary
 
     An unreadable capture is a failed CaptureResult with its .error, and so is one its
-    decoder could not be set up for (an option value out of range, no decoder chosen):
-    `decode verify` exits 2 for both. A bad rules file, or an unknown decoder or option
-    (they may come from the rules) raises InputError; a bad jobs, rate or threads
-    argument UsageError.
+    decoder could not be set up for (no decoder chosen, options that do not fit together):
+    `decode verify` exits 2 for both. A bad rules file, or an unknown decoder, option or
+    option value (they may come from the rules) raises InputError; a bad jobs, rate or
+    threads argument UsageError.
     """
     if isinstance(paths, (str, bytes, os.PathLike)):
         paths = [paths]

@@ -4,8 +4,6 @@
 #include "app/decode_args.h"
 #include "app/plugin_loader.h"
 #include "bindings.h"
-#include "core/options.h"
-#include "core/registry.h"
 #include "event_dict.h"
 
 namespace busdecode::py {
@@ -15,14 +13,7 @@ std::vector<DecoderRequest> requestsFor(const std::vector<std::string>& protos,
                                         const std::vector<std::string>& opts) {
     try {
         loadPlugins(protos);
-        auto requests = buildRequests(protos, maps, opts);
-        // Option values too, here rather than when the capture is open: a wrong call.
-        for (const auto& r : requests) {
-            auto options = r.options;
-            options.erase("glitch_ns");  // the session's own option, checked there
-            Options::resolve(Registry::instance().find(r.proto)->info(), options);
-        }
-        return requests;
+        return buildRequests(protos, maps, opts);  // option values checked there
     } catch (const InputError& e) {
         throw UsageError(e.what());
     }

@@ -45,3 +45,13 @@ def test_bad_rules_raise_input_error(tmp_path):
     with pytest.raises(busdecode.InputError) as raised:
         busdecode.verify(PASSING, rules=rules)
     assert err.strip() == "decode verify: " + str(raised.value)
+
+
+def test_bad_option_value_raises_once_as_decode_verify_says_it():
+    rc, out, err = run_cli([str(BIN / "decode"), "verify", str(PASSING), str(FAILING), "--rules",
+                            str(RULES), "--opt", "bits=999"])
+    assert rc == 2 and out == ""
+    with pytest.raises(busdecode.InputError) as raised:
+        busdecode.verify([PASSING, FAILING], rules=RULES, opts={"bits": 999})
+    assert err == "decode verify: " + str(raised.value) + "\n"
+    assert "option bits=999" in str(raised.value)

@@ -309,5 +309,18 @@ TEST(VerifyCli, DecodeTableInTheRulesPicksTheDecoderAndOptions) {
     EXPECT_NE(r.err.find("bitz"), std::string::npos) << r.err;
 }
 
+TEST(VerifyCli, BadOptionValueIsOneUsageLineNotAnErrorPerCapture) {
+    const auto caps = capturesOf("bissc");
+    const std::string rules = rulesFile("bissc.toml", test::kBisscRules);
+    auto args = verifyArgs(caps, rules);
+    args.insert(args.end(), {"--opt", "crc_poly=zz"});
+    const auto r = test::runDecode(args);
+    EXPECT_EQ(r.status, 2);
+    EXPECT_EQ(r.out, "");
+    EXPECT_EQ(r.err,
+              "decode verify: decoder bissc: option crc_poly=zz: expected an integer from 2 to "
+              "4294967295\n");
+}
+
 }  // namespace
 }  // namespace busdecode
