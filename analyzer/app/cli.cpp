@@ -234,6 +234,8 @@ void checkOptionValues(const QCommandLineParser& p, bool verify) {
             throw InputError(fmt::format("--{}: the file name is empty", name));
     for (const auto& capture : p.positionalArguments())
         if (capture.isEmpty()) throw InputError("a capture's name is empty (\"\")");
+    if (p.isSet("shard") && p.value("shard").isEmpty())  // an unset $SLURM_ARRAY_TASK_ID
+        throw InputError("--shard: expected K/N (e.g. 2/8), got nothing");
     if (verify)
         for (const char* name : {"format", "report", "lcm", "follow", "realtime"})
             if (p.isSet(name))

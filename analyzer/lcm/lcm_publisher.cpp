@@ -12,6 +12,7 @@
 #include <deque>
 #include <lcm/lcm-cpp.hpp>
 #include <mutex>
+#include <optional>
 #include <thread>
 #include <variant>
 
@@ -135,6 +136,11 @@ struct LcmSink::Impl {
     Timebase tb;
     std::thread worker;
     std::chrono::steady_clock::time_point last_live{};  // the last "live" status
+    // The capture begun and not yet ended (an interrupted run ends it in the destructor),
+    // and the end of its last event so far.
+    std::optional<CaptureFacts> open_capture;
+    Tick last_end = 0;
+    CaptureFacts last_facts;  // the last capture's, for "done"
 
     void publishStatus(const StatusItem& s) {
         busdecode_lcm::decode_status_t m{};
@@ -239,6 +245,12 @@ LcmSink::LcmSink(std::shared_ptr<lcm::LCM> lcm, std::string url, LcmSinkOptions 
 }
 
 LcmSink::~LcmSink() {
+    // Subscribers wait for "done" (subscribe(until_end=True), monitor --once): an
+    // interrupted capture is ended first, so they never wait for a run that is over.
+    if (impl_->open_capture)
+        impl_->push(StatusItem{"end", *impl_->open_capture, impl_->last_end}, false);
+    impl_->push(StatusItem{"done", impl_->last_facts, impl_->last_end}, false);
+    impl_->waitDrained();
     {
         std::lock_guard lock(impl_->mu);
         impl_->stopping = true;
@@ -252,6 +264,9 @@ void LcmSink::begin(const CaptureFacts& facts) {
     // Set while the worker is idle (end() drained it); the queue's lock orders it.
     impl_->capture_fields = captureJsonFields(facts, impl_->opt.name_capture);
     impl_->push(StatusItem{"begin", facts, facts.start}, false);
+    impl_->open_capture = facts;
+    impl_->last_facts = facts;
+    impl_->last_end = facts.start;
 }
 
 void LcmSink::onEvent(const Event& e, const CaptureFacts& facts) {
@@ -261,6 +276,7 @@ void LcmSink::onEvent(const Event& e, const CaptureFacts& facts) {
         impl_->counts.events++;
         seq = impl_->next_seq++;
     }
+    impl_->last_end = e.end;
     impl_->push(EventItem{e, impl_->tb, seq}, impl_->opt.drop_when_full);
     // A live acquisition says how it keeps up while it runs, not only at its end.
     if (facts.acquisition.samples) {
@@ -275,6 +291,8 @@ void LcmSink::onEvent(const Event& e, const CaptureFacts& facts) {
 void LcmSink::end(const CaptureFacts& facts) {
     impl_->waitDrained();  // events first, so "end" carries final counts
     impl_->push(StatusItem{"end", facts, facts.end}, false);
+    impl_->open_capture.reset();
+    impl_->last_end = facts.end;
     impl_->waitDrained();
     LcmSinkCounts now = counts(), &before = impl_->reported;
     std::uint64_t events = now.events - before.events, dropped = now.dropped - before.dropped,

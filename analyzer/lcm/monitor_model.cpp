@@ -111,13 +111,17 @@ void MonitorModel::onAnnotation(const lcm::ReceiveBuffer*, const std::string&,
 void MonitorModel::onStatus(const lcm::ReceiveBuffer*, const std::string&,
                             const busdecode_lcm::decode_status_t* m) {
     if (m->state == "start") return;
+    if (m->state == "done") {  // after the run's last capture
+        runs_ended_++;
+        state_ = "ended";
+        return;
+    }
     // Buses are kept across runs: several decoders may publish at once, and a capture
     // decoded again simply continues its bus's counts.
     state_ = m->state == "begin" ? "decoding" : "ended";
     file_ = m->file;
     capture_ns_ = m->capture_ns;
     dropped_ = m->dropped;
-    if (m->state == "end") runs_ended_++;
 }
 
 namespace {

@@ -31,6 +31,8 @@ std::string formatFieldValue(const std::string& key, double v) {
     if (endsWith(key, "_ns")) return formatDuration(v);
     if (endsWith(key, "_us")) return formatDuration(v * 1e3);
     if (endsWith(key, "_hz")) return formatFrequency(v);
+    // Positions and counts exactly: 1193046 is not 1.19305e+06.
+    if (v == std::trunc(v) && std::abs(v) < 9007199254740992.0) return fmt::format("{:.0f}", v);
     return fmt::format("{:.6g}", v);
 }
 

@@ -45,15 +45,18 @@ class CountCheck : public RuleCheck {
 public:
     using Pred = std::function<bool(const Event&)>;
     // `one` / `many`: what is counted, for 1 and for other counts.
+    // `field`: one the decoder must carry for the rule to mean anything ("": none).
     CountCheck(std::string proto, std::string rule, std::int64_t limit, std::string one,
-               std::string many, Pred pred)
+               std::string many, Pred pred, std::string field = "")
         : proto_(std::move(proto)),
           rule_(std::move(rule)),
           limit_(limit),
           one_(std::move(one)),
           many_(std::move(many)),
-          pred_(std::move(pred)) {}
+          pred_(std::move(pred)),
+          field_(std::move(field)) {}
     void observe(const Event& e, const Timebase& tb) override {
+        carried_ = carried_ || (!field_.empty() && e.get(field_));
         if (!pred_(e)) return;
         ++count_;
         const double t = double(tb.toNs(e.start));
@@ -64,6 +67,10 @@ public:
         RuleOutcome o = makeOutcome(proto_, rule_);
         o.offending = count_;
         o.passed = count_ <= std::uint64_t(limit_);
+        if (count_ == 0 && !field_.empty() && !carried_) {  // BiSS-C has no repeats to match
+            o.message = fmt::format("not checked: no event carries {}", field_);
+            return o;
+        }
         o.message = fmt::format("{} (limit {})", plural(count_, one_, many_), limit_);
         if (count_) {
             o.message += fmt::format(", first at {}", at(first_));
@@ -79,6 +86,8 @@ private:
     std::int64_t limit_;
     std::string one_, many_;
     Pred pred_;
+    std::string field_;
+    bool carried_ = false;
     std::uint64_t count_ = 0;
     double first_ = 0, over_ = 0;
 };
@@ -337,17 +346,18 @@ void addChecks(const ProtoRules& r, std::vector<std::unique_ptr<RuleCheck>>& out
         else if (key == "max_errors")
             out.push_back(std::make_unique<CountCheck>(
                 p, key, *r.max_errors, "frame with nE active", "frames with nE active",
-                [](const Event& e) { return fieldIsZero(e, "nE"); }));
+                [](const Event& e) { return fieldIsZero(e, "nE"); }, "nE"));
         else if (key == "max_warnings")
             out.push_back(std::make_unique<CountCheck>(
                 p, key, *r.max_warnings, "frame with nW active", "frames with nW active",
-                [](const Event& e) { return fieldIsZero(e, "nW"); }));
+                [](const Event& e) { return fieldIsZero(e, "nW"); }, "nW"));
         else if (key == "max_repeat_mismatches")
             out.push_back(std::make_unique<CountCheck>(
                 p, key, *r.max_repeat_mismatches, "repeat mismatch", "repeat mismatches",
                 [](const Event& e) {
                     return e.hasError("repeat_mismatch") || fieldIsZero(e, "repeat_match");
-                }));
+                },
+                "repeat_match"));
         else if (key == "max_faults")
             out.push_back(std::make_unique<FaultCheck>(p, key, *r.max_faults));
         else if (key == "min_frames")

@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 
 #include "app/decode_args.h"
+#include "core/utf8.h"
 
 namespace busdecode {
 
@@ -106,13 +107,16 @@ std::vector<std::string> junitClassNames(const std::vector<std::string>& capture
 std::string xmlText(const std::string& s) {
     std::string out;
     out.reserve(s.size());
-    for (unsigned char c : s) {
+    for (std::size_t i = 0; i < s.size(); ++i) {
+        const auto c = static_cast<unsigned char>(s[i]);
         if (c == '&')
             out += "&amp;";
         else if (c == '<')
             out += "&lt;";
         else if (c == '>')
             out += "&gt;";
+        else if (c >= 0x80)  // a file name's Latin-1 byte would make the file invalid XML
+            i += appendUtf8OrReplacement(out, s, i) - 1;
         else if (c >= 0x20 || c == '\n' || c == '\t')
             out += char(c);
     }

@@ -1,10 +1,12 @@
 #include "verify.h"
 
+#include <algorithm>
 #include <cstdio>
 
 #include <unistd.h>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "app/decode_args.h"
 #include "app/interruption.h"
@@ -20,6 +22,26 @@
 
 namespace busdecode {
 
+namespace {
+
+// A table for a decoder this run does not decode would pass with nothing checked (a typo
+// in --proto turning CI green).
+void refuseTablesOfDecodersNotRun(const Rules& rules, const std::vector<DecoderRequest>& requests) {
+    std::vector<std::string> run;
+    for (const auto& r : requests)
+        run.push_back(r.proto);
+    for (const auto& t : rules.tables) {
+        const std::string id = t.proto.substr(0, t.proto.find('#'));  // "ssi#2": an instance
+        if (t.proto == kSignalTable || std::find(run.begin(), run.end(), id) != run.end()) continue;
+        throw InputError(fmt::format(
+            "{}:{}: [{}]: no such decoder in this run (decoding with {}): give --proto {} or "
+            "remove the table",
+            rules.file, t.line, t.proto, fmt::join(run, ", "), id));
+    }
+}
+
+}  // namespace
+
 VerifyPlan planVerify(const DecodeArgs& args) {
     loadPlugins();  // every one: the rules may name any decoder
     std::vector<std::string> known;
@@ -29,6 +51,7 @@ VerifyPlan planVerify(const DecodeArgs& args) {
     plan.rules = loadRules(args.rules, known);
     const DecodeChoice choice = combineDecodeChoice(plan.rules, args.protos, args.maps, args.opts);
     plan.requests = buildRequests(choice.protos, choice.maps, choice.opts);
+    refuseTablesOfDecodersNotRun(plan.rules, plan.requests);
     plan.open.rate_hz = args.rate_hz > 0 ? args.rate_hz : plan.rules.decode.rate_hz;
     plan.open.thresholds = args.thresholds;
     plan.open.hysteresis = args.hysteresis;
@@ -58,8 +81,11 @@ int runVerify(const DecodeArgs& args) {
         const std::vector<std::string> named = allCaptures(args);
         const std::vector<std::string> captures =
             args.shard.empty() ? named : shardOf(named, parseShard(args.shard));
-        if (captures.empty() && args.shard.empty())
-            throw InputError("decode verify: no capture given");
+        // Every shard of an empty list would pass with nothing checked.
+        if (named.empty())
+            throw InputError(args.from_list.empty()
+                                 ? "no capture given"
+                                 : fmt::format("{}: the list names no capture", args.from_list));
         if (!args.junit.empty()) {
             refuseOutputOnInputs("--junit", args.junit, runInputs(args, named));
             checkWritable(args.junit);  // before a long batch, not after

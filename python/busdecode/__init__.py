@@ -263,7 +263,9 @@ class RuleResult:
     rule: str
     passed: bool
     message: str  # what was seen, and where the first offence was
-    first_ns: Optional[float]  # time of the first offending event
+    # when it failed: the first offending event, or for a count limit above 0 the event
+    # that passed the limit; None when it passed
+    first_ns: Optional[float]
     offending: int  # how many events broke the rule
 
 
@@ -364,7 +366,8 @@ def subscribe(url: Optional[str] = None, channels: Union[None, str, Sequence[str
     channels: the event channels wanted, names or regular expressions
         ("DECODE_BISSC_FRAME", "DECODE_SSI_.*"); None: every event.
     timeout: end the iteration after this many seconds without a message (None: never).
-    until_end: end it when the publisher says its capture ended (DECODE_STATUS "end").
+    until_end: end it when the publisher says its run ended, after its last capture
+    (DECODE_STATUS "done"; each capture's "end" does not end it).
 
     Every event arrives as its annotation message (DECODE_EVENTS), decoded with the
     project's own LCM type; the dicts equal decode()'s for the same events. UDP

@@ -79,7 +79,7 @@ private:
     void onStatus(const lcm::ReceiveBuffer*, const std::string&,
                   const busdecode_lcm::decode_status_t* m) {
         last_ = std::chrono::steady_clock::now();
-        if (m->state == "end") ended_ = true;
+        if (m->state == "done") ended_ = true;  // the run's end: "end" ends one capture
     }
 
     std::shared_ptr<lcm::LCM> lc_;

@@ -8,7 +8,7 @@ from pathlib import Path
 import pytest
 
 import busdecode
-from conftest import BIN, CAPTURES, cli_events
+from conftest import BIN, CAPTURES, cli_events, run_cli
 
 
 def test_the_feed_gives_the_events_decode_gives():
@@ -40,3 +40,18 @@ def test_a_tcpq_url_without_a_server_raises():
 def test_a_bad_channel_pattern_is_a_usage_error():
     with pytest.raises(busdecode.UsageError):
         busdecode.subscribe("memq://", channels="DECODE_(")
+
+
+def test_until_end_waits_for_the_runs_last_capture(tmp_path):
+    # Each capture of a run ends with "end"; the run itself with "done".
+    log = tmp_path / "two.lcm"
+    captures = [str(CAPTURES / "bissc_errors.vcd"), str(CAPTURES / "bissc_1mhz_26bit.vcd")]
+    args = [str(BIN / "decode")] + captures + ["--proto", "bissc", "--opt", "bits=26"]
+    rc, out, err = run_cli(args + ["--format", "jsonl"])
+    assert rc == 0, err
+    expected = [json.loads(line) for line in out.splitlines()]
+    rc, _, err = run_cli(args + ["--lcm", f"file://{log}?mode=w"])
+    assert rc == 0, err
+    got = list(busdecode.subscribe(f"file://{log}?mode=r", until_end=True, timeout=30))
+    assert got == expected
+    assert {e["capture"] for e in got} == set(captures)

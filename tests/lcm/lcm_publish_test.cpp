@@ -135,15 +135,18 @@ struct MemqRun {
     Collector got{*lc};
     LcmSinkCounts counts;
 
-    void publish(const std::vector<Event>& events, LcmSinkOptions opt = {}) {
-        LcmSink sink(lc, "memq://", std::move(opt));
-        CaptureFacts f = facts24MHz();
-        sink.begin(f);
-        for (const Event& e : events)
-            sink.onEvent(e, f);
-        f.end = 200000;
-        sink.end(f);
-        counts = sink.counts();
+    // `ended`: false stands for a run interrupted inside its capture (no end()).
+    void publish(const std::vector<Event>& events, LcmSinkOptions opt = {}, bool ended = true) {
+        {
+            LcmSink sink(lc, "memq://", std::move(opt));
+            CaptureFacts f = facts24MHz();
+            sink.begin(f);
+            for (const Event& e : events)
+                sink.onEvent(e, f);
+            f.end = 200000;
+            if (ended) sink.end(f);
+            counts = sink.counts();
+        }
         got.drain(*lc);
     }
 };
@@ -305,7 +308,7 @@ TEST(LcmPublish, StatusMessagesFrameTheRunWithCounts) {
     MemqRun run;
     run.publish(everyKind());
     auto st = run.got.decodeAll<busdecode_lcm::decode_status_t>(kLcmStatusChannel);
-    ASSERT_EQ(st.size(), 3u);
+    ASSERT_EQ(st.size(), 4u);
     EXPECT_EQ(st[0].state, "start");
     EXPECT_EQ(st[1].state, "begin");
     EXPECT_EQ(st[1].file, "hand-made.vcd");
@@ -314,7 +317,21 @@ TEST(LcmPublish, StatusMessagesFrameTheRunWithCounts) {
     EXPECT_EQ(st[2].events, 11);
     EXPECT_EQ(st[2].published, 11);
     EXPECT_EQ(st[2].capture_ns, Timebase::fromSampleRate(24'000'000).toNs(200000));
+    EXPECT_EQ(st[3].state, "done");
+    EXPECT_EQ(st[3].file, "hand-made.vcd");
     EXPECT_EQ(run.got.order.back(), kLcmStatusChannel) << "end comes after every event";
+}
+
+TEST(LcmPublish, AnInterruptedCaptureIsEndedBeforeTheRunIsDone) {
+    MemqRun run;
+    const auto events = everyKind();
+    run.publish(events, {}, false);
+    auto st = run.got.decodeAll<busdecode_lcm::decode_status_t>(kLcmStatusChannel);
+    ASSERT_EQ(st.size(), 4u);
+    EXPECT_EQ(st[2].state, "end");
+    EXPECT_EQ(st[2].events, 11);
+    EXPECT_EQ(st[2].capture_ns, Timebase::fromSampleRate(24'000'000).toNs(events.back().end));
+    EXPECT_EQ(st[3].state, "done");
 }
 
 // A publisher that can be held, to stand for a consumer side that can't keep up.

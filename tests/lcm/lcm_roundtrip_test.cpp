@@ -461,9 +461,15 @@ std::size_t expectRunAsJsonl(const LoggedRun& run, const Case& c, const std::str
     }
     EXPECT_FALSE(run.status.empty());
     if (run.status.empty()) return 0;
-    EXPECT_EQ(run.status.back().state, "end");
-    EXPECT_EQ(run.status.back().events, std::int64_t(lines.size()));
-    EXPECT_EQ(run.status.back().dropped, 0);
+    EXPECT_EQ(run.status.back().state, "done");
+    if (run.status.size() < 2) {
+        ADD_FAILURE() << "no end before done";
+        return 0;
+    }
+    const auto& end = run.status[run.status.size() - 2];
+    EXPECT_EQ(end.state, "end");
+    EXPECT_EQ(end.events, std::int64_t(lines.size()));
+    EXPECT_EQ(end.dropped, 0);
     return lines.size();
 }
 

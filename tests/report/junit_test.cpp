@@ -7,6 +7,7 @@
 
 #include <filesystem>
 
+#include "core/utf8.h"
 #include "support/paths.h"
 #include "verify/verdict.h"
 
@@ -148,6 +149,24 @@ TEST(Junit, EmptyBatchIsStillWellFormed) {
     EXPECT_EQ(p.error, "");
     EXPECT_EQ(p.suites, 1);
     EXPECT_EQ(p.cases, 0);
+}
+
+TEST(Junit, BytesThatAreNotUtf8AreReplacedEverywhere) {
+    // A Latin-1 file name (caf\xe9.vcd) lands in attributes, in the failure text and in
+    // system-out; each place must stay UTF-8 or the file is not XML.
+    std::vector<CaptureVerdict> all = sampleVerdicts();
+    all[1].capture = "caps/caf\xE9.vcd";
+    all[2].capture = "caps/gone\xFF.vcd";
+    all[2].error = "caps/gone\xFF.vcd: cannot open";
+    const std::string xml = junitXml(all, "r\xE9.toml");
+    for (std::size_t i = 0; i < xml.size(); ++i) {
+        if (static_cast<unsigned char>(xml[i]) < 0x80) continue;
+        const std::size_t n = utf8SequenceLength(xml, i);
+        ASSERT_NE(n, 0u) << "byte " << i << " of\n" << xml;
+        i += n - 1;
+    }
+    EXPECT_NE(xml.find("caf\xEF\xBF\xBD.vcd"), std::string::npos) << xml;
+    EXPECT_EQ(parse(xml).error, "");
 }
 
 TEST(VerdictLines, PassFailErrorAndSummary) {

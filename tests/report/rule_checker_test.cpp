@@ -173,6 +173,21 @@ TEST(RuleChecker, SsiRepeatMismatchAndMonoflopTime) {
     EXPECT_TRUE(find(out, "ssi.min_frames").passed);
 }
 
+TEST(RuleChecker, WholeNumbersInMessagesAreExact) {
+    auto ev = cleanBiss();
+    ev[3] = bisscFrame(3 * 100000, 1193046);
+    const auto out = check("[bissc]\nposition = [0, 1193045]\n", ev);
+    EXPECT_NE(out[0].message.find("outside [0, 1193045] (seen 1000 .. 1193046)"), std::string::npos)
+        << out[0].message;
+}
+
+TEST(RuleChecker, CountOfAFieldTheDecoderNeverHasSaysNotChecked) {
+    const auto out = check("[bissc]\nmax_repeat_mismatches = 0\nmax_errors = 0\n", cleanBiss());
+    EXPECT_TRUE(out[0].passed);
+    EXPECT_EQ(out[0].message, "not checked: no event carries repeat_match");
+    EXPECT_EQ(out[1].message, "0 frames with nE active (limit 0)");
+}
+
 TEST(RuleChecker, NullFieldsAreSkippedAndAbsentFieldsSayNotChecked) {
     std::vector<Event> ev{test::ssiFrame(0, 1)};
     ev[0].set("tm_ns", Value(Null{}));  // the capture ended before data rose

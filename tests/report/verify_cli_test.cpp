@@ -322,5 +322,36 @@ TEST(VerifyCli, BadOptionValueIsOneUsageLineNotAnErrorPerCapture) {
               "4294967295\n");
 }
 
+TEST(VerifyCli, RulesForADecoderNotRunAreAnErrorNotAPass) {
+    const auto caps = capturesOf("bissc");
+    const std::string rules = rulesFile("ssi_only.toml", "[ssi]\nmax_faults = 0\n");
+    const auto r = test::runDecode({"verify", caps[0].path, "--rules", rules, "--proto", "bissc"});
+    EXPECT_EQ(r.status, 2) << r.out;
+    EXPECT_EQ(r.out, "");
+    EXPECT_EQ(r.err, "decode verify: " + rules +
+                         ":1: [ssi]: no such decoder in this run (decoding with bissc): give "
+                         "--proto ssi or remove the table\n");
+}
+
+TEST(VerifyCli, AnEmptyListOrAnEmptyShardArgumentIsAnErrorInEveryShard) {
+    const auto caps = capturesOf("bissc");
+    const std::string rules = rulesFile("bissc.toml", test::kBisscRules);
+    const std::string list = dir() + "/empty-list.txt";
+    test::writeFile(list, "");
+    for (const char* shard : {"1/2", "2/2"}) {
+        const auto r =
+            test::runDecode({"verify", "--from-list", list, "--rules", rules, "--shard", shard});
+        EXPECT_EQ(r.status, 2) << shard;
+        EXPECT_EQ(r.err, "decode verify: " + list + ": the list names no capture\n");
+    }
+    const auto r = test::runDecode({"verify", caps[0].path, "--rules", rules, "--shard", ""});
+    EXPECT_EQ(r.status, 2);
+    EXPECT_EQ(r.out, "");
+    EXPECT_EQ(r.err, "decode: --shard: expected K/N (e.g. 2/8), got nothing\n");
+    const auto none = test::runDecode({"verify", "--rules", rules});
+    EXPECT_EQ(none.status, 2);
+    EXPECT_EQ(test::splitLines(none.err).size(), 1u) << none.err;
+}
+
 }  // namespace
 }  // namespace busdecode
