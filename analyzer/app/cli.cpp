@@ -425,6 +425,20 @@ std::string interruptionLine(const std::string& what, const DecodeArgs& a) {
                        a.report.empty() ? "" : "; nothing written to the report");
 }
 
+// Stopped by a signal before decoding began. --follow is stopped that way as a matter of
+// course, so it ends cleanly even when the header never came whole.
+int endInterrupted(const std::string& what, const DecodeArgs& a) {
+    if (a.follow && !a.captures.empty()) {
+        printError(
+            fmt::format("decode: {}: stopped ({}) while following, before its header was "
+                        "complete: nothing decoded\n",
+                        oneLine(a.captures.front()), interruptingSignalName()));
+        return 0;
+    }
+    printError(interruptionLine(what, a));
+    return interruptedStatus();
+}
+
 int run(int argc, char** argv, DecodeArgs& args) {
     if (argc > 1 && std::string(argv[1]) == "monitor") return runMonitor(argc - 1, argv + 1);
     if (argc > 1 && std::string(argv[1]) == "merge-junit") return runMergeJunit(argc - 1, argv + 1);
@@ -477,15 +491,12 @@ int runCli(int argc, char** argv) {
         status = run(argc, argv, args);
     } catch (const Interrupted& e) {
         std::fflush(stdout);
-        printError(interruptionLine(e.what(), args));
-        return interruptedStatus();
+        return endInterrupted(e.what(), args);
     } catch (const InputError& e) {
         std::fflush(stdout);
         // Interrupted while opening or reading: the error is the interruption's doing.
-        if (interrupted()) {
-            printError(interruptionLine(fmt::format("interrupted: {}", oneLine(e.what())), args));
-            return interruptedStatus();
-        }
+        if (interrupted())
+            return endInterrupted(fmt::format("interrupted: {}", oneLine(e.what())), args);
         printError(fmt::format("decode: {}\n", oneLine(e.what())));
         return 2;
     } catch (const std::system_error& e) {

@@ -178,8 +178,15 @@ std::size_t TextSource::fill() {
     }
     if (opts_.follow && !pipe_) {
         struct stat st {};
-        if (fstat(fd_, &st) != 0 || st.st_nlink == 0)
+        if (fstat(fd_, &st) != 0 || st.st_nlink == 0) {
+            struct stat now {};
+            if (::stat(name_.c_str(), &now) == 0)  // renamed over, or written anew
+                throw InputError(fmt::format(
+                    "{}: replaced by another file while following (only appending to it can "
+                    "be followed): decode the new file on its own",
+                    name_));
             throw InputError(fmt::format("{}: deleted while following", name_));
+        }
         if (std::uint64_t(st.st_size) < file_off_)
             throw InputError(fmt::format("{}: truncated while following", name_));
         return 0;

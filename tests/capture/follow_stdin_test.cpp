@@ -123,6 +123,28 @@ TEST(Follow, TruncatedOrDeletedFileIsAnError) {
     }
 }
 
+TEST(Follow, AFileReplacedByRenameSaysSoNotDeleted) {
+    const std::string p = tempCapture("replaced.vcd", kHeader + "#0 0!\n#5 1!\n");
+    OpenOptions o;
+    o.follow = true;
+    auto r = openCapture(p, o);
+    r->select({{0, -1}});
+    r->initialLevels();
+    ASSERT_EQ(waitEdges(*r, 1).size(), 1u);
+    const std::string fresh = tempCapture("replaced.new", kHeader + "#0 1!\n");
+    ASSERT_EQ(std::rename(fresh.c_str(), p.c_str()), 0);
+    EdgeBlock b;
+    try {
+        for (int i = 0; i < 100; ++i)
+            r->next(b);
+        ADD_FAILURE() << "no error";
+    } catch (const InputError& e) {
+        EXPECT_EQ(std::string(e.what()).rfind(p + ": replaced by another file while following", 0),
+                  0u)
+            << e.what();
+    }
+}
+
 TEST(Follow, GrowingSaleaeCsv) {
     const std::string p = tempCapture("follow.csv", "Time [s],A\n0.000000000,0\n");
     std::atomic<bool> stop{false};

@@ -95,6 +95,19 @@ std::string bigCapture() {
     return path;
 }
 
+TEST(InterruptedRun, FollowStoppedBeforeItsHeaderWasCompleteEndsCleanly) {
+    const std::string file = tempDir() + "/half-header.vcd";
+    const std::string vcd = spiVcd();
+    writeFile(file, vcd.substr(0, vcd.find("$enddefinitions")));
+    const RunResult r = runCommand(shellQuote(binDir() + "/decode") + " " + shellQuote(file) +
+                                   " --proto spi --follow & pid=$!; sleep 0.5; kill -INT $pid; "
+                                   "wait $pid");
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(r.err, "decode: " + file +
+                         ": stopped (SIGINT) while following, before its header was complete: "
+                         "nothing decoded\n");
+}
+
 TEST(InterruptedRun, KilledDecodeLeavesNoPartialReport) {
     const std::string capture = bigCapture();
     const std::string dir = tempDir() + "/reports";
