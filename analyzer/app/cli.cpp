@@ -425,17 +425,16 @@ std::string interruptionLine(const std::string& what, const DecodeArgs& a) {
                        a.report.empty() ? "" : "; nothing written to the report");
 }
 
-// Stopped by a signal before decoding began. --follow is stopped that way as a matter of
-// course, so it ends cleanly even when the header never came whole.
+// Stopped by a signal before decoding began. A followed file whose header is still being
+// written is not broken: the line says it was waiting, not what an unfinished header lacks.
 int endInterrupted(const std::string& what, const DecodeArgs& a) {
-    if (a.follow && !a.captures.empty()) {
+    if (a.follow && a.captures.size() == 1)
         printError(
             fmt::format("decode: {}: stopped ({}) while following, before its header was "
                         "complete: nothing decoded\n",
                         oneLine(a.captures.front()), interruptingSignalName()));
-        return 0;
-    }
-    printError(interruptionLine(what, a));
+    else
+        printError(interruptionLine(what, a));
     return interruptedStatus();
 }
 

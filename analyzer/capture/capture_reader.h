@@ -26,6 +26,8 @@ struct SignalInfo {
     std::string name;       // last component ("MA", "clk")
     std::string full_name;  // hierarchical VCD name ("top.enc.clk"), or same as name
     int width = 1;          // vector width (VCD); 1 for logic lines
+    // A vector's declared index range (vector_range.h); -1: none, bits 0 .. width-1.
+    int msb = -1, lsb = -1;
 };
 
 // One selected line: a signal, and for vectors the bit within it (-1 = scalar / bit 0).

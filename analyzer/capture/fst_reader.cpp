@@ -142,6 +142,8 @@ void FstReader::readHeader(const std::string& payload) {
         std::string ref = in.text(), full = in.text();
         const int width = int(in.u64());
         signals_.push_back({std::move(ref), std::move(full), width});
+        signals_.back().msb = int(in.u64()) - 1;  // -1: no declared range
+        signals_.back().lsb = int(in.u64()) - 1;
     }
 }
 

@@ -8,6 +8,7 @@
 //   buffer is all that runs ahead, so memory stays flat.
 #include "fst_reader_child.h"
 
+#include <algorithm>
 #include <cstring>
 #include <new>
 #include <vector>
@@ -18,6 +19,7 @@
 #include "core/options.h"
 #include "fst_api.h"
 #include "fstapi.h"
+#include "vector_range.h"
 
 namespace busdecode {
 
@@ -127,7 +129,12 @@ void FstProducer::sendHeader() {
             std::string ref = referenceOf(h->u.var.name, width), full;
             for (const auto& s : scopes)
                 if (!s.empty()) full += s + ".";
+            const std::string name = h->u.var.name;  // `bus [0:7]`: the range after the name
+            const auto range =
+                parseVectorRange(name.substr(std::min(name.find('['), name.size())), width);
             signals.text(ref).text(full + ref).u64(std::uint64_t(width));
+            signals.u64(range ? std::uint64_t(range->first) + 1 : 0)
+                .u64(range ? std::uint64_t(range->second) + 1 : 0);
             vars_.push_back({h->u.var.handle, real});
             ++count;
         }

@@ -1,6 +1,7 @@
 // openCapture: recognises the format by content, not by the file name: gzip, xz and zstd
 // are decompressed and looked at again, a ZIP is a sigrok session, text starting with a
 // `$keyword` is VCD, other text is CSV.
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
@@ -10,6 +11,7 @@
 #include <unistd.h>
 
 #include "core/options.h"
+#include "core/utf8.h"
 #include "decompressing_input.h"
 #include "fst_api.h"
 #include "readers.h"
@@ -20,12 +22,18 @@ namespace busdecode {
 
 std::string printable(std::string_view s, std::size_t max) {
     std::string out;
+    const std::string text(s.substr(0, std::min(s.size(), max + 3)));  // a last sequence whole
     for (std::size_t i = 0; i < s.size() && i < max; ++i) {
         const auto u = static_cast<unsigned char>(s[i]);
-        if (u >= 0x20 && u < 0x7f)
+        const std::size_t n = u >= 0x80 ? utf8SequenceLength(text, i) : 0;
+        if (u >= 0x20 && u < 0x7f) {
             out += char(u);
-        else
+        } else if (n > 0) {  // "µs", "∞", "mäx": as written, not as bytes
+            out.append(text, i, n);
+            i += n - 1;
+        } else {
             out += fmt::format("\\x{:02x}", u);
+        }
     }
     if (s.size() > max) out += "...";
     return out;

@@ -28,6 +28,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <tuple>
 #include <unordered_map>
 #include <unordered_set>
 #include <utility>
@@ -43,6 +44,7 @@
 #include "segmented_vcd_reader.h"
 #include "vcd_time_line.h"
 #include "vcd_tokeniser.h"
+#include "vector_range.h"
 #include "wall_clock.h"
 
 namespace busdecode {
@@ -475,10 +477,15 @@ private:
         auto [ptr, ec] = std::from_chars(t[1].data(), t[1].data() + t[1].size(), width);
         if (ec != std::errc() || ptr != t[1].data() + t[1].size() || width < 1)
             failAt(line, fmt::format("expected a width in $var, found '{}'", printable(t[1])));
-        std::string ref = t[3];
+        std::string ref = t[3], range;
         // `name [7:0]` or `name[7:0]`: the range is not part of a vector's name.
         auto lb = ref.find('[');
-        if (width > 1 && lb != std::string::npos && lb > 0 && ref.back() == ']') ref.erase(lb);
+        if (width > 1 && lb != std::string::npos && lb > 0 && ref.back() == ']') {
+            range = ref.substr(lb);
+            ref.erase(lb);
+        } else if (width > 1 && t.size() >= 5 && t[4].front() == '[') {
+            range = t[4];
+        }
         if (width == 1 && t.size() >= 5 && t[4].front() == '[') ref += t[4];
         std::string full;
         for (const auto& s : scope)
@@ -506,6 +513,8 @@ private:
         }
         sig_code_.push_back(code);
         signals_.push_back({ref, full, width});
+        if (const auto r = parseVectorRange(range, width))
+            std::tie(signals_.back().msb, signals_.back().lsb) = *r;
         if (!kept_only_ && signals_.size() > kKeepAllSignals && !opts_.wanted_signals.empty())
             keepOnlyWanted();
         // A design may name a million instances' clocks "clk", but only a header made to

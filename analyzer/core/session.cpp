@@ -11,6 +11,7 @@
 #include <fmt/ranges.h>
 
 #include "block_decoding.h"
+#include "capture/vector_range.h"
 #include "edit_distance.h"
 #include "event_pool.h"
 #include "event_window.h"
@@ -45,10 +46,11 @@ std::optional<LineRef> findSignal(const std::vector<SignalInfo>& sigs, const std
     // name[bit] selects one bit of a vector
     auto lb = ref.rfind('[');
     if (lb != std::string::npos && ref.back() == ']') {
-        auto bit = parseInteger(ref.substr(lb + 1, ref.size() - lb - 2));
+        auto index = parseInteger(ref.substr(lb + 1, ref.size() - lb - 2));
         auto base = findSignal(sigs, ref.substr(0, lb), case_insensitive);
-        if (bit && base && *bit >= 0 && *bit < sigs[base->signal].width)
-            return LineRef{base->signal, int(*bit)};
+        if (index && base)
+            if (const auto bit = bitAtIndex(sigs[base->signal], *index))
+                return LineRef{base->signal, *bit};
     }
     if (!case_insensitive) {
         if (auto idx = parseInteger(ref); idx && *idx >= 0 && *idx < std::int64_t(sigs.size()))
@@ -66,9 +68,7 @@ std::string signalList(const CaptureReader& reader, const std::string& wanted) {
     // note says how many it declared.
     if (sigs.empty() && !reader.notes().empty())
         return fmt::format("none kept: {}", fmt::join(reader.notes(), "; "));
-    auto shown = [](const SignalInfo& s) {
-        return s.width > 1 ? fmt::format("{}[{}]", s.full_name, s.width) : s.full_name;
-    };
+    auto shown = [](const SignalInfo& s) { return s.full_name + vectorRangeText(s); };
     std::vector<std::string> names;
     if (sigs.size() <= kAll) {
         for (const auto& s : sigs)

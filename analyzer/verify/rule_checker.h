@@ -17,11 +17,11 @@ struct RuleOutcome {
     std::string proto;  // the rules table
     std::string rule;   // "max_crc_errors", "registers.0x78", ...
     bool passed = true;
-    std::string message;             // what was seen, and where the first offence was
+    std::string message;  // what was seen, and where the first offence was
     // When the rule failed: the first offending event, or for a count limit above 0 the
     // event that passed the limit (JUnit and the verdict line give this time too).
     std::optional<double> first_ns;
-    std::uint64_t offending = 0;     // how many events broke the rule
+    std::uint64_t offending = 0;  // how many events broke the rule
     std::string name() const { return proto + "." + rule; }
 };
 

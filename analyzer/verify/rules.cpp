@@ -67,7 +67,9 @@ public:
     double number(const toml::node& n, const std::string& table, const std::string& key) const {
         if (!n.is_number())
             fail(n.source(), table, key, fmt::format("expected a number, got {}", typeName(n)));
-        const double v = n.value<double>().value_or(NAN);
+        // An integer past 2^53 (9223372036854775807) has no exact double: still a number.
+        const double v =
+            n.is_integer() ? double(n.as_integer()->get()) : n.value<double>().value_or(NAN);
         if (!std::isfinite(v)) fail(n.source(), table, key, "expected a finite number");
         return v;
     }

@@ -2,6 +2,7 @@
 
 #include <atomic>
 
+#include "capture/vector_range.h"
 #include "core/options.h"
 
 namespace busdecode::test {
@@ -53,6 +54,7 @@ Collected collectFile(const std::string& path, const std::vector<std::string>& n
                 if (sigs[i].full_name == n || sigs[i].name == n) found = i, bit = -1;
             for (int i = 0; i < int(sigs.size()) && found < 0; ++i)
                 if (sigs[i].full_name == base || sigs[i].name == base) found = i;
+            if (found >= 0 && bit >= 0) bit = bitAtIndex(sigs[found], bit).value_or(-1);
             if (found < 0) {
                 ADD_FAILURE() << "no signal " << n << " in " << path;
                 return {};

@@ -1,6 +1,7 @@
 // The VCD reader: dialect features on small inline files, and every error message.
 #include <gtest/gtest.h>
 
+#include "capture/vector_range.h"
 #include "capture_util.h"
 
 namespace busdecode::test {
@@ -138,6 +139,27 @@ TEST(VcdReader, VectorBitsAndReals) {
                           // b11110000
                           {3, 0, 0},
                           {3, 4, 1}}));
+}
+
+TEST(VcdReader, BitSelectsFollowTheDeclaredRange) {
+    // VHDL's `(0 to 1)` dumps as [0:1]: bus[0] is the MSB, the first digit of b10.
+    // An offset [4:3] names its LSB bus[3]. Both forms, with and without a space.
+    auto p = tempCapture("ranges.vcd",
+                         "$timescale 1 ns $end\n$var wire 2 ! up [0:1] $end\n"
+                         "$var wire 2 \" off[4:3] $end\n$enddefinitions $end\n"
+                         "#0 b10 ! b01 \"\n#5 b00 ! b00 \"\n");
+    auto c = collectFile(p, {"up[0]", "up[1]", "off[3]", "off[4]"});
+    EXPECT_EQ(c.initial, (std::vector<std::uint8_t>{1, 0, 1, 0}));
+    EXPECT_EQ(c.edges, E({{5, 0, 0}, {5, 2, 0}}));
+    EXPECT_EQ(c.signals[0].msb, 0);
+    EXPECT_EQ(c.signals[0].lsb, 1);
+    EXPECT_EQ(vectorRangeText(c.signals[1]), "[4:3]");
+    SignalInfo off = c.signals[1];
+    EXPECT_EQ(bitAtIndex(off, 2), std::nullopt);
+    EXPECT_EQ(bitAtIndex(off, 4), 1);
+    SignalInfo plain{"v", "v", 8};
+    EXPECT_EQ(bitAtIndex(plain, 7), 7);
+    EXPECT_EQ(vectorRangeText(plain), "[7:0]");
 }
 
 TEST(VcdReader, ChronoVuStyleDigitIdentifiers) {

@@ -78,6 +78,14 @@ TEST(Rules, UnknownKeyNamesFileLineAndKey) {
     EXPECT_NE(e.find("max_crc_errors"), std::string::npos) << e;  // lists the valid ones
 }
 
+TEST(Rules, MessagesShowUtf8KeysAsWrittenAndHugeIntegersAsNumbers) {
+    const std::string key = errorOf("[bissc]\n\"m\xC3\xA4x_crc_errors\" = 0\n");
+    EXPECT_NE(key.find("[bissc] m\xC3\xA4x_crc_errors: unknown key"), std::string::npos) << key;
+    const std::string big = errorOf("[bissc]\nmin_frames = 9223372036854775807\n");
+    EXPECT_NE(big.find("min_frames: expected a whole number >= 0"), std::string::npos) << big;
+    EXPECT_EQ(big.find("finite"), std::string::npos) << big;
+}
+
 TEST(Rules, WrongTypes) {
     EXPECT_NE(errorOf("[bissc]\n\nmin_frames = \"100\"\n")
                   .find("rules.toml:3: [bissc] min_frames: expected a number, got a string"),

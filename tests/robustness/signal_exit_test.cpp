@@ -63,7 +63,9 @@ TEST(SignalExit, FollowedFifoWithoutWriterEndsOnSigterm) {
     const RunResult r =
         signalWhen(shellQuote(f) + " --proto spi --follow >/dev/null", ":", hasOpen(f), "TERM");
     EXPECT_EQ(r.status, 143) << r.err;
-    EXPECT_EQ(r.err, "decode: " + f + ": interrupted, after reading 0 bytes (SIGTERM)\n");
+    EXPECT_EQ(r.err, "decode: " + f +
+                         ": stopped (SIGTERM) while following, before its header was complete: "
+                         "nothing decoded\n");
 }
 
 TEST(SignalExit, VerifyOnFifoWithoutWriterEndsOnSigint) {

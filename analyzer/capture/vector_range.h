@@ -1,0 +1,23 @@
+#pragma once
+// A vector's declared index range (`bus [7:0]`, VHDL's `(0 to 7)` dumped as `[0:7]`, an
+// offset `[4:3]`): a bit-select `bus[i]` names a bit by its declared index, as the HDL
+// does, not by its place from the LSB.
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <utility>
+
+#include "capture_reader.h"
+
+namespace busdecode {
+
+// "[7:0]" -> (msb 7, lsb 0) when it spans `width` bits; nullopt otherwise.
+std::optional<std::pair<int, int>> parseVectorRange(std::string_view text, int width);
+// The bit of `s`, counted from its LSB, that index `i` names: within its declared range,
+// or 0 .. width-1 when it declares none; nullopt outside.
+std::optional<int> bitAtIndex(const SignalInfo& s, std::int64_t i);
+// How a vector's bits are named, "[7:0]"; "" for one bit.
+std::string vectorRangeText(const SignalInfo& s);
+
+}  // namespace busdecode
