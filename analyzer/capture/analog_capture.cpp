@@ -82,6 +82,7 @@ public:
             double t;
             if (!nextSample(t)) {
                 done_ = true;
+                finishLearning();
                 order_.release(kMaxEdgeTick, block.edges);
                 block.known_until = end_tick_;
                 addFindings(block);
@@ -134,6 +135,9 @@ private:
         SignalQuality quality;
         SchmittLine trigger;
         SchmittSettings settings;
+        // A prefix of one level: edges wait for the levels the later samples show.
+        FlatLineLearner learner;
+        bool learning = false, learned = false;
         std::pair<double, double> levels;
         std::uint8_t level = 0;
         Tick last = kMinEdgeTick;
@@ -243,12 +247,18 @@ private:
 
     void takeSample(double t_s, std::vector<Edge>& out) {
         for (auto& l : lines_)
-            if (l.bit < 0) l.quality.feed(t_s, row_[l.slot]);
+            if (l.bit < 0 && !l.learning) l.quality.feed(t_s, row_[l.slot]);
         const double t = t_s * ticks_per_s_;
         end_tick_ = toTick(t);
         double bound = t;
         for (std::size_t i = 0; i < lines_.size(); ++i) {
             Line& l = lines_[i];
+            if (l.learning) {
+                learn(l, i, t);
+                bound =
+                    std::min(bound, l.learning ? l.learner.earliest(t) : l.trigger.earliestNext());
+                continue;
+            }
             double et = t;
             bool edge;
             if (l.bit >= 0) {
@@ -261,14 +271,30 @@ private:
                 bound = std::min(bound, l.trigger.earliestNext());
                 if (l.watch) watchWires(l, t);
             }
-            if (edge) {
-                l.last = std::max({l.last, start_tick_, toTick(et)});
-                ++l.edges;
-                order_.push(l.last, std::uint32_t(i), l.level);
-            }
+            if (edge) pushEdge(l, i, et);
         }
         bound_ = std::max(Tick(std::floor(bound)), start_tick_);
         order_.release(bound_, out);
+    }
+
+    void pushEdge(Line& l, std::size_t i, double t) {
+        l.last = std::max({l.last, start_tick_, toTick(t)});
+        ++l.edges;
+        order_.push(l.last, std::uint32_t(i), l.level);
+    }
+
+    // Held edges of other lines wait for a learning line; this many end its wait early.
+    static constexpr std::size_t kMaxHeldEdges = kEdgeBlockSize / 4;
+    void learn(Line& l, std::size_t i, double t) {
+        const double v = row_[l.slot];
+        l.trigger.see(v);
+        if (l.learner.add(t, v) || (l.learner.departed() && order_.held() >= kMaxHeldEdges))
+            resolve(l, i);
+    }
+    void resolve(Line& l, std::size_t i);
+    void finishLearning() {
+        for (std::size_t i = 0; i < lines_.size(); ++i)
+            if (lines_[i].learning) resolve(lines_[i], i);
     }
 
     // A block ends after this many voltage samples, so that a quiet stretch stays bounded.
@@ -344,6 +370,39 @@ SchmittSettings AnalogReader::settingsFor(const Line& l, LevelEstimator& est) co
     return s;
 }
 
+// The held samples of a line whose prefix was flat: its levels, then its edges in them.
+// Still one level (a spike): wait for the next departure; at the end, no edges.
+void AnalogReader::resolve(Line& l, std::size_t i) {
+    const auto& held = l.learner.held();
+    LevelEstimator est;
+    for (const auto& [t, v] : held)
+        est.add(v);
+    SchmittSettings s = est.settings();
+    if (s.flat && !done_) return l.learner.restart();
+    l.learning = false;
+    if (s.flat || !l.learner.departed()) return l.learner.clear();
+    if (opts_.hysteresis >= 0) s.hysteresis = opts_.hysteresis;
+    l.settings = s;
+    l.levels = est.levels();
+    l.learned = true;
+    l.trigger.configure(s);
+    l.quality.configure(l.levels.first, l.levels.second);
+    // The level before the held samples was a guess: a wrong one is put right at once.
+    const std::uint8_t level = l.trigger.start(held[0].first, held[0].second);
+    if (level != l.level) {
+        l.level = level;
+        pushEdge(l, i, held[0].first);
+    }
+    for (std::size_t k = 1; k < held.size(); ++k) {
+        double et;
+        l.quality.feed(held[k].first / ticks_per_s_, held[k].second);
+        if (!l.trigger.feed(held[k].first, held[k].second, et)) continue;
+        l.level = l.trigger.level();
+        pushEdge(l, i, et);
+    }
+    l.learner.clear();
+}
+
 void AnalogReader::start() {
     started_ = true;
     for (auto& l : lines_) {
@@ -351,6 +410,8 @@ void AnalogReader::start() {
         LevelEstimator est;
         l.settings = settingsFor(l, est);
         l.levels = est.levels();
+        l.learning = l.settings.flat && !l.watch;
+        if (l.learning) l.learner.configure(est.settings());
         l.trigger.configure(l.settings);
         l.quality.configure(l.levels.first, l.levels.second);
         for (int w = 0; l.watch && w < 2; ++w) {
@@ -368,9 +429,15 @@ void AnalogReader::start() {
     }
     const double ticks = t * ticks_per_s_;
     start_tick_ = end_tick_ = bound_ = toTick(ticks);
-    for (auto& l : lines_) {
+    for (std::size_t i = 0; i < lines_.size(); ++i) {
+        Line& l = lines_[i];
         l.level = l.bit >= 0 ? (unsigned(row_[l.slot]) >> l.bit) & 1u
                              : l.trigger.start(ticks, row_[l.slot]);
+        // A line idle clear above 0 V is guessed high until its levels show.
+        if (l.learning) {
+            l.level = l.learner.idleAboveZero();
+            learn(l, i, ticks);
+        }
         if (l.watch)
             l.watch->start(start_tick_, l.wire[0].start(ticks, row_[l.pair.slot[0]]),
                            l.wire[1].start(ticks, row_[l.pair.slot[1]]));
@@ -384,7 +451,8 @@ std::vector<std::string> AnalogReader::notes() const {
         const std::string& name = signals_[l.channel].name;
         const SchmittSettings& s = l.settings;
         std::string how = s.flat        ? "one level only in its first samples: a guess"
-                          : s.from_data ? fmt::format("from the data: levels {} and {}",
+                          : s.from_data ? fmt::format("from the data{}: levels {} and {}",
+                                                      l.learned ? " after its idle start" : "",
                                                       volts(l.levels.first), volts(l.levels.second))
                                         : "as given";
         out.push_back(fmt::format("{}: threshold {}, hysteresis {} ({})", name, volts(s.threshold),

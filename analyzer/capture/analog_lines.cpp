@@ -4,6 +4,7 @@
 #include <array>
 #include <charconv>
 #include <cmath>
+#include <tuple>
 
 #include <fmt/format.h>
 
@@ -21,15 +22,31 @@ struct Histogram {
     double centre(int b) const { return lo + (b + 0.5) * width; }
 };
 
+// The range of the samples, but without the few most outlying at either end when they
+// lie far out: one spike must not squeeze both levels into one bin, yet a level of a
+// hundred samples stays inside.
+std::pair<float, float> robustRange(const std::vector<float>& values) {
+    const std::size_t n = values.size();
+    const std::size_t trim = std::min(std::max<std::size_t>(n / 4096, 4), n / 64);
+    std::vector<float> v = values;
+    const auto [mn, mx] = std::minmax_element(v.begin(), v.end());
+    const float lowest = *mn, highest = *mx;
+    std::nth_element(v.begin(), v.begin() + std::ptrdiff_t(trim), v.end());
+    const float lo = v[trim];
+    std::nth_element(v.begin(), v.end() - std::ptrdiff_t(trim + 1), v.end());
+    const float hi = v[n - 1 - trim];
+    const float far = (hi - lo) / 2;
+    return {lo - lowest > far ? lo : lowest, highest - hi > far ? hi : highest};
+}
+
 Histogram histogramOf(const std::vector<float>& values) {
     Histogram h;
-    const auto [mn, mx] = std::minmax_element(values.begin(), values.end());
-    h.lo = *mn;
-    h.hi = *mx;
+    std::tie(h.lo, h.hi) = robustRange(values);
     h.width = (h.hi - h.lo) / kBins;
     if (!(h.width > 0)) return h;
+    // Samples beyond the range count in the end bins.
     for (const float v : values)
-        ++h.count[std::min(kBins - 1, int((v - h.lo) / h.width))];
+        ++h.count[int(std::clamp((v - h.lo) / h.width, 0.0, kBins - 1.0))];
     return h;
 }
 
@@ -83,6 +100,7 @@ SchmittSettings LevelEstimator::settings() const {
     }
     s.threshold = (h.centre(low) + h.centre(high)) / 2;
     s.hysteresis = (h.centre(high) - h.centre(low)) / 10;
+    s.levels = {h.centre(low), h.centre(high)};
     return s;
 }
 

@@ -4,6 +4,7 @@
 // the threshold, interpolated between the two samples around the crossing, so edges
 // come out finer than the sample grid. Thresholds are given or found from a bounded
 // prefix of the samples (the two main levels of the line); memory stays constant.
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <optional>
@@ -20,12 +21,16 @@ struct SchmittSettings {
     double hysteresis = 0;  // volts: the band [threshold - h/2, threshold + h/2] is ignored
     bool from_data = false;
     bool flat = false;  // from data that showed one level only: a guess
+    std::optional<std::pair<double, double>> levels;  // (low, high) volts, when the data showed two
 };
 
 // The two main levels of a line from a histogram of its first samples.
 class LevelEstimator {
 public:
-    void add(double v) { values_.push_back(float(v)); }
+    // Scopes write an over-range or missing sample as 9.9e37: no level.
+    void add(double v) {
+        if (std::abs(v) <= 1e30) values_.push_back(float(v));
+    }
     std::size_t size() const { return values_.size(); }
     // Threshold at the midpoint of the two levels, hysteresis a tenth of their swing. A
     // prefix with one level only gives a threshold in the middle of its range and a band
@@ -50,7 +55,15 @@ public:
         high_ = s.threshold + s.hysteresis / 2;
         low_ = s.threshold - s.hysteresis / 2;
         thr_ = s.threshold;
-        win_ = 2.5 * s.hysteresis;
+        win_ = fitWindow(s);
+    }
+    // The window never reaches a level: a signal that cannot leave it never hands out
+    // its edge. Without known levels, the band itself is all that is known to be clear.
+    static double fitWindow(const SchmittSettings& s) {
+        if (!s.levels) return s.hysteresis / 2;
+        const double to_low = std::abs(s.threshold - s.levels->first);
+        const double to_high = std::abs(s.levels->second - s.threshold);
+        return std::min({2.5 * s.hysteresis, to_low / 2, to_high / 2});
     }
     // The level before the first sample: above the threshold or not.
     std::uint8_t start(double t, double v) {
@@ -58,13 +71,17 @@ public:
         prev_t_ = t;
         prev_v_ = v;
         armed_ = pending_ = false;
-        seen_min_ = seen_max_ = v;
+        see(v);
         fit_ = {};
         return level_;
     }
-    bool feed(double t, double v, double& edge_t) {
+    // A sample for minSeen() and maxSeen() only.
+    void see(double v) {
         seen_min_ = v < seen_min_ ? v : seen_min_;
         seen_max_ = v > seen_max_ ? v : seen_max_;
+    }
+    bool feed(double t, double v, double& edge_t) {
+        see(v);
         // The last crossing of the threshold towards the other level: the edge's time
         // when too few samples lie in the window to fit a line.
         const bool crossed = level_ ? (prev_v_ >= thr_ && v < thr_) : (prev_v_ <= thr_ && v > thr_);
@@ -131,11 +148,49 @@ private:
     };
     double thr_ = 0, high_ = 0, low_ = 0, win_ = 0;
     double prev_t_ = 0, prev_v_ = 0, cross_t_ = 0, fallback_t_ = 0;
-    double seen_min_ = 0, seen_max_ = 0;
+    double seen_min_ = HUGE_VAL, seen_max_ = -HUGE_VAL;
     Fit fit_;
     bool armed_ = false, pending_ = false;
     std::uint8_t level_ = 0;
     std::uint64_t reversals_ = 0;
+};
+
+// The samples of a line whose first samples showed one level only (a guessed threshold
+// in its noise), held from shortly before the signal leaves that level until enough of
+// them show the line's two levels; then its edges are found in them. Memory stays
+// bounded: before the signal leaves, only the last few samples are kept.
+class FlatLineLearner {
+public:
+    // `guess`: the band the flat samples lay in (LevelEstimator's flat settings).
+    void configure(const SchmittSettings& guess) {
+        low_ = guess.threshold - guess.hysteresis / 2;
+        high_ = guess.threshold + guess.hysteresis / 2;
+    }
+    // True when the held samples are enough to judge.
+    bool add(double t, double v) {
+        if (!departed_ && held_.size() >= 2 * kLead)
+            held_.erase(held_.begin(), held_.begin() + std::ptrdiff_t(held_.size() - kLead));
+        held_.push_back({t, float(v)});
+        departed_ = departed_ || v < low_ || v > high_;
+        return departed_ && held_.size() >= kLearn;
+    }
+    bool departed() const { return departed_; }
+    bool idleAboveZero() const { return low_ > 0; }
+    // No edge of this line can come before this time.
+    double earliest(double now) const { return held_.empty() ? now : held_.front().first; }
+    const std::vector<std::pair<double, float>>& held() const { return held_; }
+    // The samples so far showed one level after all (a spike): wait for the next departure.
+    void restart() {
+        held_.erase(held_.begin(), held_.end() - std::ptrdiff_t(std::min(held_.size(), kLead)));
+        departed_ = false;
+    }
+    void clear() { held_ = {}; }
+
+private:
+    static constexpr std::size_t kLead = 256, kLearn = 1 << 16;
+    double low_ = 0, high_ = 0;
+    bool departed_ = false;
+    std::vector<std::pair<double, float>> held_;  // (time, volts)
 };
 
 // Edges of several lines put back in time order: a slow edge is timed at its threshold

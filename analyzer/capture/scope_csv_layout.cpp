@@ -44,13 +44,24 @@ std::vector<std::string_view> headLines(std::string_view head, bool whole) {
     return lines;
 }
 
+// Volts per unit of a voltage unit ("mV", "(mV)", "µV"); 0 for any other text.
+double voltsPerUnit(std::string_view unit) {
+    if (unit.size() > 2 && unit.front() == '(' && unit.back() == ')')
+        unit = unit.substr(1, unit.size() - 2);
+    const std::string u = asciiLower(trimField(unit));
+    return u == "v"                                            ? 1
+           : u == "mv"                                         ? 1e-3
+           : u == "uv" || u == "\xc2\xb5v" || u == "\xce\xbcv" ? 1e-6
+           : u == "kv"                                         ? 1e3
+                                                               : 0;
+}
+
 // "X(CH2)" -> CH2, "CH 1 (V)" -> CH1, "Channel A" -> A, "1" (Keysight) -> CH1.
 std::string channelName(std::string_view title) {
     std::string_view t = title;
     if (const auto open = t.find('('); open != std::string_view::npos && t.back() == ')') {
         const std::string_view inner = t.substr(open + 1, t.size() - open - 2);
-        t = asciiLower(inner) == "v" || asciiLower(inner) == "mv" ? trimField(t.substr(0, open))
-                                                                  : inner;
+        t = voltsPerUnit(inner) > 0 ? trimField(t.substr(0, open)) : inner;
     }
     if (startsWith(asciiLower(t), "channel ")) return std::string(trimField(t.substr(8)));
     std::string out;
@@ -60,10 +71,17 @@ std::string channelName(std::string_view title) {
     return out;
 }
 
+// "CH 1 (mV)" -> 1e-3; a title without a voltage unit is in volts.
+double titleScale(std::string_view title) {
+    const auto open = title.find('(');
+    const double scale = open == std::string_view::npos ? 0 : voltsPerUnit(title.substr(open));
+    return scale > 0 ? scale : 1;
+}
+
 void addChannels(ScopeLayout& l, const Fields& f, std::size_t from, std::size_t to) {
     for (std::size_t i = from; i < to && i < f.size(); ++i) {
         if (f[i].empty() && i + 1 == f.size()) break;  // a trailing separator
-        l.channels.push_back({channelName(f[i]), std::string(f[i]), i, -1});
+        l.channels.push_back({channelName(f[i]), std::string(f[i]), i, -1, titleScale(f[i])});
     }
 }
 
@@ -242,6 +260,9 @@ std::optional<ScopeLayout> picoscope(const std::vector<std::string_view>& lines,
     if (l.time_scale == 0)
         broken(name, 2, fmt::format("unknown time unit '({})' in PicoScope's units row", unit));
     addChannels(l, f, 1, f.size());
+    // Each channel's unit is its own: "(mV)" on one range, "(V)" on another.
+    for (auto& c : l.channels)
+        if (c.field < u.size() && voltsPerUnit(u[c.field]) > 0) c.scale = voltsPerUnit(u[c.field]);
     l.fields = l.channels.size() + 1;
     return l;
 }

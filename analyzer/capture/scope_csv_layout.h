@@ -16,6 +16,7 @@ struct ScopeChannel {
     std::string full_name;  // the column title as written
     std::size_t field = 0;  // index of its field in a data row
     int bit = -1;           // >= 0: a bit of a digital byte column ("0x10")
+    double scale = 1;       // volts per unit of the column: 1e-3 for "(mV)"
 };
 
 struct ScopeLayout {

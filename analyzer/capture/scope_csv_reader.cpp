@@ -28,7 +28,10 @@ public:
         : src_(std::move(src)), lay_(std::move(layout)), opts_(opts) {
         for (const auto& c : lay_.channels) {
             auto at = std::find(slot_field_.begin(), slot_field_.end(), c.field);
-            if (at == slot_field_.end()) at = slot_field_.insert(at, c.field);
+            if (at == slot_field_.end()) {
+                slot_scale_.insert(slot_scale_.begin() + (at - slot_field_.begin()), c.scale);
+                at = slot_field_.insert(at, c.field);
+            }
             channels_.push_back(
                 {c.name, c.full_name, std::size_t(at - slot_field_.begin()), c.bit});
         }
@@ -101,10 +104,10 @@ private:
             if (blank(f))
                 ++empty;
             else if (!parseScopeNumber(f, lay_.decimal_comma, v) ||
-                     !(std::abs(v) <= std::numeric_limits<float>::max()))
+                     !(std::abs(v * slot_scale_[s]) <= std::numeric_limits<float>::max()))
                 fail(fmt::format("expected a number in column {}, found '{}'", slot_field_[s] + 1,
                                  printable(f)));
-            values[s] = float(v);
+            values[s] = float(v * slot_scale_[s]);
         }
         if (empty == slot_field_.size()) return false;
         if (empty) fail("an empty value in a row that has others");
@@ -126,6 +129,7 @@ private:
     OpenOptions opts_;
     std::vector<AnalogChannel> channels_;
     std::vector<std::size_t> slot_field_;  // the field of each value slot
+    std::vector<double> slot_scale_;       // and its volts per unit
     std::vector<std::string_view> fields_;
     std::string wall_clock_;  // LeCroy's first segment's trigger time
 };

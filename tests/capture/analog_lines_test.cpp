@@ -66,7 +66,7 @@ TEST(AnalogLines, EdgesAreTimedAtTheCrossingFinerThanTheSampleGrid) {
     sq.sigma = 0.03;
     std::mt19937 rng(3);
     SchmittLine line;
-    line.configure({1.65, 0.29, false, false});
+    line.configure({1.65, 0.29, false, false, std::pair{0.2, 3.1}});
     line.start(0, sq.at(0, rng));
     std::vector<double> edges;
     for (double t = 37; t < 20000; t += 37) {
