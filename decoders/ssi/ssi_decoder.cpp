@@ -38,6 +38,7 @@ void SsiDecoder::start(const DecoderContext& ctx) {
     Decoder::start(ctx);
     clk_ = ctx.initial_levels.size() > 0 ? ctx.initial_levels[0] != 0 : true;
     data_ = ctx.initial_levels.size() > 1 ? ctx.initial_levels[1] != 0 : true;
+    tm_max_ticks_ = tb().fromNs(cfg_.tm_max_us * 1e3);
 }
 
 double SsiDecoder::periodTicks() const {
@@ -61,8 +62,10 @@ void SsiDecoder::startBurst(Tick t) {
     b_.falls.push_back(t);
     b_.data_at_start = data_;
     // Data still low at the first falling edge: the encoder's monoflop has not expired
-    // since the last burst (a re-read of the latched word), or the encoder is not ready.
-    b_.reread = !data_ && last_clock_ != kNoTick && !data_rose_since_clock_;
+    // since the last burst (a re-read of the latched word; only within tm_max of its last
+    // clock, a data line stuck low is not a monoflop), or the encoder is not ready.
+    b_.reread = !data_ && last_clock_ != kNoTick && !data_rose_since_clock_ &&
+                double(t - last_clock_) <= tm_max_ticks_;
     b_.not_ready = !data_ && !b_.reread;
     b_.tp = last_clock_ == kNoTick ? kNoTick : t - last_clock_;
     b_.filtered_glitches = 0;
@@ -91,9 +94,10 @@ void SsiDecoder::edge(Tick t, int role, bool level) {
             if (state_ == State::Clocking) {
                 b_.falls.push_back(t);
             } else {
-                // A new burst while the last frame still waits for tm: data is low, so this
-                // is a re-read and that frame's tm stays unknown.
-                if (state_ == State::WaitTm) emitFrame(std::nullopt, false);
+                // A new burst while the last frame still waits for tm: data is low. Within
+                // tm_max a re-read (that frame's tm stays unknown), else tm was too long.
+                if (state_ == State::WaitTm)
+                    emitFrame(std::nullopt, double(t - last_clock_) > tm_max_ticks_);
                 startBurst(t);
             }
         } else if (state_ == State::Clocking) {

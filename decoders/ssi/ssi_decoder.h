@@ -87,6 +87,7 @@ private:
     bool pending_checks_tm_ = false;  // tm is only checked for complete, unbroken words
     Tick wait_deadline_ = 0;
     Tick last_clock_ = kNoTick;  // last clock edge of the last burst
+    double tm_max_ticks_ = 0;    // a burst later than this after it is no re-read
     bool data_rose_since_clock_ = false;
     bool prev_valid_ = false;  // the previous frame's word, for re-read comparison
     std::uint64_t prev_raw_ = 0;

@@ -32,8 +32,8 @@ DecoderInfo makeInfo() {
         intOption("mt_bits", "0", 0, 64, "multi-turn field width (above single-turn)"),
         boolOption("gray", "0", "the position field is Gray coded"),
         numberOption("tm_us", "20", 0, 1e300,
-                     "nominal monoflop time: a burst starting while data is still low is a re-read "
-                     "of the same word"),
+                     "nominal monoflop time: a burst starting while data is still low (within "
+                     "tm_max of the last clock) is a re-read of the same word"),
         boolOption("lead", "0", "count the level sampled at the first sampling edge as a bit"),
         boolOption("lsb_first", "0", "the first bit on the wire is raw bit 0"),
         choiceOption("sample_edge", {"falling", "rising"},

@@ -518,3 +518,29 @@ TEST(SsiGenerated, DataStuckLowOrHighAfterTheWord) {
         EXPECT_TRUE(e.hasError("tm_missing")) << describe(e);
     }
 }
+
+TEST(SsiGenerated, DataStuckLowBetweenPollsIsNotReadyNotReread) {
+    // Polled every 80 us with tm 20 us (tm_max 40 us): once the data line breaks low, no
+    // burst starts within tm_max of the last one, so none is a re-read of a latched word.
+    SsiGenConfig cfg;
+    cfg.data_bits = 13;
+    cfg.clock_hz = 500e3;
+    cfg.tail_ns = 1'000'000;  // the last frame's data stays low past 10 * tm_max
+    const auto g = generateSsi(cfg, randomFrames(6, 13, 81, 80000));
+    const Tick broken = g.frames[1].end + 40000;
+    ASSERT_LT(broken, g.frames[2].start);
+    Waveform w = g.wave;
+    std::erase_if(w.edges, [&](const Edge& e) { return e.line == 1 && e.t >= broken; });
+    w.edges.insert(
+        std::find_if(w.edges.begin(), w.edges.end(), [&](const Edge& e) { return e.t >= broken; }),
+        Edge{broken, 1, 0});
+    const auto ev = decodeFrames(w, {{"bits", "13"}, {"st_bits", "13"}});
+    ASSERT_EQ(ev.size(), 6u);
+    for (std::size_t i = 2; i < ev.size(); ++i) {
+        EXPECT_TRUE(ev[i].hasError("not_ready")) << i << ": " << describe(ev[i]);
+        EXPECT_FALSE(flag(ev[i], "reread")) << i << ": " << describe(ev[i]);
+        EXPECT_EQ(u64(ev[i], "raw"), 0u);
+        EXPECT_TRUE(ev[i].hasError("timeout_long")) << i << ": " << describe(ev[i]);
+    }
+    expectTruth(decodeFrames(g.wave, {{"bits", "13"}, {"st_bits", "13"}}), g);
+}
