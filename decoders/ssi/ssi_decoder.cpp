@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <utility>
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -179,50 +181,98 @@ int SsiDecoder::countGlitches(double T, std::vector<std::uint8_t>& data_glitch) 
 }
 
 SsiDecoder::Timing SsiDecoder::measureTiming(double T,
-                                             const std::vector<std::uint8_t>& data_glitch) const {
+                                             const std::vector<std::uint8_t>& data_glitch) {
     const bool rising = cfg_.sample_rising;
     const std::vector<Tick>& S = rising ? b_.rises : b_.falls;  // sampling edges
     // Data delay: each data edge measured from the latest rising edge (the encoder shifts
     // on rising edges; a bit launched by rising edge k is sampled by sampling edge k+1, the
-    // first one after it, in both sampling modes).
+    // first one after it, in both sampling modes). That gives the delay modulo a period;
+    // the whole periods come from periodRange().
     const std::vector<Tick>& L = b_.rises;
     std::vector<std::int64_t> offsets;
-    std::vector<std::int64_t> launch_of(b_.data.size(), -1);
     for (std::size_t i = 0; i < b_.data.size(); ++i) {
         if (data_glitch[i] || L.empty()) continue;
-        const Tick e = b_.data[i].t;
-        auto it = std::upper_bound(L.begin(), L.end(), e);
+        auto it = std::upper_bound(L.begin(), L.end(), b_.data[i].t);
         if (it == L.begin()) continue;
-        const auto k = std::int64_t(it - L.begin()) - 1;
-        const Tick off = e - L[k];
-        if (T > 0 && double(off) >= T) continue;  // the monoflop return, not a bit
-        offsets.push_back(off);
-        launch_of[i] = k;
+        const Tick off = b_.data[i].t - *std::prev(it);
+        if (T <= 0 || double(off) < T) offsets.push_back(off);
     }
     Timing out;
-    out.measured = offsets.empty() ? 0 : median(offsets);
+    const std::int64_t frac = offsets.empty() ? 0 : median(offsets);
+    double to_sample = 0;  // mean time from a launching edge to the sample of its bit
+    int n = 0;
+    for (std::size_t k = 0; k + 1 < S.size() && k < L.size(); ++k, ++n)
+        to_sample += double(S[k + 1] - L[k]);
+    to_sample = n > 0 ? to_sample / n : (rising ? T : T / 2);
     out.delay = tb().fromNs(cfg_.delay_ns);
-    if (cfg_.delay_auto) {
-        // Sample in the middle of each bit's window [launch + delay, next launch + delay).
-        double to_sample = 0;
-        int n = 0;
-        for (std::size_t k = 0; k + 1 < S.size() && k < L.size(); ++k, ++n)
-            to_sample += double(S[k + 1] - L[k]);
-        to_sample = n > 0 ? to_sample / n : (rising ? T : T / 2);
-        out.delay = double(out.measured) + T / 2 - to_sample;
+    // Whole periods: those the last frame had (the cable stays the same; at first, those
+    // in the given offset itself, none with auto), within what this frame's edges allow.
+    const auto [lo, hi] = periodRange(T, frac, data_glitch);
+    const double offset_periods = cfg_.delay_auto ? 0.0 : out.delay / std::max(T, 1.0);
+    int whole = whole_periods_ >= 0 ? whole_periods_
+                                    : int(std::floor(std::clamp(offset_periods, 0.0, 1e6)));
+    whole = std::max(lo, std::min(whole, std::max(lo, hi)));
+    whole_periods_ = whole;
+    out.measured = frac + std::llround(whole * T);
+    // Sample in the middle of each bit's window [launch + delay, next launch + delay).
+    if (cfg_.delay_auto) out.delay = double(out.measured) + T / 2 - to_sample;
+    checkWindows(T, frac, whole, out, data_glitch);
+    return out;
+}
+
+std::pair<int, int> SsiDecoder::periodRange(double T, std::int64_t frac,
+                                            const std::vector<std::uint8_t>& data_glitch) const {
+    // No data edge comes before the first rising edge plus the delay: the first one bounds
+    // the whole periods from above (exact when the MSB is 0). Falling edges after the last
+    // clock are bits (the monoflop's return is a rise) launched by at most the last rising
+    // edge: they bound it from below (exact when the LSB is 1), when they sit on the
+    // delay's grid (not a line that breaks low after the burst).
+    const std::vector<Tick>& L = b_.rises;
+    int lo = 0, hi = std::numeric_limits<int>::max();
+    if (T <= 0 || L.empty()) return {0, hi};
+    bool first = true;
+    for (std::size_t i = 0; i < b_.data.size(); ++i) {
+        const Tick e = b_.data[i].t;
+        if (data_glitch[i] || e < L.front()) continue;
+        const auto periods = [&](Tick from) {
+            return std::min(std::round(double(e - from - frac) / T), double(1 << 20));
+        };
+        if (first) hi = std::max(0, int(periods(L.front())));
+        first = false;
+        if (b_.data[i].level || e <= L.back()) continue;
+        const double j = periods(L.back());
+        if (std::abs(double(e - L.back() - frac) - j * T) < T / 4) lo = std::max(lo, int(j));
     }
+    return {lo, hi};
+}
+
+void SsiDecoder::checkWindows(double T, std::int64_t frac, int whole, Timing& out,
+                              const std::vector<std::uint8_t>& data_glitch) const {
     // Each bit must be sampled inside its window. A data edge at or after the sample
     // that should have seen it: the data came too late (`late_data`). A data edge at or
     // before the sample of the bit it ends: the sampling offset is too late
     // (`sample_late`). Either way a bit was misread.
+    const std::vector<Tick>& S = cfg_.sample_rising ? b_.rises : b_.falls;
+    const std::vector<Tick>& L = b_.rises;
     for (std::size_t i = 0; i < b_.data.size(); ++i) {
-        if (launch_of[i] < 0) continue;
-        const auto k = std::size_t(launch_of[i]);
-        const double e = double(b_.data[i].t);
-        if (k + 1 < S.size() && e >= double(S[k + 1]) + out.delay) out.late = true;
-        if (k < S.size() && e <= double(S[k]) + out.delay) out.sample_late = true;
+        if (data_glitch[i] || L.empty()) continue;
+        const Tick t = b_.data[i].t;
+        auto it = std::upper_bound(L.begin(), L.end(), t);
+        if (it == L.begin()) continue;
+        // Launched `whole` rising edges before the latest one; past the last one, as many
+        // fewer as whole periods have gone since it.
+        auto k = std::int64_t(it - L.begin()) - 1 - whole;
+        const Tick off = t - L[std::size_t(k + whole)];
+        if (T > 0 && double(off) >= T) {
+            if (it != L.end()) continue;  // a long clock phase: not on the delay grid
+            k += std::lround(double(off - frac) / T);
+        }
+        if (k < 0 || k >= std::int64_t(L.size())) continue;  // the monoflop return
+        const double e = double(t);
+        const auto u = std::size_t(k);
+        if (u + 1 < S.size() && e >= double(S[u + 1]) + out.delay) out.late = true;
+        if (u < S.size() && e <= double(S[u]) + out.delay) out.sample_late = true;
     }
-    return out;
 }
 
 std::vector<std::uint8_t> SsiDecoder::sampleBits(double delay) const {

@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/block_decoding.h"
@@ -66,7 +67,12 @@ private:
     };
     // Glitches in the burst; marks the data edges that are.
     int countGlitches(double T, std::vector<std::uint8_t>& data_glitch) const;
-    Timing measureTiming(double T, const std::vector<std::uint8_t>& data_glitch) const;
+    Timing measureTiming(double T, const std::vector<std::uint8_t>& data_glitch);
+    // The whole clock periods in the data delay this burst's edges allow, [lo, hi].
+    std::pair<int, int> periodRange(double T, std::int64_t frac,
+                                    const std::vector<std::uint8_t>& data_glitch) const;
+    void checkWindows(double T, std::int64_t frac, int whole, Timing& out,
+                      const std::vector<std::uint8_t>& data_glitch) const;
     std::vector<std::uint8_t> sampleBits(double delay) const;
     void fillFrame(Event& e, const SsiWord& w, double T, std::int64_t measured, int glitches);
     std::string frameSummary(const SsiWord& w, const SsiFields& f,
@@ -89,6 +95,7 @@ private:
     Tick last_clock_ = kNoTick;  // last clock edge of the last burst
     double tm_max_ticks_ = 0;    // a burst later than this after it is no re-read
     bool data_rose_since_clock_ = false;
+    int whole_periods_ = -1;   // whole clock periods in the last frame's data delay (-1: none yet)
     bool prev_valid_ = false;  // the previous frame's word, for re-read comparison
     std::uint64_t prev_raw_ = 0;
 

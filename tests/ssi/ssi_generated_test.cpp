@@ -201,6 +201,30 @@ TEST(SsiGenerated, CableDelay) {
     expectTruth(ev, g);
 }
 
+TEST(SsiGenerated, CableDelayBeyondOnePeriod) {
+    // 1200 ns at 1 MHz: data edges 200 ns after the rising edge after the one that launched
+    // them. The first frame shows the whole period (its LSB 1 falls to the end low 1200 ns
+    // after the last clock), the later ones, whatever their bits, keep it.
+    SsiGenConfig cfg;
+    cfg.delay_ns = 1200;
+    auto frames = randomFrames(6, 25, 13);
+    frames[0].word = 0x0123457;
+    frames[1].word = 0x1ABCDEE;  // MSB 1, LSB 0: its edges alone allow 200 ns too
+    const auto g = generateSsi(cfg, frames);
+    auto ev = decodeFrames(g.wave, {{"bits", "25"}, {"delay_ns", "auto"}});
+    expectTruth(ev, g);
+    for (const auto& e : ev)
+        EXPECT_EQ(i64(e, "delay_ns"), 1200);
+    ev = decodeFrames(g.wave, {{"bits", "25"}, {"delay_ns", "1200"}});
+    expectTruth(ev, g);
+    ev = decodeFrames(g.wave, {{"bits", "25"}});  // sampled at the falling edge: too early
+    ASSERT_EQ(ev.size(), g.frames.size());
+    for (const auto& e : ev) {
+        EXPECT_TRUE(e.hasError("late_data")) << describe(e);
+        EXPECT_EQ(i64(e, "delay_ns"), 1200);
+    }
+}
+
 TEST(SsiGenerated, GlitchesRemovedByGlitchFilter) {
     SsiGenConfig cfg;
     cfg.clock_hz = 500e3;  // 2 us period
