@@ -21,6 +21,11 @@ constexpr double kIdleReturnRatio = 3.0;
 constexpr double kLateSlEdgePeriods = 1.5;
 // A clock pause longer than this ends a frame in progress (C6: clock phases <= 12.5 us).
 constexpr double kMinQuietNs = 20000.0;
+// Before the first frame start known to be one: MA still this many times the frame's
+// longest clock phase before it began was idle, not clocking in a frame the capture
+// started inside (which may show a low and a high phase as one: a VCD line reads 1 from
+// the capture's start until its first change).
+constexpr double kStartIdlePhases = 2.5;
 
 }  // namespace
 
@@ -38,6 +43,7 @@ void BisscDecoder::start(const DecoderContext& ctx) {
     run_.ma = ctx.initial_levels.size() > kMa ? ctx.initial_levels[kMa] != 0 : true;
     run_.sl = ctx.initial_levels.size() > kSl ? ctx.initial_levels[kSl] != 0 : true;
     sampler_.reset(run_.sl);
+    capture_start_ = ctx.capture_start;
     // A capture that starts with SL low starts inside a frame or a timeout.
     c_.state = run_.sl ? State::Idle : State::WaitSlaveIdle;
 }
@@ -137,6 +143,7 @@ void BisscDecoder::resolveHoldStart(Tick ack) {
         idle_return = high > kIdleReturnRatio * low;
     }
     if (!idle_return) return;
+    f_.ma_still = std::max(f_.ma_still, f_.hold_fall - f_.rises[0]);
     f_.rises.eraseFirst();
     updatePeriod();  // the first rise changed
     f_.start = f_.hold_fall;
@@ -144,7 +151,7 @@ void BisscDecoder::resolveHoldStart(Tick ack) {
     setBusyFrom(f_.start);
 }
 
-void BisscDecoder::beginFrame(Tick start, bool from_hold) {
+void BisscDecoder::beginFrame(Tick start, bool from_hold, Tick ma_still) {
     // A fresh frame, keeping the vectors' storage (one frame every few microseconds).
     RiseList rises = std::move(f_.rises);
     std::vector<std::string> errors = std::move(f_.errors);
@@ -157,6 +164,9 @@ void BisscDecoder::beginFrame(Tick start, bool from_hold) {
     updatePeriod();  // no rises yet: the previous frame's period
     f_.start = start;
     f_.from_hold = from_hold;
+    f_.ma_still = ma_still;
+    // MA still past any clock pause: the master was idle, a frame start to trust.
+    if (double(ma_still) > c_.min_quiet) c_.frame_start_seen = true;
     sampler_.reset(run_.sl);
     c_.state = State::WaitAck;
     setBusyFrom(start);
@@ -308,6 +318,7 @@ void BisscDecoder::onMa(Tick t, bool level) {
 
 void BisscDecoder::onMaAfterSamples(Tick t, bool level) {
     checkQuiet(t);
+    const Tick still_since = run_.last_ma_edge == kNoTick ? capture_start_ : run_.last_ma_edge;
     recordMaEdge(t, level,
                  (c_.state == State::WaitAck || c_.state == State::Data) && !f_.rises.empty() &&
                      run_.last_ma_edge != kNoTick);
@@ -317,9 +328,10 @@ void BisscDecoder::onMaAfterSamples(Tick t, bool level) {
             break;
         case State::Idle:
             if (!level) {
-                beginFrame(t, false);
+                beginFrame(t, false, t - still_since);
             } else {
-                beginFrame(t, true);  // MA rising from low: maybe LAT (see resolveHoldStart)
+                // MA rising from low: maybe LAT (see resolveHoldStart)
+                beginFrame(t, true, t - still_since);
                 addRise(t);
             }
             break;
@@ -481,6 +493,15 @@ void BisscDecoder::takeSample(int index, bool level, double t) {
 }
 
 void BisscDecoder::closeFrame(Tick end, Tick timeout_end, const char* error, bool feed_control) {
+    if (!c_.frame_start_seen && !startedFromIdle()) {
+        // The rest of a frame the capture started inside: nothing in it can be trusted.
+        ++skipped_frames_;
+        sampler_.cancelAll();
+        run_.slot = Slot::Done;
+        idle();
+        return;
+    }
+    c_.frame_start_seen = true;
     EventPtr owned =
         newEvent("frame", f_.start, std::max(timeout_end != kNoTick ? timeout_end : end, f_.start));
     Event& e = *owned;
@@ -504,6 +525,21 @@ void BisscDecoder::closeFrame(Tick end, Tick timeout_end, const char* error, boo
     run_.slot = Slot::Done;
     idle();
     if (feed_control) control_.push(bits);
+}
+
+bool BisscDecoder::startedFromIdle() const {
+    // A whole frame, stop bit low, that ran into the slave's timeout after the master's
+    // last clock: its start bit was the slave's (the rest of a frame, parsed from a later
+    // 1, would run past the master's last clock).
+    if (run_.slot == Slot::Done && f_.errors.empty() && f_.timeout_end != kNoTick &&
+        !f_.retriggered)
+        return true;
+    // Or MA had been still before the frame began for longer than its clock holds a phase
+    // (only LAT seen: the low phase before it).
+    double phase = double(std::max(run_.max_high, run_.max_low));
+    if (phase <= 0 && f_.rises.size() >= 2) phase = periodOfRises() / 2;
+    if (phase <= 0 && f_.rises.size() == 1 && !f_.from_hold) phase = double(f_.rises[0] - f_.start);
+    return phase > 0 && double(f_.ma_still) > kStartIdlePhases * phase;
 }
 
 BisscDecoder::FrameOutcome BisscDecoder::checkFrame(Event& e, Tick timeout_end) {
@@ -617,6 +653,16 @@ void BisscDecoder::countFrame(const Event& e, const FrameOutcome& out) {
 }
 
 std::vector<std::string> BisscDecoder::advice() const {
+    // A start skipped before frames that were decoded (none at all: the mapping's hint).
+    std::vector<std::string> out = framingAdvice();
+    if (skipped_frames_ > 0 && frames_ > 0)
+        out.insert(out.begin(),
+                   "the capture starts inside a frame: its rest, until MA was first seen idle, "
+                   "was skipped");
+    return out;
+}
+
+std::vector<std::string> BisscDecoder::framingAdvice() const {
     // Lines that change but never make an answered frame are not BiSS-C's MA and SL
     // (swapped, or other signals mapped), or the slave is not there. kMinEdges: more than
     // a stray pulse or two. Every edge takes the slow paths while no frame is answered.

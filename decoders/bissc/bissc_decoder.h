@@ -52,6 +52,8 @@ public:
     // cleanFrames()): the data width, the CRC options or the mapping is the likely cause;
     // or when the lines change but no frame is answered: the mapping.
     std::vector<std::string> advice() const override;
+    // advice()'s part on the frames decoded (the mapping, the width, the CRC).
+    std::vector<std::string> framingAdvice() const;
     // Splice points (core/piece_speculation.h): at a frame's first clock edge (no rise
     // yet) or idle, with no sample waiting and no control access open; every field
     // compared but the running totals (bissc_splice.cpp).
@@ -130,6 +132,7 @@ private:
     // its errors.
     struct FrameFields {
         Tick start = 0;
+        Tick ma_still = 0;         // MA unchanged this long before start
         bool from_hold = false;    // started from MA low (Hold-CDM)
         Tick hold_fall = kNoTick;  // first MA fall after a start from MA low
         Tick ack = kNoTick;
@@ -224,7 +227,12 @@ private:
         s.ma = level;
     }
     void onSl(Tick t, bool level);
-    void beginFrame(Tick start, bool from_hold);
+    // ma_still: how long MA had not changed before `start` (from the capture's start for
+    // its first edge).
+    void beginFrame(Tick start, bool from_hold, Tick ma_still);
+    // For a frame before any trusted start: did it begin after MA was idle (not inside a
+    // frame the capture started in)?
+    bool startedFromIdle() const;
     // Per-edge helpers of the general path (sampleTime is defined below the class,
     // scheduleUpTo and drainSamples in bissc_decoder.cpp).
     [[gnu::always_inline]] inline double sampleTime(std::size_t k) const;
@@ -391,6 +399,9 @@ private:
         // edge, without a conversion; checkQuietSlow() decides. It does not follow the
         // delay, so that refining the delay on every SL edge need not work it out again.
         Tick quiet_ticks = 0;
+        // A frame has begun after MA idle: until then a frame may be the rest of one the
+        // capture started inside, and is skipped unless it shows MA idle before it.
+        bool frame_start_seen = false;
     };
     Carried c_;
     RunFields run_;
@@ -399,6 +410,8 @@ private:
     // Edges outside a frame's data (onMa, onSl, takeAckWaitEdge()): all of them while no
     // frame is running.
     std::uint64_t slow_ma_edges_ = 0, slow_sl_edges_ = 0;
+    std::uint64_t skipped_frames_ = 0;  // before the first frame start to trust
+    Tick capture_start_ = 0;
 };
 
 inline void BisscDecoder::updateQuietTicks() {

@@ -25,13 +25,14 @@ bool BisscDecoder::spliceState(SpliceState& out) const {
     w << f_.errors.size();
     for (const auto& e : f_.errors)
         w << e;
-    out.counts = {frames_, answered_frames_, clean_frames_, slow_ma_edges_, slow_sl_edges_};
+    out.counts = {frames_,        answered_frames_, clean_frames_,
+                  slow_ma_edges_, slow_sl_edges_,   skipped_frames_};
     return true;
 }
 
 void BisscDecoder::addCounts(const std::vector<std::uint64_t>& delta) {
-    std::uint64_t* counts[] = {&frames_, &answered_frames_, &clean_frames_, &slow_ma_edges_,
-                               &slow_sl_edges_};
+    std::uint64_t* counts[] = {&frames_,        &answered_frames_, &clean_frames_,
+                               &slow_ma_edges_, &slow_sl_edges_,   &skipped_frames_};
     for (std::size_t i = 0; i < delta.size() && i < std::size(counts); ++i)
         *counts[i] += delta[i];
 }

@@ -135,3 +135,32 @@ TEST(BisscAdvice, NoWidthFitsWithoutACrc) {
     // A fixed width without a CRC cannot be judged: no hint.
     EXPECT_TRUE(adviceFor(frames18(10), {{"bits", "18"}, {"crc_bits", "0"}}).empty());
 }
+
+TEST(BisscAdvice, TheRestOfAFrameTheCaptureStartsInIsSkipped) {
+    // 26 bits at 1 MHz, the capture started anywhere in the first frame: no frame is made
+    // up of its rest (no early_ack, no short frame with invented fields); every frame
+    // after it comes out whole, and the hint says the start was skipped.
+    BisscGenerator gen(BisscGenConfig{});
+    BisscFrameSpec f;
+    for (int i = 0; i < 4; ++i) {
+        f.data = 0x1234567u + std::uint64_t(i) * 0x10101u;
+        gen.addFrame(f);
+    }
+    const Waveform whole = gen.build();
+    const auto& truth = gen.frames();
+    const Tick step = whole.timebase.fromNs(250);
+    for (Tick cut = truth[0].start + 1; cut < truth[1].start; cut += step) {
+        SCOPED_TRACE(cut);
+        std::vector<Event> frames;
+        const auto advice = adviceFor(startingAt(whole, cut), {}, "MA", "SLO", &frames);
+        frames = ofType(frames, "frame");
+        ASSERT_EQ(frames.size(), truth.size() - 1);
+        for (std::size_t i = 0; i < frames.size(); ++i) {
+            EXPECT_EQ(frames[i].start, truth[i + 1].start) << i;
+            EXPECT_TRUE(frames[i].errors.empty()) << i << " " << frames[i].summary;
+            EXPECT_EQ(intField(frames[i], "position"), 0x1234567 + int(i + 1) * 0x10101) << i;
+        }
+        for (const auto& a : advice)
+            EXPECT_NE(a.find("the capture starts inside a frame"), std::string::npos) << a;
+    }
+}

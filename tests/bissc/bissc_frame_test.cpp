@@ -404,19 +404,7 @@ TEST(BisscFrames, ACaptureStartingInsideAFrameDecodesTheFramesAfterIt) {
     const Tick first_judged = gen.frames()[3].start;
     for (Tick cut = from; cut < to; ++cut) {
         SCOPED_TRACE(cut);
-        Waveform w = whole;
-        std::erase_if(w.edges, [&](const Edge& e) { return e.t < cut; });
-        w.start = cut;
-        // As a VCD reader takes it: a line's value on the first time line is its level
-        // at the start; a line with none there reads 1 until its first change.
-        for (std::uint32_t line : {0u, 1u}) {
-            auto first = std::find_if(w.edges.begin(), w.edges.end(),
-                                      [&](const Edge& e) { return e.line == line; });
-            w.initial[line] = first != w.edges.end() && first->t == cut ? first->level : 1;
-            if (first != w.edges.end() && (first->t == cut || first->level == 1))
-                w.edges.erase(first);
-        }
-        auto frames = ofType(decodeBissc(w, {}), "frame");
+        auto frames = ofType(decodeBissc(startingAt(whole, cut), {}), "frame");
         // What the frame cut became, then frames 2..11, each whole after the cut. The
         // first of them may go with the frame cut: a pause after a lone MA pulse cannot
         // be told from a slow clock before a first frame has shown the clock's rate.

@@ -1,5 +1,6 @@
 #pragma once
 // Helpers shared by the BiSS-C tests: decode a generated waveform, pick events by type.
+#include <algorithm>
 #include <map>
 #include <string>
 #include <vector>
@@ -42,6 +43,22 @@ inline BisscGenConfig tenMhzAt100Msps() {
     cfg.timeout_ns = 2040;
     cfg.idle_ns = 850;
     return cfg;
+}
+
+// `whole` as a capture started at `cut`, as a VCD reader takes it: a line's value on the
+// first time line is its level at the start; a line with none there reads 1 until its
+// first change.
+inline Waveform startingAt(const Waveform& whole, Tick cut) {
+    Waveform w = whole;
+    std::erase_if(w.edges, [&](const Edge& e) { return e.t < cut; });
+    w.start = cut;
+    for (std::uint32_t line : {0u, 1u}) {
+        auto first = std::find_if(w.edges.begin(), w.edges.end(),
+                                  [&](const Edge& e) { return e.line == line; });
+        w.initial[line] = first != w.edges.end() && first->t == cut ? first->level : 1;
+        if (first != w.edges.end() && (first->t == cut || first->level == 1)) w.edges.erase(first);
+    }
+    return w;
 }
 
 inline std::vector<Event> ofType(const std::vector<Event>& all, const std::string& type) {
