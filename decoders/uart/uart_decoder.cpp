@@ -231,7 +231,8 @@ void UartDecoder::endFrame(Line& l, bool cut_short) {
         e.summary = fmt::format("{} 0x{:0{}X}{}", l.name, l.value, hex_digits, printable(l.value));
     }
     emit(std::move(owned));
-    // Low through the whole frame, stop bits included: a break, reported when it ends.
+    // Low through every sample, stop bits included: a break if the line stays low to the
+    // frame's end, reported when it ends.
     if (l.all_low && !l.stop_ok && (l.level == fmt_.invert)) {
         l.in_break = true;
         l.break_start = l.frame_start;
@@ -240,6 +241,10 @@ void UartDecoder::endFrame(Line& l, bool cut_short) {
 
 void UartDecoder::emitBreak(Line& l, Tick end) {
     l.in_break = false;
+    // Low past the last stop bit's sample but not for a whole frame (give or take the tick
+    // the edges are quantised to): no break, nor in sigrok's decoder (below 10 bit times
+    // at 8N1).
+    if (double(end - l.break_start) + 1 < fmt_.frameBits() * bit_ticks_) return;
     EventPtr owned = newEvent("break", l.break_start, end);
     Event& e = *owned;
     e.set("line", l.name);

@@ -170,6 +170,27 @@ TEST_F(UartTest, BreakIsReportedWithItsLength) {
     EXPECT_NEAR(double(asInt(*breaks[0].get("duration_ns"))), 30 * gen.bitNs(), 1);
 }
 
+TEST_F(UartTest, NoBreakForLessThanAWholeFrame) {
+    // 8N1: a frame is 10 bit times. Low for 9.51..9.99 of them covers the stop bit's
+    // sample (a framing error) but not the frame: no break; from 10 on, a break.
+    for (double bits : {9.51, 9.6, 9.99, 10.0, 10.5}) {
+        SCOPED_TRACE(bits);
+        UartFormat f;
+        f.baud = 9600;
+        WaveBuilder wb(Timebase{1, 1'000'000'000}, {"tx"}, {1});
+        UartGenerator gen(wb, 0, f);
+        double t = gen.sendChar(1000, 'A');
+        t = gen.sendBreak(t + 10000, bits * gen.bitNs());
+        t = gen.sendChar(t + 2 * gen.bitNs(), 'B');
+        auto events = decodeWaveform(wb.build(wb.ticksFromNs(t + 1e6)), {{"uart", {}, {}}});
+        auto bytes = test::eventsOfType(events, "byte");
+        ASSERT_EQ(bytes.size(), 3u);
+        EXPECT_TRUE(bytes[1].hasError("framing"));
+        EXPECT_EQ(asInt(*bytes[2].get("value")), 'B');
+        EXPECT_EQ(test::eventsOfType(events, "break").size(), bits >= 10 ? 1u : 0u);
+    }
+}
+
 TEST_F(UartTest, ToleratesTransmitterClockError) {
     std::mt19937 rng(99);
     for (double err : {-0.03, 0.03}) {
