@@ -5,9 +5,12 @@
 
 namespace busdecode {
 
-void BaudEstimator::addEdge(Tick t, int line) {
+void BaudEstimator::addEdge(Tick t, int line, bool level) {
     if (line < 0 || line >= int(last_.size())) return;
-    if (last_[line] != kNoTick && t > last_[line]) widths_.push_back(t - last_[line]);
+    if (last_[line] != kNoTick && t > last_[line]) {
+        widths_.push_back(t - last_[line]);
+        idle_level_.push_back(level != idle_high_);  // the pulse it ends had the other level
+    }
     last_[line] = t;
 }
 
@@ -17,17 +20,19 @@ std::optional<double> BaudEstimator::measuredBaud(const Timebase& tb) const {
     std::sort(sorted.begin(), sorted.end());
     // The bit time is the shortest pulse that most pulses are whole multiples of; a
     // glitch is shorter still but explains nothing else, so it is passed over.
-    auto fit = [&](double bit, double& sum_width, double& sum_bits) {
+    // Sums over the start bit's level (sum_*[0]) and the idle level ([1]).
+    auto fit = [&](double bit, double(&sum_width)[2], double(&sum_bits)[2]) {
         std::size_t consistent = 0;
-        sum_width = sum_bits = 0;
-        for (Tick w : widths_) {
-            const double n = std::round(double(w) / bit);
+        sum_width[0] = sum_width[1] = sum_bits[0] = sum_bits[1] = 0;
+        for (std::size_t i = 0; i < widths_.size(); ++i) {
+            const double w = double(widths_[i]);
+            const double n = std::round(w / bit);
             if (n < 1 || n > 12) continue;
             // Within a quarter bit of a whole number of bits (not a quarter per bit: a
             // candidate a fraction of the real bit would fit every long pulse).
-            if (std::fabs(double(w) - n * bit) > 0.25 * bit) continue;
-            sum_width += double(w);
-            sum_bits += n;
+            if (std::fabs(w - n * bit) > 0.25 * bit) continue;
+            sum_width[idle_level_[i]] += w;
+            sum_bits[idle_level_[i]] += n;
             ++consistent;
         }
         return consistent;
@@ -39,11 +44,14 @@ std::optional<double> BaudEstimator::measuredBaud(const Timebase& tb) const {
         if (w == tried) continue;
         tried = w;
         if (++candidates > 32) break;
-        double sum_width, sum_bits;
+        double sum_width[2], sum_bits[2];
         if (2 * fit(double(w), sum_width, sum_bits) >= widths_.size()) {
             // Averaged over every pulse of 1..12 bits: sampling quantises each edge by up
-            // to a tick, and long pulses measure the bit time more precisely.
-            bit_ticks = sum_width / sum_bits;
+            // to a tick, and long pulses measure the bit time more precisely. At the start
+            // bit's level, if any: only bits make those (an idle gap shorter than a quarter
+            // bit after the stop bit would pass for part of it).
+            const int level = sum_bits[0] > 0 ? 0 : 1;
+            bit_ticks = sum_width[level] / sum_bits[level];
             break;
         }
     }

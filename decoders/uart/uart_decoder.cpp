@@ -30,6 +30,7 @@ std::string printable(std::uint32_t v) {
 UartDecoder::UartDecoder(const Options& options) : BlockDecoder("uart") {
     fmt_ = UartFormat::fromOptions(options);
     auto_baud_ = options.isAuto("baud");
+    estimator_ = BaudEstimator(2, !fmt_.invert);
     lines_[kRx].name = "rx";
     lines_[kTx].name = "tx";
 }
@@ -52,14 +53,14 @@ void UartDecoder::edge(Tick t, int role, bool level) {
         // The first edges also measure the rate, to check a given baud against (advice()).
         if (checked_edges_ < kAutoBaudEdges) {
             ++checked_edges_;
-            estimator_.addEdge(t, role);
+            estimator_.addEdge(t, role, level);
         }
         decodeEdge(t, role, level);
         return;
     }
     if (held_.empty()) busyFrom(t);
     held_.push_back({t, role, level});
-    estimator_.addEdge(t, role);
+    estimator_.addEdge(t, role, level);
     if (held_.size() >= kAutoBaudEdges) decideBaud();
 }
 

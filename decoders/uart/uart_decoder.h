@@ -78,7 +78,7 @@ private:
     std::array<Line, 2> lines_;
     // baud=auto: edges are held until enough pulses are seen, then replayed.
     std::vector<HeldEdge> held_;
-    BaudEstimator estimator_{2};
+    BaudEstimator estimator_{2, true};
     std::size_t checked_edges_ = 0;               // edges measured with a given baud (advice())
     std::uint64_t bytes_ = 0, faulty_bytes_ = 0;  // characters decoded; with framing/parity errors
 };

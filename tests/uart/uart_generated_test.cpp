@@ -233,6 +233,26 @@ TEST_F(UartTest, AutoBaudFindsTheRateFromTheShortestPulse) {
     }
 }
 
+TEST_F(UartTest, AutoBaudIsNotSlowedByGapsShorterThanABit) {
+    // 3 us between characters at 57600 baud (a bit is 17.4 us): the stop bit and the gap
+    // are one high pulse within a quarter bit of a whole bit, but not a bit long.
+    std::mt19937 rng(7);
+    for (bool invert : {false, true}) {
+        UartFormat f;
+        f.baud = 57600;
+        f.invert = invert;
+        WaveBuilder wb(Timebase{1, 1'000'000'000}, {"rx"}, {std::uint8_t(!invert)});
+        UartGenerator gen(wb, 0, f);
+        const double end = gen.sendChars(5000, randomValues(rng, 100, 8), 3000);
+        auto o = optionsFor(f);
+        o["baud"] = "auto";
+        auto bauds = test::eventsOfType(
+            decodeWaveform(wb.build(wb.ticksFromNs(end + 1e5)), {{"uart", {}, o}}), "baud");
+        ASSERT_EQ(bauds.size(), 1u);
+        EXPECT_NEAR(asDouble(*bauds[0].get("measured_baud")), 57600, 57600 * 0.001) << invert;
+    }
+}
+
 TEST_F(UartTest, AutoBaudOnAShortCaptureDecidesAtTheEnd) {
     UartFormat f;
     f.baud = 38400;
