@@ -50,6 +50,19 @@ void split(std::string_view line, char sep, std::vector<std::string_view>& out) 
     }
 }
 
+// The header's fields: a separator inside double quotes ("RX, module") is part of a name.
+void splitHeader(std::string_view line, char sep, std::vector<std::string_view>& out) {
+    out.clear();
+    bool quoted = false;
+    for (std::size_t i = 0, b = 0; i <= line.size(); ++i) {
+        if (i < line.size() && line[i] == '"') quoted = !quoted;
+        if (i == line.size() || (line[i] == sep && !quoted)) {
+            out.push_back(trimField(line.substr(b, i - b)));
+            b = i + 1;
+        }
+    }
+}
+
 // A time as written ("-0.000000250", "4.860 530 ms", "1.5e-06", "0 ns"): an exact
 // decimal mantissa and a power of ten of seconds. False if it is not a time.
 struct Decimal {
@@ -356,7 +369,7 @@ private:
                : line.find('\t') != std::string_view::npos ? '\t'
                                                            : ',';
         std::vector<std::string_view> f;
-        split(line, sep_, f);
+        splitHeader(line, sep_, f);
         if (f.size() > 1 && f.back().empty()) f.pop_back();  // a trailing separator
         ncols_ = f.size();
         col_level_.assign(ncols_, 0);

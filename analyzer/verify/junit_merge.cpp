@@ -163,15 +163,32 @@ void renameShardCases(MergeResult& m, const JunitShardFile* f, std::vector<Junit
     for (std::size_t i = 0; i < slice.size(); ++i)
         to_global[local[i]] = global[first + i];
     const std::size_t taken = f ? f->cases.size() : 0;
-    std::set<std::string> in_shard;
+    std::set<std::string> in_shard, strangers;
     for (std::size_t i = cases.size() - taken; i < cases.size(); ++i) {
         auto it = to_global.find(cases[i].classname);
-        if (it != to_global.end()) cases[i].classname = it->second;
+        if (it != to_global.end())
+            cases[i].classname = it->second;
+        else
+            strangers.insert(cases[i].classname);
         in_shard.insert(cases[i].classname);
     }
+    // A list other than the shards were run on: their totals would mean nothing.
+    if (!strangers.empty())
+        m.problems.push_back(fmt::format(
+            "{}: {} of its captures are not in shard {} of the --from-list (first: {}): was it "
+            "run on another list?",
+            f->path, strangers.size(), shard.text(), *strangers.begin()));
     for (std::size_t i = 0; i < slice.size(); ++i)
         if (!in_shard.count(global[first + i]))
             addMissing(m, cases, out, slice[i], global[first + i], why);
+}
+
+// Shards checked against other rules are not one run.
+void checkSameRules(const std::vector<JunitShardFile>& files) {
+    for (const auto& f : files)
+        if (f.rules != files.front().rules)
+            throw InputError(fmt::format("{}: checked against the rules {}, {} against {}", f.path,
+                                         f.rules, files.front().path, files.front().rules));
 }
 
 }  // namespace
@@ -179,6 +196,7 @@ void renameShardCases(MergeResult& m, const JunitShardFile* f, std::vector<Junit
 MergeResult mergeJunit(const std::vector<JunitShardFile>& files,
                        const std::vector<std::string>& expected, bool list_given) {
     MergeResult m;
+    checkSameRules(files);
     const std::size_t n = shardCount(files);
     std::vector<JunitCase> cases;
     std::string out, err;

@@ -372,7 +372,10 @@ def subscribe(url: Optional[str] = None, channels: Union[None, str, Sequence[str
     Every event arrives as its annotation message (DECODE_EVENTS), decoded with the
     project's own LCM type; the dicts equal decode()'s for the same events. UDP
     multicast needs a route: on a machine without a network,
-    `ip link set lo multicast on; ip route add 224.0.0.0/4 dev lo`.
+    `ip link set lo multicast on; ip route add 224.0.0.0/4 dev lo`. UDP also drops
+    datagrams when a subscriber falls behind: the iterator's .lost counts the events
+    known to be missing (gaps in their numbering, and those the publisher's status
+    counted that never came), so a check can assert sub.lost == 0.
     """
     if isinstance(channels, str):
         channels = [channels]

@@ -33,6 +33,7 @@ public:
                  std::optional<double> timeout_s, bool until_end)
         : lc_(openLcm(url)),
           timeout_s_(timeout_s),
+          until_end_(until_end),
           loads_(pyb::module_::import("json").attr("loads")) {
         if (!channels.empty()) {
             try {
@@ -43,9 +44,11 @@ public:
             }
         }
         lc_->subscribe(kLcmEventsChannel, &Subscription::onEvent, this);
-        if (until_end) lc_->subscribe(kLcmStatusChannel, &Subscription::onStatus, this);
+        lc_->subscribe(kLcmStatusChannel, &Subscription::onStatus, this);
         last_ = std::chrono::steady_clock::now();
     }
+
+    std::uint64_t lost() const { return lost_; }
 
     pyb::object next() {
         // As a generator: one reader at a time (the wait below releases the GIL).
@@ -74,17 +77,30 @@ private:
     void onEvent(const lcm::ReceiveBuffer*, const std::string&,
                  const busdecode_lcm::event_annotation_t* m) {
         last_ = std::chrono::steady_clock::now();
+        if (m->seq > next_seq_) lost_ += std::uint64_t(m->seq - next_seq_);
+        if (m->seq >= next_seq_) next_seq_ = m->seq + 1;
         if (!wanted_ || std::regex_match(m->channel, *wanted_)) pending_.push_back(m->json);
     }
     void onStatus(const lcm::ReceiveBuffer*, const std::string&,
                   const busdecode_lcm::decode_status_t* m) {
         last_ = std::chrono::steady_clock::now();
-        if (m->state == "done") ended_ = true;  // the run's end: "end" ends one capture
+        if (m->state == "start") next_seq_ = 0;  // a new run numbers its events from 0
+        // Events the publisher counted that never came (the last ones of a run).
+        if ((m->state == "end" || m->state == "done") && m->events > next_seq_) {
+            lost_ += std::uint64_t(m->events - next_seq_);
+            next_seq_ = m->events;
+        }
+        if (until_end_ && m->state == "done") ended_ = true;  // "end" ends one capture only
     }
 
     std::shared_ptr<lcm::LCM> lc_;
     std::optional<double> timeout_s_;
     pyb::object loads_;
+    bool until_end_;
+    // UDP multicast drops datagrams when a subscriber falls behind: a gap in the events'
+    // seq is counted, not passed over in silence.
+    std::int64_t next_seq_ = 0;
+    std::uint64_t lost_ = 0;
     std::optional<std::regex> wanted_;
     std::deque<std::string> pending_;
     std::chrono::steady_clock::time_point last_;
@@ -97,7 +113,10 @@ private:
 void bindSubscribe(pyb::module_& m) {
     pyb::class_<Subscription>(m, "Subscription", "Events received from a decode --lcm feed.")
         .def("__iter__", [](Subscription& s) -> Subscription& { return s; })
-        .def("__next__", &Subscription::next);
+        .def("__next__", &Subscription::next)
+        .def_property_readonly("lost", &Subscription::lost,
+                               "Events of the feed known to be lost so far: gaps in their "
+                               "numbering, and events the publisher counted that never came.");
     m.def(
         "subscribe_feed",
         [](const std::string& url, const std::vector<std::string>& channels,

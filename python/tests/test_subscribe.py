@@ -1,6 +1,7 @@
 """subscribe() against a real `decode --lcm udpm://...` publisher on loopback."""
 
 import json
+import struct
 import subprocess
 import sys
 from pathlib import Path
@@ -55,3 +56,35 @@ def test_until_end_waits_for_the_runs_last_capture(tmp_path):
     got = list(busdecode.subscribe(f"file://{log}?mode=r", until_end=True, timeout=30))
     assert got == expected
     assert {e["capture"] for e in got} == set(captures)
+
+
+def without_some_events(log, drop):
+    """An LCM log (the file:// provider's format) with the DECODE_EVENTS records whose
+    order among them is in `drop` left out, as UDP loses datagrams."""
+    data, out, at, k = log.read_bytes(), bytearray(), 0, 0
+    while at < len(data):
+        sync, _, _, clen, dlen = struct.unpack_from(">IqqII", data, at)
+        assert sync == 0xEDA1DA01
+        end = at + 28 + clen + dlen
+        channel = data[at + 28:at + 28 + clen].decode()
+        if channel != "DECODE_EVENTS" or k not in drop:
+            out += data[at:end]
+        k += channel == "DECODE_EVENTS"
+        at = end
+    lossy = log.with_name("lossy.lcm")
+    lossy.write_bytes(bytes(out))
+    return lossy
+
+
+def test_lost_events_are_counted(tmp_path):
+    log = tmp_path / "all.lcm"
+    rc, _, err = run_cli([str(BIN / "decode"), str(CAPTURES / "bissc_1mhz_26bit.vcd"), "--proto",
+                          "bissc", "--lcm", f"file://{log}?mode=w"])
+    assert rc == 0, err
+    whole = busdecode.subscribe(f"file://{log}?mode=r", until_end=True, timeout=30)
+    n = len(list(whole))
+    assert n > 20 and whole.lost == 0
+    lossy = without_some_events(log, {3, 4, 10, n - 1})  # the last one too
+    sub = busdecode.subscribe(f"file://{lossy}?mode=r", until_end=True, timeout=30)
+    assert len(list(sub)) == n - 4
+    assert sub.lost == 4

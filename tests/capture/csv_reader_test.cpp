@@ -438,5 +438,15 @@ TEST(CsvReader, SpiFlashReadFromFourVendorsAgrees) {
     }
 }
 
+TEST(CsvReader, AQuotedHeaderNameMayHoldTheSeparator) {
+    const std::string p =
+        tempCapture("comma-name.csv", "Time [s],\"RX, module\",B\n0,1,0\n1e-6,0,0\n2e-6,1,1\n");
+    const Collected c = collectFile(p, {"RX, module", "B"});
+    ASSERT_EQ(c.signals.size(), 2u);
+    EXPECT_EQ(c.signals[0].name, "RX, module");
+    EXPECT_EQ(c.initial, (std::vector<std::uint8_t>{1, 0}));
+    EXPECT_EQ(c.edges.size(), 3u);
+}
+
 }  // namespace
 }  // namespace busdecode::test

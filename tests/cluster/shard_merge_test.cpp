@@ -150,6 +150,32 @@ TEST(MergeJunit, EveryShardMissingLeavesEveryCaptureAnError) {
               "23 captures: 0 passed, 0 failed, 23 unreadable; 0 rule checks, 0 failed\n");
 }
 
+TEST(MergeJunit, ShardsOfAnotherListOrOtherRulesAreNotMergedSilently) {
+    ShardedBatch run;
+    for (int k = 1; k <= 2; ++k)
+        run.verify({"--shard", fmt::format("{}/2", k), "--junit", run.shardFile(k)});
+    const std::string reversed = run.dir + "/reversed.txt";
+    std::string text;
+    for (auto it = run.captures.rbegin(); it != run.captures.rend(); ++it)
+        text += *it + "\n";
+    test::writeFile(reversed, text);
+    auto r = test::runDecode({"merge-junit", run.shardFile(1), run.shardFile(2), "-o",
+                              run.dir + "/all.xml", "--from-list", reversed});
+    EXPECT_EQ(r.status, 2);
+    EXPECT_NE(r.err.find(run.shardFile(1) + ": "), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("not in shard 1/2 of the --from-list"), std::string::npos) << r.err;
+    // Shard 2 checked against other rules.
+    const std::string other = run.dir + "/other_rules.toml";
+    test::writeFile(other, test::readFile(run.rules));
+    test::runDecode({"verify", "--from-list", run.list, "--rules", other, "--opt", "bissc.bits=26",
+                     "--shard", "2/2", "--junit", run.shardFile(2)});
+    std::filesystem::remove(run.dir + "/all.xml");
+    r = run.merge({1, 2}, true);
+    EXPECT_EQ(r.status, 2);
+    EXPECT_NE(r.err.find("checked against the rules " + other), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(run.dir + "/all.xml"));
+}
+
 TEST(MergeJunit, BadInputIsOneLineAndExit2WithNoFile) {
     ShardedBatch run;
     run.verify({"--shard", "1/2", "--junit", run.shardFile(1)});
