@@ -1,6 +1,6 @@
-// Scope captures that once lost their edges: a given threshold and hysteresis whose fit
-// window reached a level, one out-of-range sample among the levels, and PicoScope
-// columns in millivolts.
+// Scope captures whose edges are easy to lose: a given threshold and hysteresis whose fit
+// window would reach a level, one out-of-range sample among the levels, a line idle for
+// longer than the prefix its levels are found in, and PicoScope columns in millivolts.
 #include <gtest/gtest.h>
 
 #include <cmath>
