@@ -94,8 +94,9 @@ bool addByteColumn(ScopeLayout& l, std::string_view title, std::size_t field) {
     auto [p1, e1] = std::from_chars(title.data() + 1, title.data() + dash, hi);
     auto [p2, e2] = std::from_chars(title.data() + dash + 2, title.data() + title.size(), lo);
     if (e1 != std::errc() || e2 != std::errc() || hi - lo != 7 || lo % 8 != 0) return false;
+    // Each bit is named on its own: "D7-D0" names no single line.
     for (int b = 0; b < 8; ++b)
-        l.channels.push_back({fmt::format("D{}", lo + b), std::string(title), field, b});
+        l.channels.push_back({fmt::format("D{}", lo + b), fmt::format("D{}", lo + b), field, b});
     return true;
 }
 

@@ -13,7 +13,7 @@ namespace busdecode {
 
 struct ScopeChannel {
     std::string name;       // for --map: "CH1", "D12", "A"
-    std::string full_name;  // the column title as written
+    std::string full_name;  // the column title as written; a byte column's bit: its name
     std::size_t field = 0;  // index of its field in a data row
     int bit = -1;           // >= 0: a bit of a digital byte column ("0x10")
     double scale = 1;       // volts per unit of the column: 1e-3 for "(mV)"

@@ -102,6 +102,19 @@ TEST(ScopeCsv, RigolLogicColumnsD0AndD12ToggleAt1kHz) {
     }
 }
 
+TEST(ScopeCsv, EachBitOfAByteColumnHasItsOwnNameAndTheTitleNamesNone) {
+    const auto r = openCapture(real("mixed-gpl/rigol_ds1000z_mixed_signal.csv"), {});
+    std::vector<std::string> full;
+    for (const auto& s : r->signals())
+        full.push_back(s.full_name);
+    EXPECT_NE(std::find(full.begin(), full.end(), "D12"), full.end());
+    EXPECT_EQ(std::find(full.begin(), full.end(), "D15-D8"), full.end());
+    const auto run = runDecode(
+        {real("mixed-gpl/rigol_ds1000z_mixed_signal.csv"), "--proto", "uart", "--map", "rx=D7-D0"});
+    EXPECT_EQ(run.status, 2);
+    EXPECT_NE(run.err.find("no such signal"), std::string::npos) << run.err;
+}
+
 TEST(ScopeCsv, EdgesAreTimedAtTheThresholdCrossingBetweenSamples) {
     // A 1 V/us ramp sampled every 1 us, crossing 1.5 V at 1.5 us, and falling back.
     const std::string p = tempCapture("ramp.csv",
