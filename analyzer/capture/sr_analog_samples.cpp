@@ -1,6 +1,8 @@
 // The analog channels of a sigrok session (.sr): `metadata` names them (`analog1=SDA`,
 // `total analog=2`) and each channel's samples are little-endian float32 in chunks
-// `analog-1-<channel>-<chunk>`. A session with logic probes goes to the logic reader.
+// `analog-1-<channel>-<chunk>`. A session of logic probes alone goes to the logic reader
+// (faster); a mixed one is read here, its probes as bits of the logic word's bytes.
+#include <algorithm>
 #include <cstring>
 #include <map>
 #include <string>
@@ -46,13 +48,31 @@ std::map<std::string, std::string> readMetadata(zip_t* zip) {
     return out;
 }
 
+// Where a session's samples are: each analog channel's chunks `analog-1-<N>-<chunk>`
+// (N its number among all channels: after the probes in a mixed session), and the logic
+// words' chunks `logic-1-<chunk>` (old sessions: one `logic-1`).
+struct SrLayout {
+    std::vector<AnalogChannel> channels;  // analog ones in slots 0.., then the probes
+    std::vector<int> analog_number;       // N of each analog slot
+    std::size_t unitsize = 0;             // bytes of a logic word, 0: no probes
+    std::string logic_prefix = "logic-1";
+};
+
 class SrAnalogSamples : public SampleSource {
 public:
-    SrAnalogSamples(zip_t* zip, std::string name, double rate, std::vector<AnalogChannel> ch)
-        : zip_(zip), name_(std::move(name)), rate_(rate), channels_(std::move(ch)) {
-        streams_.resize(channels_.size());
-        for (std::size_t c = 0; c < channels_.size(); ++c)
-            open(c);
+    SrAnalogSamples(zip_t* zip, std::string name, double rate, SrLayout layout)
+        : zip_(zip), name_(std::move(name)), rate_(rate), layout_(std::move(layout)) {
+        const std::size_t analog = layout_.analog_number.size();
+        streams_.resize(analog + (layout_.unitsize ? 1 : 0));
+        for (std::size_t c = 0; c < streams_.size(); ++c) {
+            streams_[c].prefix = c < analog ? fmt::format("analog-1-{}-", layout_.analog_number[c])
+                                            : layout_.logic_prefix + "-";
+            open(streams_[c]);
+        }
+        if (layout_.unitsize && !streams_.back().file) {  // one unnumbered chunk
+            streams_.back().file = zip_fopen(zip_, layout_.logic_prefix.c_str(), 0);
+            streams_.back().single = true;
+        }
     }
     ~SrAnalogSamples() override {
         for (auto& s : streams_)
@@ -60,8 +80,8 @@ public:
         zip_discard(zip_);
     }
 
-    const std::vector<AnalogChannel>& channels() const override { return channels_; }
-    std::size_t slots() const override { return channels_.size(); }
+    const std::vector<AnalogChannel>& channels() const override { return layout_.channels; }
+    std::size_t slots() const override { return layout_.analog_number.size() + layout_.unitsize; }
     std::string formatName() const override { return "sigrok-sr"; }
     std::string fileName() const override { return name_; }
     double period() const override { return 1 / rate_; }
@@ -71,56 +91,110 @@ public:
     }
 
     bool next(double& t, float* values) override {
-        for (std::size_t c = 0; c < streams_.size(); ++c)
-            if (!take(c, values[c])) {
-                if (c > 0) fail("analog channels of different lengths");
+        const std::size_t analog = layout_.analog_number.size();
+        for (std::size_t c = 0; c < streams_.size(); ++c) {
+            unsigned char bytes[8];
+            const std::size_t n = c < analog ? 4 : layout_.unitsize;
+            if (!take(streams_[c], bytes, n)) {
+                if (c > 0) fail("analog and logic channels of different lengths");
                 return false;
             }
+            if (c < analog)
+                std::memcpy(&values[c], bytes, 4);  // sigrok writes little-endian floats
+            else
+                for (std::size_t b = 0; b < n; ++b)  // a byte a slot: exact in a float
+                    values[analog + b] = float(bytes[b]);
+            bytes_ += n;
+        }
         t = double(sample_++) / rate_;
-        bytes_ += 4 * streams_.size();
         return true;
     }
 
 private:
     struct Stream {
+        std::string prefix;
         zip_file_t* file = nullptr;
         int chunk = 0;
-        std::vector<float> buf;
+        bool single = false;
+        std::vector<unsigned char> buf;
         std::size_t at = 0;
     };
 
-    // The channel's next chunk; false when there is none.
-    bool open(std::size_t c) {
-        Stream& s = streams_[c];
+    // The stream's next chunk; false when there is none.
+    bool open(Stream& s) {
         if (s.file) zip_fclose(s.file);
-        ++s.chunk;
-        const std::string entry = fmt::format("analog-1-{}-{}", channels_[c].slot + 1, s.chunk);
-        s.file = zip_fopen(zip_, entry.c_str(), 0);
+        s.file = nullptr;
+        if (s.single) return false;
+        s.file = zip_fopen(zip_, (s.prefix + std::to_string(++s.chunk)).c_str(), 0);
         return s.file != nullptr;
     }
 
-    bool take(std::size_t c, float& v) {
-        Stream& s = streams_[c];
-        while (s.at == s.buf.size()) {
-            if (!s.file) return false;
-            s.buf.resize(16384);
-            const zip_int64_t n = zip_fread(s.file, s.buf.data(), s.buf.size() * sizeof(float));
-            if (n < 0) fail(fmt::format("cannot read analog channel {}", channels_[c].name));
-            s.buf.resize(std::size_t(n) / sizeof(float));
-            s.at = 0;
-            if (n == 0 && !open(c)) return false;
+    bool take(Stream& s, unsigned char* out, std::size_t n) {
+        for (std::size_t i = 0; i < n; ++i) {
+            while (s.at == s.buf.size()) {
+                if (!s.file) return false;
+                s.buf.resize(65536);
+                const zip_int64_t got = zip_fread(s.file, s.buf.data(), s.buf.size());
+                if (got < 0) fail(fmt::format("cannot read {}{}", s.prefix, s.chunk));
+                s.buf.resize(std::size_t(got));
+                s.at = 0;
+                if (got == 0 && !open(s)) return false;
+            }
+            out[i] = s.buf[s.at++];
         }
-        std::memcpy(&v, &s.buf[s.at++], sizeof v);  // sigrok writes little-endian floats
         return true;
     }
 
     zip_t* zip_;
     std::string name_;
     double rate_;
-    std::vector<AnalogChannel> channels_;
+    SrLayout layout_;
     std::vector<Stream> streams_;
     std::uint64_t sample_ = 0, bytes_ = 0;
 };
+
+}  // namespace
+
+namespace {
+
+int numberIn(const std::map<std::string, std::string>& meta, const std::string& key) {
+    const auto it = meta.find(key);
+    return it == meta.end() ? 0 : std::atoi(it->second.c_str());
+}
+
+// The session's channels: its analog ones, numbered by their `analogN` keys (after the
+// probes in a mixed session), then its probes, a byte of the logic word a slot.
+SrLayout layoutOf(const std::map<std::string, std::string>& meta, int analog,
+                  const std::string& name) {
+    SrLayout l;
+    const int probes = numberIn(meta, "total probes");
+    for (const auto& [key, value] : meta)  // map order is text order: sorted below
+        if (key.rfind("analog", 0) == 0 && std::atoi(key.c_str() + 6) > 0)
+            l.analog_number.push_back(std::atoi(key.c_str() + 6));
+    std::sort(l.analog_number.begin(), l.analog_number.end());
+    if (int(l.analog_number.size()) != analog) {
+        l.analog_number.clear();
+        for (int i = 0; i < analog; ++i)
+            l.analog_number.push_back(probes + i + 1);
+    }
+    for (std::size_t i = 0; i < l.analog_number.size(); ++i) {
+        const auto it = meta.find(fmt::format("analog{}", l.analog_number[i]));
+        const std::string ch = it == meta.end() ? fmt::format("A{}", i) : it->second;
+        l.channels.push_back({ch, ch, i, -1});
+    }
+    if (probes <= 0) return l;
+    l.unitsize = std::size_t(numberIn(meta, "unitsize"));
+    if (l.unitsize < 1 || l.unitsize > 8 || std::size_t(probes) > 8 * l.unitsize)
+        throw InputError(
+            fmt::format("{}: {} probes do not fit in unitsize={}", name, probes, l.unitsize));
+    for (int bit = 0; bit < probes; ++bit) {
+        const auto it = meta.find(fmt::format("probe{}", bit + 1));
+        const std::string ch = it == meta.end() ? fmt::format("D{}", bit) : it->second;
+        l.channels.push_back({ch, ch, std::size_t(analog + bit / 8), bit % 8});
+    }
+    if (const auto it = meta.find("capturefile"); it != meta.end()) l.logic_prefix = it->second;
+    return l;
+}
 
 }  // namespace
 
@@ -131,26 +205,25 @@ std::unique_ptr<CaptureReader> openSrAnalogIfAnalog(const std::string& path,
     zip_t* zip = zip_open(path.c_str(), ZIP_RDONLY, &err);
     if (!zip) return nullptr;  // the logic reader words the error
     const auto meta = readMetadata(zip);
-    const auto total = meta.find("total analog");
-    if (meta.count("unitsize") || total == meta.end()) {
+    const int analog = numberIn(meta, "total analog");
+    if (analog <= 0) {  // logic probes only: the logic reader's, which is faster
         zip_discard(zip);
         return nullptr;
     }
     const auto rate = meta.find("samplerate");
     const double hz = rate == meta.end() ? 0 : double(parseRateHz(rate->second));
-    const int n = std::atoi(total->second.c_str());
-    if (!(hz > 0) || n <= 0 || n > 64) {
+    if (!(hz > 0) || analog > 64) {
         zip_discard(zip);
         throw InputError(fmt::format("{}: analog session without a samplerate or channels", name));
     }
-    std::vector<AnalogChannel> channels;
-    for (int i = 0; i < n; ++i) {
-        const auto it = meta.find(fmt::format("analog{}", i + 1));
-        const std::string ch = it == meta.end() ? fmt::format("A{}", i) : it->second;
-        channels.push_back({ch, ch, std::size_t(i), -1});
+    SrLayout layout;
+    try {
+        layout = layoutOf(meta, analog, name);
+    } catch (...) {
+        zip_discard(zip);  // the source owns the archive once it is made
+        throw;
     }
-    return analogReader(std::make_unique<SrAnalogSamples>(zip, name, hz, std::move(channels)),
-                        opts);
+    return analogReader(std::make_unique<SrAnalogSamples>(zip, name, hz, std::move(layout)), opts);
 }
 
 }  // namespace busdecode

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <cstring>
 #include <list>
 #include <random>
 
@@ -87,6 +88,41 @@ TEST(SrReader, OldSingleChunkSession) {
                  {"logic-1", words({0, 1, 1, 0}, 1)}}),
         {"A"});
     EXPECT_EQ(c.edges, (std::vector<Edge>{{1, 0, 1}, {3, 0, 0}}));
+}
+
+std::string floats(const std::vector<float>& v) {
+    std::string out(v.size() * 4, '\0');
+    std::memcpy(out.data(), v.data(), out.size());  // little-endian, as sigrok writes them
+    return out;
+}
+
+TEST(SrReader, MixedLogicAndAnalogSessionReadsBoth) {
+    // As `sigrok-cli -d demo --channels D0,D1,A0` writes it: the analog channel numbered
+    // after the probes (analog11 with 10 probes), two bytes a logic word.
+    const std::string meta =
+        "[device 1]\ncapturefile=logic-1\ntotal probes=10\nsamplerate=1 MHz\n"
+        "total analog=1\nprobe1=CLK\nprobe10=HIGH\nanalog11=A\nunitsize=2\n";
+    std::vector<std::uint64_t> logic(40, 0);
+    std::vector<float> volts(40, 0.0f);
+    for (int i = 10; i < 20; ++i)
+        volts[std::size_t(i)] = 3.3f;
+    for (int i = 20; i < 30; ++i)
+        logic[std::size_t(i)] = 0x200;  // probe10
+    auto p = writeSr("mixed.sr", {{"metadata", meta},
+                                  {"logic-1-1", words({logic.begin(), logic.begin() + 25}, 2)},
+                                  {"logic-1-2", words({logic.begin() + 25, logic.end()}, 2)},
+                                  {"analog-1-11-1", floats(volts)}});
+    const Collected c = collectFile(p, {"A", "HIGH", "CLK"});
+    ASSERT_EQ(c.signals.size(), 11u);
+    EXPECT_EQ(c.signals[0].name, "A");
+    EXPECT_EQ(c.signals[10].name, "HIGH");
+    const auto e = inNs(c);
+    ASSERT_EQ(e.size(), 4u) << ::testing::PrintToString(e);
+    EXPECT_NEAR(double(e[0].ns), 9500, 600);  // A rises between samples 9 and 10
+    EXPECT_EQ(e[0].line, 0u);
+    EXPECT_NEAR(double(e[1].ns), 19500, 600);
+    EXPECT_EQ(e[2], (NsEdge{20000, 1, 1}));  // HIGH, exactly at its samples
+    EXPECT_EQ(e[3], (NsEdge{30000, 1, 0}));
 }
 
 TEST(SrReader, IndexIsTheProbeBit) {
