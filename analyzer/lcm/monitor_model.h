@@ -76,6 +76,9 @@ public:
 
     const std::map<std::string, BusView>& buses() const { return buses_; }
     std::int64_t runsEnded() const { return runs_ended_; }
+    // Events known lost on the way (gaps in their seq, events a status counted that never
+    // came): UDP drops datagrams when the monitor falls behind.
+    std::int64_t lost() const { return lost_; }
     std::int64_t messages() const { return messages_; }
 
 private:
@@ -87,6 +90,7 @@ private:
     std::deque<std::string> recent_registers_;
     std::string file_, state_ = "waiting";
     std::int64_t capture_ns_ = 0, runs_ended_ = 0, messages_ = 0, dropped_ = 0;
+    std::int64_t next_seq_ = 0, lost_ = 0;
 };
 
 }  // namespace busdecode

@@ -121,6 +121,29 @@ TEST(MonitorModel, CountsFromTheModelItself) {
     EXPECT_EQ(model.buses().at("ssi#2").events, 10);
 }
 
+TEST(MonitorModel, CountsTheEventsUdpLost) {
+    MonitorModel model;
+    busdecode_lcm::event_annotation_t a{};
+    a.proto = "bissc";
+    for (std::int64_t seq : {0, 1, 3, 4}) {  // 2 lost on the way
+        a.seq = seq;
+        model.onAnnotation(nullptr, "DECODE_EVENTS", &a);
+    }
+    busdecode_lcm::decode_status_t end{};
+    end.state = "end";
+    end.events = 7;  // 5 and 6 never came
+    model.onStatus(nullptr, "DECODE_STATUS", &end);
+    EXPECT_EQ(model.lost(), 3);
+    const auto text = model.render("memq://", 0, 120);
+    EXPECT_NE(text[1].find("LOST 3"), std::string::npos) << text[1];
+    busdecode_lcm::decode_status_t start{};
+    start.state = "start";  // a new run: its seq start at 0 again, nothing lost
+    model.onStatus(nullptr, "DECODE_STATUS", &start);
+    a.seq = 0;
+    model.onAnnotation(nullptr, "DECODE_EVENTS", &a);
+    EXPECT_EQ(model.lost(), 3);
+}
+
 TEST(Monitor, DurationEndsAQuietMonitor) {
     auto lc = openLcm("memq://");
     MonitorOptions opt;
