@@ -189,12 +189,18 @@ SsiDecoder::Timing SsiDecoder::measureTiming(double T,
     // first one after it, in both sampling modes). That gives the delay modulo a period;
     // the whole periods come from periodRange().
     const std::vector<Tick>& L = b_.rises;
-    std::vector<std::int64_t> offsets;
+    // Rising edges at or before each data edge: both are in time order, one sweep.
+    rises_before_.resize(b_.data.size());
+    for (std::size_t i = 0, r = 0; i < b_.data.size(); ++i) {
+        while (r < L.size() && L[r] <= b_.data[i].t)
+            ++r;
+        rises_before_[i] = r;
+    }
+    std::vector<std::int64_t>& offsets = offsets_;
+    offsets.clear();
     for (std::size_t i = 0; i < b_.data.size(); ++i) {
-        if (data_glitch[i] || L.empty()) continue;
-        auto it = std::upper_bound(L.begin(), L.end(), b_.data[i].t);
-        if (it == L.begin()) continue;
-        const Tick off = b_.data[i].t - *std::prev(it);
+        if (data_glitch[i] || rises_before_[i] == 0) continue;
+        const Tick off = b_.data[i].t - L[rises_before_[i] - 1];
         if (T <= 0 || double(off) < T) offsets.push_back(off);
     }
     Timing out;
@@ -255,16 +261,15 @@ void SsiDecoder::checkWindows(double T, std::int64_t frac, int whole, Timing& ou
     const std::vector<Tick>& S = cfg_.sample_rising ? b_.rises : b_.falls;
     const std::vector<Tick>& L = b_.rises;
     for (std::size_t i = 0; i < b_.data.size(); ++i) {
-        if (data_glitch[i] || L.empty()) continue;
+        const std::size_t before = rises_before_[i];
+        if (data_glitch[i] || before == 0) continue;
         const Tick t = b_.data[i].t;
-        auto it = std::upper_bound(L.begin(), L.end(), t);
-        if (it == L.begin()) continue;
         // Launched `whole` rising edges before the latest one; past the last one, as many
         // fewer as whole periods have gone since it.
-        auto k = std::int64_t(it - L.begin()) - 1 - whole;
-        const Tick off = t - L[std::size_t(k + whole)];
+        auto k = std::int64_t(before) - 1 - whole;
+        const Tick off = t - L[before - 1];
         if (T > 0 && double(off) >= T) {
-            if (it != L.end()) continue;  // a long clock phase: not on the delay grid
+            if (before != L.size()) continue;  // a long clock phase: not on the delay grid
             k += std::lround(double(off - frac) / T);
         }
         if (k < 0 || k >= std::int64_t(L.size())) continue;  // the monoflop return

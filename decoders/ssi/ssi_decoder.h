@@ -95,6 +95,10 @@ private:
     Tick last_clock_ = kNoTick;  // last clock edge of the last burst
     double tm_max_ticks_ = 0;    // a burst later than this after it is no re-read
     bool data_rose_since_clock_ = false;
+    // measureTiming()'s scratch, kept for its storage: per data edge, the rising edges at
+    // or before it; the data delays modulo a period.
+    std::vector<std::size_t> rises_before_;
+    std::vector<std::int64_t> offsets_;
     int whole_periods_ = -1;   // whole clock periods in the last frame's data delay (-1: none yet)
     bool prev_valid_ = false;  // the previous frame's word, for re-read comparison
     std::uint64_t prev_raw_ = 0;
