@@ -49,11 +49,11 @@ double voltsPerUnit(std::string_view unit) {
     if (unit.size() > 2 && unit.front() == '(' && unit.back() == ')')
         unit = unit.substr(1, unit.size() - 2);
     const std::string u = asciiLower(trimField(unit));
-    return u == "v"                                            ? 1
-           : u == "mv"                                         ? 1e-3
-           : u == "uv" || u == "\xc2\xb5v" || u == "\xce\xbcv" ? 1e-6
-           : u == "kv"                                         ? 1e3
-                                                               : 0;
+    return u == "v"                                                            ? 1
+           : u == "mv"                                                         ? 1e-3
+           : u == "uv" || u == "\xc2\xb5v" || u == "\xce\xbcv" || u == "\xb5v" ? 1e-6
+           : u == "kv"                                                         ? 1e3
+                                                                               : 0;
 }
 
 // "X(CH2)" -> CH2, "CH 1 (V)" -> CH1, "Channel A" -> A, "1" (Keysight) -> CH1.
@@ -253,11 +253,12 @@ std::optional<ScopeLayout> picoscope(const std::vector<std::string_view>& lines,
     l.sep = sep;
     l.decimal_comma = sep == ';';
     l.header_lines = 2;
-    l.time_scale = unit == "s"                                                  ? 1
-                   : unit == "ms"                                               ? 1e-3
-                   : unit == "us" || unit == "\xc2\xb5s" || unit == "\xce\xbcs" ? 1e-6
-                   : unit == "ns"                                               ? 1e-9
-                                                                                : 0;
+    l.time_scale = unit == "s"    ? 1
+                   : unit == "ms" ? 1e-3
+                   : unit == "us" || unit == "\xc2\xb5s" || unit == "\xce\xbcs" ||
+                           unit == "\xb5s"  // a Latin-1 export's µ
+                       ? 1e-6
+                       : unit == "ns" ? 1e-9 : 0;
     if (l.time_scale == 0)
         broken(name, 2, fmt::format("unknown time unit '({})' in PicoScope's units row", unit));
     addChannels(l, f, 1, f.size());
@@ -276,6 +277,12 @@ bool parseScopeNumber(std::string_view s, bool decimal_comma, double& out) {
     while (!s.empty() && (s.back() == ' ' || s.back() == '\r'))
         s.remove_suffix(1);
     if (!s.empty() && s.front() == '+') s.remove_prefix(1);
+    // PicoScope writes an over-range sample as "∞" or "-∞": far beyond any level, as
+    // Keysight's 9.9E+37, and left out of the levels like it.
+    if (s == "\xe2\x88\x9e" || s == "-\xe2\x88\x9e") {
+        out = s.front() == '-' ? -9.9e37 : 9.9e37;
+        return true;
+    }
     if (s.size() > 2 && s[0] == '0' && (s[1] == 'x' || s[1] == 'X')) {
         unsigned v = 0;
         const auto [p, ec] = std::from_chars(s.data() + 2, s.data() + s.size(), v, 16);

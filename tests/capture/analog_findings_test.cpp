@@ -144,6 +144,17 @@ TEST(AnalogFindings, PicoScopeMillivoltsAreVolts) {
     EXPECT_NE(notes[0].find("threshold 1.65 V"), std::string::npos) << notes[0];
 }
 
+TEST(AnalogFindings, PicoScopeOverRangeAndALatin1MicroSecond) {
+    // "(\xb5s)": µ in Latin-1; "∞": a sample beyond the range, on every 50th high one.
+    std::string s = "Time,Channel A\n(\xb5s),(V)\n\n";
+    for (std::size_t k = 0; k < sampleCount(); ++k)
+        s += fmt::format("{:.5f},{}\n", double(k) * kSampleNs / 1000,
+                         !levelAt(k)   ? "0.00"
+                         : k % 50 == 0 ? "\xe2\x88\x9e"
+                                       : "3.30");
+    expectTruth(collectFile(tempCapture("pico_inf.csv", s), {"A"}));
+}
+
 // Longer than the prefix the levels are found in (2^18 samples).
 constexpr std::size_t kIdle = 300'000;
 
