@@ -96,53 +96,50 @@ TEST(Follow, WriterThreadAndStopFlag) {
     EXPECT_FALSE(r->next(b));
 }
 
-TEST(Follow, TruncatedOrDeletedFileIsAnError) {
-    for (bool remove : {false, true}) {
-        const std::string p = tempCapture("trunc.vcd", kHeader + "#0 0!\n#5 1!\n");
-        OpenOptions o;
-        o.follow = true;
-        auto r = openCapture(p, o);
-        r->select({{0, -1}});
-        r->initialLevels();
-        auto got = waitEdges(*r, 1);
-        ASSERT_EQ(got.size(), 1u);
-        if (remove) {
-            std::remove(p.c_str());
-        } else {
-            ASSERT_EQ(truncate(p.c_str(), 10), 0);
-        }
-        EdgeBlock b;
-        try {
-            for (int i = 0; i < 100; ++i)
-                r->next(b);
-            ADD_FAILURE() << "no error";
-        } catch (const InputError& e) {
-            EXPECT_EQ(std::string(e.what()),
-                      p + (remove ? ": deleted while following" : ": truncated while following"));
-        }
-    }
-}
-
-TEST(Follow, AFileReplacedByRenameSaysSoNotDeleted) {
-    const std::string p = tempCapture("replaced.vcd", kHeader + "#0 0!\n#5 1!\n");
+// `p` followed until its first edge came.
+std::unique_ptr<CaptureReader> followedPastItsFirstEdge(const std::string& p) {
     OpenOptions o;
     o.follow = true;
     auto r = openCapture(p, o);
     r->select({{0, -1}});
     r->initialLevels();
-    ASSERT_EQ(waitEdges(*r, 1).size(), 1u);
-    const std::string fresh = tempCapture("replaced.new", kHeader + "#0 1!\n");
-    ASSERT_EQ(std::rename(fresh.c_str(), p.c_str()), 0);
+    EXPECT_EQ(waitEdges(*r, 1).size(), 1u);
+    return r;
+}
+
+// The error reading on from `r` ends in ("" when none came).
+std::string errorReadingOn(CaptureReader& r) {
     EdgeBlock b;
     try {
         for (int i = 0; i < 100; ++i)
-            r->next(b);
-        ADD_FAILURE() << "no error";
+            r.next(b);
     } catch (const InputError& e) {
-        EXPECT_EQ(std::string(e.what()).rfind(p + ": replaced by another file while following", 0),
-                  0u)
-            << e.what();
+        return e.what();
     }
+    return "";
+}
+
+TEST(Follow, TruncatedOrDeletedFileIsAnError) {
+    for (bool remove : {false, true}) {
+        const std::string p = tempCapture("trunc.vcd", kHeader + "#0 0!\n#5 1!\n");
+        auto r = followedPastItsFirstEdge(p);
+        if (remove) {
+            std::remove(p.c_str());
+        } else {
+            ASSERT_EQ(truncate(p.c_str(), 10), 0);
+        }
+        EXPECT_EQ(errorReadingOn(*r),
+                  p + (remove ? ": deleted while following" : ": truncated while following"));
+    }
+}
+
+TEST(Follow, AFileReplacedByRenameSaysSoNotDeleted) {
+    const std::string p = tempCapture("replaced.vcd", kHeader + "#0 0!\n#5 1!\n");
+    auto r = followedPastItsFirstEdge(p);
+    const std::string fresh = tempCapture("replaced.new", kHeader + "#0 1!\n");
+    ASSERT_EQ(std::rename(fresh.c_str(), p.c_str()), 0);
+    const std::string error = errorReadingOn(*r);
+    EXPECT_EQ(error.rfind(p + ": replaced by another file while following", 0), 0u) << error;
 }
 
 TEST(Follow, GrowingSaleaeCsv) {
