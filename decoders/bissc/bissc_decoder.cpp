@@ -496,6 +496,9 @@ void BisscDecoder::closeFrame(Tick end, Tick timeout_end, const char* error, boo
     if (!c_.frame_start_seen && !startedFromIdle()) {
         // The rest of a frame the capture started inside: nothing in it can be trusted.
         ++skipped_frames_;
+        // But its lines were answering: the mapping's hint (framingAdvice) is not due, on
+        // every path alike (the data runs do not count the edges they take).
+        if (f_.ack != kNoTick) ++answered_frames_;
         sampler_.cancelAll();
         run_.slot = Slot::Done;
         idle();
