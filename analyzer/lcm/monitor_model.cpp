@@ -102,8 +102,7 @@ void MonitorModel::onTmclReply(const lcm::ReceiveBuffer*, const std::string&,
 
 void MonitorModel::onAnnotation(const lcm::ReceiveBuffer*, const std::string&,
                                 const busdecode_lcm::event_annotation_t* m) {
-    if (m->seq > next_seq_) lost_ += m->seq - next_seq_;
-    next_seq_ = std::max(next_seq_, m->seq + 1);
+    losses_.onEvent(m->seq);
     BusView& b = bus(m->instance.empty() ? m->proto : m->instance, m->utime);
     b.events++;
     for (const auto& e : m->errors)
@@ -112,14 +111,8 @@ void MonitorModel::onAnnotation(const lcm::ReceiveBuffer*, const std::string&,
 
 void MonitorModel::onStatus(const lcm::ReceiveBuffer*, const std::string&,
                             const busdecode_lcm::decode_status_t* m) {
-    if (m->state == "start") {
-        next_seq_ = 0;  // a new run numbers its events from 0
-        return;
-    }
-    if ((m->state == "end" || m->state == "done") && m->events > next_seq_) {
-        lost_ += m->events - next_seq_;  // the last ones never came
-        next_seq_ = m->events;
-    }
+    losses_.onStatus(m->state, m->events);
+    if (m->state == "start") return;
     if (m->state == "done") {  // after the run's last capture
         runs_ended_++;
         state_ = "ended";
@@ -163,11 +156,12 @@ std::vector<std::string> MonitorModel::render(const std::string& url, std::int64
     out.push_back(fit(fmt::format("busdecode monitor  {}  [{}]{}", url, state_,
                                   file_.empty() ? "" : "  capture " + file_),
                       width));
-    out.push_back(fit(fmt::format("capture time {}   messages {}{}",
-                                  formatDuration(double(capture_ns_)), messages_,
-                                  (dropped_ ? fmt::format("   DROPPED {}", dropped_) : "") +
-                                      (lost_ ? fmt::format("   LOST {}", lost_) : "")),
-                      width));
+    out.push_back(
+        fit(fmt::format("capture time {}   messages {}{}", formatDuration(double(capture_ns_)),
+                        messages_,
+                        (dropped_ ? fmt::format("   DROPPED {}", dropped_) : "") +
+                            (losses_.lost() ? fmt::format("   LOST {}", losses_.lost()) : "")),
+            width));
     out.emplace_back();
     out.push_back(fit(row("BUS", "POSITION (MT:ST)", "FRAMES", "FRAME RATE", "CRC ERRORS",
                           "LINE DELAY last/min/max", "REG R/W", "ERRORS"),

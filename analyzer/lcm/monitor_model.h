@@ -17,6 +17,7 @@
 #include "busdecode_lcm/ssi_frame_t.hpp"
 #include "busdecode_lcm/tmc8100_encoder_read_t.hpp"
 #include "busdecode_lcm/tmcl_reply_t.hpp"
+#include "feed_losses.h"
 
 namespace lcm {
 class ReceiveBuffer;
@@ -76,9 +77,8 @@ public:
 
     const std::map<std::string, BusView>& buses() const { return buses_; }
     std::int64_t runsEnded() const { return runs_ended_; }
-    // Events known lost on the way (gaps in their seq, events a status counted that never
-    // came): UDP drops datagrams when the monitor falls behind.
-    std::int64_t lost() const { return lost_; }
+    // Events known lost on the way (FeedLosses).
+    std::int64_t lost() const { return losses_.lost(); }
     std::int64_t messages() const { return messages_; }
 
 private:
@@ -90,7 +90,7 @@ private:
     std::deque<std::string> recent_registers_;
     std::string file_, state_ = "waiting";
     std::int64_t capture_ns_ = 0, runs_ended_ = 0, messages_ = 0, dropped_ = 0;
-    std::int64_t next_seq_ = 0, lost_ = 0;
+    FeedLosses losses_;
 };
 
 }  // namespace busdecode

@@ -18,6 +18,7 @@
 #include "busdecode_lcm/decode_status_t.hpp"
 #include "busdecode_lcm/event_annotation_t.hpp"
 #include "core/options.h"
+#include "lcm/feed_losses.h"
 #include "lcm/lcm_channels.h"
 #include "lcm/lcm_publisher.h"
 
@@ -48,7 +49,7 @@ public:
         last_ = std::chrono::steady_clock::now();
     }
 
-    std::uint64_t lost() const { return lost_; }
+    std::int64_t lost() const { return losses_.lost(); }
 
     pyb::object next() {
         // As a generator: one reader at a time (the wait below releases the GIL).
@@ -77,19 +78,13 @@ private:
     void onEvent(const lcm::ReceiveBuffer*, const std::string&,
                  const busdecode_lcm::event_annotation_t* m) {
         last_ = std::chrono::steady_clock::now();
-        if (m->seq > next_seq_) lost_ += std::uint64_t(m->seq - next_seq_);
-        if (m->seq >= next_seq_) next_seq_ = m->seq + 1;
+        losses_.onEvent(m->seq);
         if (!wanted_ || std::regex_match(m->channel, *wanted_)) pending_.push_back(m->json);
     }
     void onStatus(const lcm::ReceiveBuffer*, const std::string&,
                   const busdecode_lcm::decode_status_t* m) {
         last_ = std::chrono::steady_clock::now();
-        if (m->state == "start") next_seq_ = 0;  // a new run numbers its events from 0
-        // Events the publisher counted that never came (the last ones of a run).
-        if ((m->state == "end" || m->state == "done") && m->events > next_seq_) {
-            lost_ += std::uint64_t(m->events - next_seq_);
-            next_seq_ = m->events;
-        }
+        losses_.onStatus(m->state, m->events);
         if (until_end_ && m->state == "done") ended_ = true;  // "end" ends one capture only
     }
 
@@ -97,10 +92,7 @@ private:
     std::optional<double> timeout_s_;
     pyb::object loads_;
     bool until_end_;
-    // UDP multicast drops datagrams when a subscriber falls behind: a gap in the events'
-    // seq is counted, not passed over in silence.
-    std::int64_t next_seq_ = 0;
-    std::uint64_t lost_ = 0;
+    FeedLosses losses_;
     std::optional<std::regex> wanted_;
     std::deque<std::string> pending_;
     std::chrono::steady_clock::time_point last_;
