@@ -1,6 +1,7 @@
 // compressFile: a capture written by the other writers, compressed as gzip, xz or zstd
 // tools write it, for round trips through the decompressing input.
 #include <cstdio>
+#include <stdexcept>
 #include <vector>
 
 #include <lzma.h>
@@ -72,6 +73,8 @@ Step zstdStep(ZSTD_CCtx* c) {
 }  // namespace
 
 void compressFile(const std::string& in_path, const std::string& out_path, Compression kind) {
+    if (kind != Compression::Gzip && kind != Compression::Xz && kind != Compression::Zstd)
+        throw std::invalid_argument("compressFile: not a compression");  // CrLineEnds, None
     std::FILE* in = std::fopen(in_path.c_str(), "rb");
     if (!in) throw InputError(fmt::format("{}: cannot open", in_path));
     z_stream z{};

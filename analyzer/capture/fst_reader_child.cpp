@@ -45,19 +45,13 @@ bool isReal(unsigned char typ) {
            typ == FST_VT_VCD_REALTIME || typ == FST_VT_SV_SHORTREAL;
 }
 
-// `data [7:0]` -> `data`; a 1-bit `bus [3]` -> `bus[3]` (what the VCD reader makes of them).
-std::string referenceOf(const char* name, int width) {
-    std::string ref = name, rest;
-    if (const auto sp = ref.find(' '); sp != std::string::npos) {
-        rest = ref.substr(ref.find_first_not_of(' ', sp) == std::string::npos
-                              ? ref.size()
-                              : ref.find_first_not_of(' ', sp));
-        ref.erase(sp);
-    }
-    const auto lb = ref.find('[');
-    if (width > 1 && lb != std::string::npos && lb > 0 && ref.back() == ']') ref.erase(lb);
-    if (width == 1 && !rest.empty() && rest.front() == '[') ref += rest.substr(0, rest.find(' '));
-    return ref;
+// `data [7:0]`, as FST names a vector: its reference and range as the VCD reader reads them.
+VectorName referenceOf(const char* name, int width) {
+    const std::string_view n = name;
+    const auto sp = n.find(' ');
+    if (sp == std::string_view::npos) return splitVectorName(n, "", width);
+    std::string_view after = n.substr(std::min(n.find_first_not_of(' ', sp), n.size()));
+    return splitVectorName(n.substr(0, sp), after.substr(0, after.find(' ')), width);
 }
 
 class FstProducer {
@@ -126,15 +120,12 @@ void FstProducer::sendHeader() {
             const bool real = isReal(h->u.var.typ);
             // A real's length is its 8 bytes; VCD declares it `real 64`.
             const int width = real ? 64 : int(std::max<std::uint32_t>(1, h->u.var.length));
-            std::string ref = referenceOf(h->u.var.name, width), full;
+            const VectorName v = referenceOf(h->u.var.name, width);
+            std::string full;
             for (const auto& s : scopes)
                 if (!s.empty()) full += s + ".";
-            const std::string name = h->u.var.name;  // `bus [0:7]`: the range after the name
-            const auto range =
-                parseVectorRange(name.substr(std::min(name.find('['), name.size())), width);
-            signals.text(ref).text(full + ref).u64(std::uint64_t(width));
-            signals.u64(range ? std::uint64_t(range->first) + 1 : 0)
-                .u64(range ? std::uint64_t(range->second) + 1 : 0);
+            signals.text(v.ref).text(full + v.ref).u64(std::uint64_t(width));
+            signals.u64(std::uint64_t(v.msb + 1)).u64(std::uint64_t(v.lsb + 1));  // 0: none
             vars_.push_back({h->u.var.handle, real});
             ++count;
         }

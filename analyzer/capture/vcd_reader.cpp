@@ -28,7 +28,6 @@
 #include <memory>
 #include <optional>
 #include <string>
-#include <tuple>
 #include <unordered_map>
 #include <unordered_set>
 #include <utility>
@@ -477,16 +476,8 @@ private:
         auto [ptr, ec] = std::from_chars(t[1].data(), t[1].data() + t[1].size(), width);
         if (ec != std::errc() || ptr != t[1].data() + t[1].size() || width < 1)
             failAt(line, fmt::format("expected a width in $var, found '{}'", printable(t[1])));
-        std::string ref = t[3], range;
-        // `name [7:0]` or `name[7:0]`: the range is not part of a vector's name.
-        auto lb = ref.find('[');
-        if (width > 1 && lb != std::string::npos && lb > 0 && ref.back() == ']') {
-            range = ref.substr(lb);
-            ref.erase(lb);
-        } else if (width > 1 && t.size() >= 5 && t[4].front() == '[') {
-            range = t[4];
-        }
-        if (width == 1 && t.size() >= 5 && t[4].front() == '[') ref += t[4];
+        const VectorName v = splitVectorName(t[3], t.size() >= 5 ? t[4] : "", width);
+        const std::string& ref = v.ref;
         std::string full;
         for (const auto& s : scope)
             if (!s.empty()) full += s + ".";
@@ -512,9 +503,7 @@ private:
             }
         }
         sig_code_.push_back(code);
-        signals_.push_back({ref, full, width});
-        if (const auto r = parseVectorRange(range, width))
-            std::tie(signals_.back().msb, signals_.back().lsb) = *r;
+        signals_.push_back({ref, full, width, v.msb, v.lsb});
         if (!kept_only_ && signals_.size() > kKeepAllSignals && !opts_.wanted_signals.empty())
             keepOnlyWanted();
         // A design may name a million instances' clocks "clk", but only a header made to

@@ -3,30 +3,41 @@
 #include <charconv>
 #include <cstdlib>
 
+#include <tuple>
+
 #include <fmt/format.h>
 
+#include "core/options.h"
+
 namespace busdecode {
-
-namespace {
-
-std::optional<int> indexOf(std::string_view s) {
-    int v = 0;
-    const auto [p, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
-    if (s.empty() || ec != std::errc() || p != s.data() + s.size()) return std::nullopt;
-    return v;
-}
-
-}  // namespace
 
 std::optional<std::pair<int, int>> parseVectorRange(std::string_view text, int width) {
     if (text.size() < 5 || text.front() != '[' || text.back() != ']') return std::nullopt;
     text = text.substr(1, text.size() - 2);
     const auto colon = text.find(':');
     if (colon == std::string_view::npos) return std::nullopt;
-    const auto msb = indexOf(text.substr(0, colon)), lsb = indexOf(text.substr(colon + 1));
-    if (!msb || !lsb || *msb < 0 || *lsb < 0 || std::abs(std::int64_t(*msb) - *lsb) + 1 != width)
+    const auto msb = parseInteger(std::string(text.substr(0, colon)));
+    const auto lsb = parseInteger(std::string(text.substr(colon + 1)));
+    if (!msb || !lsb || *msb < 0 || *lsb < 0 || std::abs(*msb - *lsb) + 1 != width)
         return std::nullopt;  // negative indices (rare) keep 0 .. width-1
-    return std::pair{*msb, *lsb};
+    return std::pair{int(*msb), int(*lsb)};
+}
+
+VectorName splitVectorName(std::string_view name, std::string_view after, int width) {
+    VectorName v{std::string(name)};
+    std::string_view range;
+    const auto lb = name.find('[');
+    if (width > 1 && lb != std::string_view::npos && lb > 0 && name.back() == ']') {
+        range = name.substr(lb);
+        v.ref.erase(lb);
+    } else if (!after.empty() && after.front() == '[') {
+        if (width > 1)
+            range = after;
+        else
+            v.ref += after;
+    }
+    if (const auto r = parseVectorRange(range, width)) std::tie(v.msb, v.lsb) = *r;
+    return v;
 }
 
 std::optional<int> bitAtIndex(const SignalInfo& s, std::int64_t i) {

@@ -12,6 +12,16 @@
 
 namespace busdecode {
 
+// A `$var`'s reference split the way VCD and FST readers name signals: `data [7:0]` or
+// `data[7:0]` is `data` with msb 7, lsb 0 (-1, -1 without a range that spans `width`); a
+// 1-bit `bus [3]` keeps its index, `bus[3]`, so it can be mapped by that name. `name` is
+// the reference, `after` the token after it ("" when none).
+struct VectorName {
+    std::string ref;
+    int msb = -1, lsb = -1;
+};
+VectorName splitVectorName(std::string_view name, std::string_view after, int width);
+
 // "[7:0]" -> (msb 7, lsb 0) when it spans `width` bits; nullopt otherwise.
 std::optional<std::pair<int, int>> parseVectorRange(std::string_view text, int width);
 // The bit of `s`, counted from its LSB, that index `i` names: within its declared range,
