@@ -4,27 +4,19 @@
 
 #include <algorithm>
 #include <fstream>
-#include <random>
 
 #include "capture/capture_writer.h"
 #include "capture/compression.h"
 #include "capture/scope_csv_writer.h"
 #include "capture_util.h"
 #include "core/waveform.h"
+#include "random_traffic.h"
 
 namespace busdecode::test {
 namespace {
 
 Waveform crTraffic() {
-    std::mt19937 rng(11);
-    WaveBuilder b(Timebase::fromSampleRate(10'000'000), {"clk", "data"}, {1, 0});
-    Tick t = 0;
-    for (int i = 0; i < 3000; ++i) {
-        t += 20 + Tick(rng() % 30);
-        const auto l = std::uint32_t(rng() % 2);
-        b.set(l, t, !b.level(l));
-    }
-    return b.build(t + 5);
+    return randomTraffic(Timebase::fromSampleRate(10'000'000), 11, 3000, 50, 20, 5);
 }
 
 std::string readAll(const std::string& path) {
