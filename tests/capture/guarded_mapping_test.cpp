@@ -90,7 +90,6 @@ TEST(GuardedMapping, PagesPastAShrunkEndReadAsZerosAndSaySo) {
 TEST(GuardedMappingDeathTest, ASigbusOutsideAnyWindowStillEndsTheProcess) {
     GTEST_FLAG_SET(death_test_style, "threadsafe");
     const long page = ::sysconf(_SC_PAGESIZE);
-    const std::string path = tempCapture("unguarded.bin", bytesOfLength(std::size_t(4 * page)));
     // Under ASan, its own SIGBUS handler (the one before ours) reports and exits 1.
     const auto died = [](int status) {
         return (WIFSIGNALED(status) && WTERMSIG(status) == SIGBUS) ||
@@ -98,13 +97,18 @@ TEST(GuardedMappingDeathTest, ASigbusOutsideAnyWindowStillEndsTheProcess) {
     };
     EXPECT_EXIT(
         {
-            OpenFile f(path);
+            // A memory file, not one in the scratch directory: the child dies by the
+            // signal, so it could not remove a directory of its own.
+            const int fd = ::memfd_create("unguarded", 0);
+            const std::string bytes = bytesOfLength(std::size_t(4 * page));
+            if (fd < 0 || ::write(fd, bytes.data(), bytes.size()) != ssize_t(bytes.size()))
+                std::_Exit(2);
             std::atomic<bool> shrunk{false};
             GuardedMapping guarded;  // the handler installed, this window not the one hit
-            if (!guarded.map(f.fd, 0, std::uint64_t(page), &shrunk)) std::_Exit(3);
-            void* raw = ::mmap(nullptr, std::size_t(4 * page), PROT_READ, MAP_PRIVATE, f.fd, 0);
+            if (!guarded.map(fd, 0, std::uint64_t(page), &shrunk)) std::_Exit(3);
+            void* raw = ::mmap(nullptr, std::size_t(4 * page), PROT_READ, MAP_PRIVATE, fd, 0);
             if (raw == MAP_FAILED) std::_Exit(4);
-            std::filesystem::resize_file(path, std::uintmax_t(page));
+            if (::ftruncate(fd, page) != 0) std::_Exit(5);
             volatile char c = static_cast<const char*>(raw)[3 * page];  // SIGBUS
             (void)c;
             std::_Exit(0);
