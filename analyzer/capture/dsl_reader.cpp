@@ -17,6 +17,7 @@
 #include "core/options.h"
 #include "dsl_reader_header.h"
 #include "readers.h"
+#include "session_ini.h"
 #include "wall_clock.h"
 #include "zip_archive.h"
 
@@ -27,14 +28,6 @@ namespace {
 constexpr std::uint64_t kBlockSamples = std::uint64_t(1) << 24;
 constexpr std::uint64_t kBlockBytes = kBlockSamples / 8;
 constexpr std::size_t kWindowBytes = 64 << 10;  // per selected probe
-
-std::string_view trimmed(std::string_view s) {
-    while (!s.empty() && (s.front() == ' ' || s.front() == '\t'))
-        s.remove_prefix(1);
-    while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r'))
-        s.remove_suffix(1);
-    return s;
-}
 
 std::uint64_t number(const std::string& file, const std::string& key, const std::string& text) {
     if (text.empty() || text.find_first_not_of("0123456789") != std::string::npos ||
@@ -53,38 +46,23 @@ bool parseTime(const std::string& text, std::int64_t& out) {
 
 DslHeader parseHeader(const std::string& file, const std::string& text) {
     DslHeader h;
-    std::string section, rate_text;
+    std::string rate_text;
     bool have_rate = false, have_samples = false, have_blocks = false, have_trigger = false;
     std::int64_t trigger_ms = 0;
     std::uint64_t trigger_pos = 0;
-    std::size_t at = 0, line_no = 0;
-    while (at < text.size()) {
-        std::size_t nl = text.find('\n', at);
-        if (nl == std::string::npos) nl = text.size();
-        const std::string_view raw(text.data() + at, nl - at);
-        at = nl + 1;
-        ++line_no;
-        const std::string_view line = trimmed(raw);
-        if (!raw.empty() && (raw.front() == ' ' || raw.front() == '\t')) {
-            if (const auto eq = line.find('='); eq != std::string_view::npos)
-                h.probe_settings[std::string(trimmed(line.substr(0, eq)))] =
-                    std::string(trimmed(line.substr(eq + 1)));
-            continue;  // a DSO/analog probe's settings
+    forEachIniLine(text, [&](const IniLine& l) {
+        if (l.indented) {  // a DSO/analog probe's settings
+            if (l.has_value) h.probe_settings[std::string(l.key)] = std::string(l.value);
+            return;
         }
-        if (line.empty() || line.front() == ';' || line.front() == '#') continue;
-        if (line.front() == '[') {
-            section = std::string(line);
-            continue;
-        }
-        const auto eq = line.find('=');
-        if (eq == std::string_view::npos)
+        if (!l.has_value)
             throw InputError(fmt::format("{}: header line {}: '{}' is not key = value", file,
-                                         line_no, printable(line)));
-        const std::string key(trimmed(line.substr(0, eq))), value(trimmed(line.substr(eq + 1)));
-        if (section == "[version]" && key == "version") {
+                                         l.number, printable(l.key)));
+        const std::string key(l.key), value(l.value);
+        if (l.section == "[version]" && key == "version") {
             h.version = int(number(file, key, value));
-        } else if (section != "[header]") {
-            continue;
+        } else if (l.section != "[header]") {
+            return;
         } else if (key == "bits") {
             h.bits = int(number(file, key, value));
         } else if (key == "device mode") {
@@ -108,7 +86,7 @@ DslHeader parseHeader(const std::string& file, const std::string& text) {
                    key.find_first_not_of("0123456789", 5) == std::string::npos) {
             h.probes[int(number(file, key, key.substr(5)))] = value;
         }
-    }
+    });
     auto missing = [&](const char* what) {
         return InputError(fmt::format("{}: header has no {} (not a DSView session?)", file, what));
     };

@@ -14,38 +14,22 @@
 #include "analog_capture.h"
 #include "core/options.h"
 #include "readers.h"
+#include "session_ini.h"
 
 namespace busdecode {
 
 namespace {
 
-std::string trimmed(std::string s) {
-    while (!s.empty() && (s.back() == ' ' || s.back() == '\r' || s.back() == '\t'))
-        s.pop_back();
-    std::size_t b = 0;
-    while (b < s.size() && (s[b] == ' ' || s[b] == '\t'))
-        ++b;
-    return s.substr(b);
-}
-
-std::map<std::string, std::string> readMetadata(zip_t* zip) {
-    std::map<std::string, std::string> out;
-    zip_file_t* f = zip_fopen(zip, "metadata", 0);
-    if (!f) return out;
+// The session's `metadata` ("" where it has none: the logic reader words that error).
+std::string metadataText(zip_t* zip) {
     std::string text;
+    zip_file_t* f = zip_fopen(zip, "metadata", 0);
+    if (!f) return text;
     char buf[4096];
     for (zip_int64_t n; (n = zip_fread(f, buf, sizeof buf)) > 0 && text.size() < (1 << 20);)
         text.append(buf, std::size_t(n));
     zip_fclose(f);
-    for (std::size_t b = 0; b < text.size();) {
-        std::size_t e = text.find('\n', b);
-        if (e == std::string::npos) e = text.size();
-        const std::string line = text.substr(b, e - b);
-        if (const auto eq = line.find('='); eq != std::string::npos)
-            out[trimmed(line.substr(0, eq))] = trimmed(line.substr(eq + 1));
-        b = e + 1;
-    }
-    return out;
+    return text;
 }
 
 // Where a session's samples are: each analog channel's chunks `analog-1-<N>-<chunk>`
@@ -157,18 +141,12 @@ private:
 
 namespace {
 
-int numberIn(const std::map<std::string, std::string>& meta, const std::string& key) {
-    const auto it = meta.find(key);
-    return it == meta.end() ? 0 : std::atoi(it->second.c_str());
-}
-
 // The session's channels: its analog ones, numbered by their `analogN` keys (after the
 // probes in a mixed session), then its probes, a byte of the logic word a slot.
-SrLayout layoutOf(const std::map<std::string, std::string>& meta, int analog,
-                  const std::string& name) {
+SrLayout layoutOf(const SrMetadata& meta, int analog, const std::string& name) {
     SrLayout l;
-    const int probes = numberIn(meta, "total probes");
-    for (const auto& [key, value] : meta)  // map order is text order: sorted below
+    const int probes = meta.number("total probes");
+    for (const auto& [key, value] : meta.keys())  // in the order of the keys: sorted below
         if (key.rfind("analog", 0) == 0 && std::atoi(key.c_str() + 6) > 0)
             l.analog_number.push_back(std::atoi(key.c_str() + 6));
     std::sort(l.analog_number.begin(), l.analog_number.end());
@@ -178,21 +156,20 @@ SrLayout layoutOf(const std::map<std::string, std::string>& meta, int analog,
             l.analog_number.push_back(probes + i + 1);
     }
     for (std::size_t i = 0; i < l.analog_number.size(); ++i) {
-        const auto it = meta.find(fmt::format("analog{}", l.analog_number[i]));
-        const std::string ch = it == meta.end() ? fmt::format("A{}", i) : it->second;
+        const std::string* named = meta.find(fmt::format("analog{}", l.analog_number[i]));
+        const std::string ch = named ? *named : fmt::format("A{}", i);
         l.channels.push_back({ch, ch, i, -1});
     }
     if (probes <= 0) return l;
-    l.unitsize = std::size_t(numberIn(meta, "unitsize"));
+    l.unitsize = std::size_t(meta.number("unitsize"));
     if (l.unitsize < 1 || l.unitsize > 8 || std::size_t(probes) > 8 * l.unitsize)
         throw InputError(
             fmt::format("{}: {} probes do not fit in unitsize={}", name, probes, l.unitsize));
     for (int bit = 0; bit < probes; ++bit) {
-        const auto it = meta.find(fmt::format("probe{}", bit + 1));
-        const std::string ch = it == meta.end() ? fmt::format("D{}", bit) : it->second;
+        const std::string ch = meta.probeName(bit);
         l.channels.push_back({ch, ch, std::size_t(analog + bit / 8), bit % 8});
     }
-    if (const auto it = meta.find("capturefile"); it != meta.end()) l.logic_prefix = it->second;
+    if (const std::string* file = meta.find("capturefile")) l.logic_prefix = *file;
     return l;
 }
 
@@ -204,14 +181,14 @@ std::unique_ptr<CaptureReader> openSrAnalogIfAnalog(const std::string& path,
     int err = 0;
     zip_t* zip = zip_open(path.c_str(), ZIP_RDONLY, &err);
     if (!zip) return nullptr;  // the logic reader words the error
-    const auto meta = readMetadata(zip);
-    const int analog = numberIn(meta, "total analog");
+    const SrMetadata meta(metadataText(zip));
+    const int analog = meta.number("total analog");
     if (analog <= 0) {  // logic probes only: the logic reader's, which is faster
         zip_discard(zip);
         return nullptr;
     }
-    const auto rate = meta.find("samplerate");
-    const double hz = rate == meta.end() ? 0 : double(parseRateHz(rate->second));
+    const std::string* rate = meta.find("samplerate");
+    const double hz = rate ? double(parseRateHz(*rate)) : 0;
     if (!(hz > 0) || analog > 64) {
         zip_discard(zip);
         throw InputError(fmt::format("{}: analog session without a samplerate or channels", name));

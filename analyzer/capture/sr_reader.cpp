@@ -13,11 +13,9 @@
 // is its bit in the sample word; unnamed (disabled) probes are called D<bit>.
 #include <algorithm>
 #include <bit>
-#include <cctype>
 #include <cmath>
 #include <cstring>
 #include <map>
-#include <optional>
 #include <string>
 #include <vector>
 
@@ -29,20 +27,12 @@
 #include "core/own_cache_lines.h"
 #include "core/sample_rate.h"
 #include "readers.h"
+#include "session_ini.h"
 #include "zip_archive.h"
 
 namespace busdecode {
 
 namespace {
-
-std::string trim(const std::string& s) {
-    std::size_t b = 0, e = s.size();
-    while (b < e && std::isspace(static_cast<unsigned char>(s[b])))
-        ++b;
-    while (e > b && std::isspace(static_cast<unsigned char>(s[e - 1])))
-        --e;
-    return s.substr(b, e - b);
-}
 
 // In cache lines of its own: its state is written as it reads (own_cache_lines.h).
 class alignas(kOwnLineBytes) SrReader : public CaptureReader {
@@ -247,58 +237,29 @@ private:
         if (n < 0) throw InputError(fmt::format("{}: cannot read the metadata", name_));
         text.resize(std::size_t(n));
 
-        std::map<int, std::string> probes;
-        int total = 0;
-        bool in_device = false;
-        std::optional<SampleRate> rate;
-        std::string rate_text;
-        std::size_t at = 0;
-        while (at < text.size()) {
-            std::size_t nl = text.find('\n', at);
-            if (nl == std::string::npos) nl = text.size();
-            std::string line = trim(text.substr(at, nl - at));
-            at = nl + 1;
-            if (line.empty() || line[0] == ';' || line[0] == '#') continue;
-            if (line.front() == '[') {
-                in_device = line.rfind("[device", 0) == 0;
-                continue;
-            }
-            if (!in_device) continue;
-            auto eq = line.find('=');
-            if (eq == std::string::npos) continue;
-            const std::string key = trim(line.substr(0, eq)), value = trim(line.substr(eq + 1));
-            if (key == "samplerate") {
-                rate_text = value;
-                rate = parseSampleRate(value, true);
-            } else if (key == "unitsize") {
-                unit_ = std::size_t(std::atoi(value.c_str()));
-                if (unit_ < 1 || unit_ > 8)
-                    throw InputError(fmt::format(
-                        "{}: unitsize={} not supported (1 to 8 bytes per sample)", name_, value));
-            } else if (key == "total probes") {
-                total = std::atoi(value.c_str());
-            } else if (key.rfind("probe", 0) == 0) {
-                const int n = std::atoi(key.c_str() + 5);
-                if (n >= 1) probes[n] = value;
-            } else if (key == "capturefile") {
-                capturefile_ = value;
-            }
-        }
-        if (!rate) throw InputError(fmt::format("{}: metadata has no samplerate", name_));
-        if (!rate->timebase)
+        const SrMetadata meta(text);
+        const std::string* rate_text = meta.find("samplerate");
+        if (!rate_text) throw InputError(fmt::format("{}: metadata has no samplerate", name_));
+        const SampleRate rate = parseSampleRate(*rate_text, true);
+        if (!rate.timebase)
             throw InputError(
-                fmt::format("{}: samplerate '{}' {}", name_, printable(rate_text), rate->problem));
-        tb_ = *rate->timebase;
-        if (unit_ == 0) throw InputError(fmt::format("{}: metadata has no unitsize", name_));
-        if (!probes.empty()) total = std::max(total, probes.rbegin()->first);
+                fmt::format("{}: samplerate '{}' {}", name_, printable(*rate_text), rate.problem));
+        tb_ = *rate.timebase;
+        const std::string* unit = meta.find("unitsize");
+        if (!unit) throw InputError(fmt::format("{}: metadata has no unitsize", name_));
+        unit_ = std::size_t(std::atoi(unit->c_str()));
+        if (unit_ < 1 || unit_ > 8)
+            throw InputError(fmt::format("{}: unitsize={} not supported (1 to 8 bytes per sample)",
+                                         name_, printable(*unit)));
+        const int total = std::max(meta.number("total probes"), meta.highestProbe());
         if (total > int(unit_ * 8))
             throw InputError(
                 fmt::format("{}: {} probes do not fit in unitsize={}", name_, total, unit_));
         for (int bit = 0; bit < total; ++bit) {
-            auto it = probes.find(bit + 1);
-            std::string n = it != probes.end() ? it->second : fmt::format("D{}", bit);
+            const std::string n = meta.probeName(bit);
             signals_.push_back({n, n, 1});
         }
+        if (const std::string* file = meta.find("capturefile")) capturefile_ = *file;
     }
 
     void findChunks() {
