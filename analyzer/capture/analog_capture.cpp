@@ -220,7 +220,7 @@ private:
     }
 
     void start();
-    SchmittSettings settingsFor(const Line& l, LevelEstimator& est) const;
+    SchmittSettings settingsFor(const Line& l, SchmittSettings s) const;
 
     // The prefix first, then the rest.
     bool nextSample(double& t) {
@@ -350,10 +350,8 @@ private:
     Tick start_tick_ = 0, end_tick_ = 0, bound_ = 0;
 };
 
-SchmittSettings AnalogReader::settingsFor(const Line& l, LevelEstimator& est) const {
-    for (std::size_t r = 0; r < prefix_t_.size(); ++r)
-        est.add(prefixValue(r, l.slot));
-    SchmittSettings s = est.settings();
+// The settings the line's data gave, overridden by --threshold and --hysteresis.
+SchmittSettings AnalogReader::settingsFor(const Line& l, SchmittSettings s) const {
     const SignalInfo& sig = signals_[l.channel];
     bool given = false;
     for (const auto& [name, v] : opts_.thresholds)
@@ -377,13 +375,14 @@ void AnalogReader::resolve(Line& l, std::size_t i) {
     LevelEstimator est;
     for (const auto& [t, v] : held)
         est.add(v);
-    SchmittSettings s = est.settings();
+    const LevelEstimate found = est.estimate();
+    SchmittSettings s = found.settings;
     if (s.flat && !done_) return l.learner.restart();
     l.learning = false;
     if (s.flat || !l.learner.departed()) return l.learner.clear();
     if (opts_.hysteresis >= 0) s.hysteresis = opts_.hysteresis;
     l.settings = s;
-    l.levels = est.levels();
+    l.levels = found.levels;
     l.learned = true;
     l.trigger.configure(s);
     l.quality.configure(l.levels.first, l.levels.second);
@@ -408,18 +407,22 @@ void AnalogReader::start() {
     for (auto& l : lines_) {
         if (l.bit >= 0) continue;
         LevelEstimator est;
-        l.settings = settingsFor(l, est);
-        l.levels = est.levels();
+        for (std::size_t r = 0; r < prefix_t_.size(); ++r)
+            est.add(prefixValue(r, l.slot));
+        const LevelEstimate found = est.estimate();
+        l.settings = settingsFor(l, found.settings);
+        l.levels = found.levels;
         l.learning = l.settings.flat && !l.watch;
-        if (l.learning) l.learner.configure(est.settings());
+        if (l.learning) l.learner.configure(found.settings);
         l.trigger.configure(l.settings);
         l.quality.configure(l.levels.first, l.levels.second);
         for (int w = 0; l.watch && w < 2; ++w) {
             LevelEstimator wire;
             for (std::size_t r = 0; r < prefix_t_.size(); ++r)
                 wire.add(prefixValue(r, l.pair.slot[w]));
-            l.wire[w].configure(wire.settings());
-            l.wire_levels[w] = wire.levels();
+            const LevelEstimate found = wire.estimate();
+            l.wire[w].configure(found.settings);
+            l.wire_levels[w] = found.levels;
         }
     }
     double t;

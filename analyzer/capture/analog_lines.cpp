@@ -71,20 +71,14 @@ std::pair<int, int> twoModes(const Histogram& h) {
 
 }  // namespace
 
-std::pair<double, double> LevelEstimator::levels() const {
-    if (values_.empty()) return {0, 0};
-    const Histogram h = histogramOf(values_);
-    if (!(h.width > 0)) return {h.lo, h.lo};
-    const auto [low, high] = twoModes(h);
-    return {h.centre(low), h.centre(high)};
-}
-
-SchmittSettings LevelEstimator::settings() const {
-    SchmittSettings s;
+LevelEstimate LevelEstimator::estimate() const {
+    LevelEstimate e;
+    SchmittSettings& s = e.settings;
     s.from_data = true;
-    if (values_.empty()) return s;
+    if (values_.empty()) return e;
     const Histogram h = histogramOf(values_);
     const auto [low, high] = h.width > 0 ? twoModes(h) : std::pair<int, int>{0, 0};
+    e.levels = h.width > 0 ? std::pair(h.centre(low), h.centre(high)) : std::pair(h.lo, h.lo);
     // Two levels show as two peaks with a valley between them; noise around one level
     // fills the bins between.
     std::uint32_t valley = ~0u;
@@ -96,12 +90,12 @@ SchmittSettings LevelEstimator::settings() const {
         s.flat = true;
         s.threshold = (h.lo + h.hi) / 2;
         s.hysteresis = std::max((h.hi - h.lo) * 1.5, 1e-9);
-        return s;
+        return e;
     }
     s.threshold = (h.centre(low) + h.centre(high)) / 2;
     s.hysteresis = (h.centre(high) - h.centre(low)) / 10;
-    s.levels = {h.centre(low), h.centre(high)};
-    return s;
+    s.levels = e.levels;
+    return e;
 }
 
 void EdgeOrderer::push(Tick t, std::uint32_t line, std::uint8_t level) {

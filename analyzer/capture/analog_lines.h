@@ -24,6 +24,15 @@ struct SchmittSettings {
     std::optional<std::pair<double, double>> levels;  // (low, high) volts, when the data showed two
 };
 
+// What a line's first samples show: its trigger settings and its two main levels.
+struct LevelEstimate {
+    // Threshold at the midpoint of the two levels, hysteresis a tenth of their swing. A
+    // prefix with one level only gives a threshold in the middle of its range and a band
+    // wider than that range (flat = true), so its noise never toggles the line.
+    SchmittSettings settings;
+    std::pair<double, double> levels{0, 0};  // (low, high) found
+};
+
 // The two main levels of a line from a histogram of its first samples.
 class LevelEstimator {
 public:
@@ -32,11 +41,7 @@ public:
         if (std::abs(v) <= 1e30) values_.push_back(float(v));
     }
     std::size_t size() const { return values_.size(); }
-    // Threshold at the midpoint of the two levels, hysteresis a tenth of their swing. A
-    // prefix with one level only gives a threshold in the middle of its range and a band
-    // wider than that range (flat = true), so its noise never toggles the line.
-    SchmittSettings settings() const;
-    std::pair<double, double> levels() const;  // (low, high) found
+    LevelEstimate estimate() const;  // one histogram of the samples added
     void clear() { values_ = {}; }
 
 private:

@@ -120,10 +120,10 @@ TEST(AnalogFindings, ALevelOfAFewHundredSamplesIsStillFound) {
     for (int i = 0; i < 300; ++i)
         est.add(3.3 + noise(rng));
     est.add(40);
-    const SchmittSettings s = est.settings();
-    EXPECT_FALSE(s.flat);
-    EXPECT_NEAR(s.threshold, 1.65, 0.1);
-    const auto [low, high] = est.levels();
+    const LevelEstimate found = est.estimate();
+    EXPECT_FALSE(found.settings.flat);
+    EXPECT_NEAR(found.settings.threshold, 1.65, 0.1);
+    const auto [low, high] = found.levels;
     EXPECT_NEAR(low, 0, 0.1);
     EXPECT_NEAR(high, 3.3, 0.1);
 }

@@ -38,7 +38,7 @@ TEST(AnalogLines, LevelsFoundFromTheDataGiveMidpointAndATenthOfTheSwing) {
     LevelEstimator est;
     for (int t = 0; t < 20000; t += 7)
         est.add(sq.at(t, rng));
-    const SchmittSettings s = est.settings();
+    const SchmittSettings s = est.estimate().settings;
     EXPECT_FALSE(s.flat);
     EXPECT_NEAR(s.threshold, 1.65, 0.1);
     EXPECT_NEAR(s.hysteresis, 0.29, 0.03);
@@ -50,7 +50,7 @@ TEST(AnalogLines, AFlatPrefixGivesABandWiderThanItsNoise) {
     LevelEstimator est;
     for (int i = 0; i < 5000; ++i)
         est.add(noise(rng));
-    const SchmittSettings s = est.settings();
+    const SchmittSettings s = est.estimate().settings;
     EXPECT_TRUE(s.flat);
     SchmittLine line;
     line.configure(s);
