@@ -236,6 +236,9 @@ DecompressingInput::~DecompressingInput() {
 std::unique_ptr<TextSource> DecompressingInput::output() {
     OpenOptions o = opts_;
     o.follow = false;
+    // A followed file stops where it is stopped: this thread then ends the text, which is
+    // read to that end, not cut as an interrupted read.
+    if (opts_.follow) o.stop = nullptr;
     const int fd = read_fd_;
     read_fd_ = -1;
     return std::make_unique<TextSource>(fd, name_, o);

@@ -1,7 +1,8 @@
 // SIGINT and SIGTERM through the real CLI: a run waiting on a FIFO without a writer (with
 // or without --follow, also in verify) and an ordinary decode cut short both end at once
 // with 128 + the signal, one line saying where, and an earlier report left as it was; a
-// followed capture still ends cleanly. A capture truncated while read is an input error.
+// followed capture, compressed or not, still ends cleanly. A capture truncated while read is an
+// input error.
 #include <gtest/gtest.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -141,6 +142,21 @@ TEST(SignalExit, FollowedCaptureStillEndsCleanly) {
     const std::string report = tempDir() + "/followed_report.txt";
     const std::string out = tempDir() + "/followed.out";
     const RunResult r = signalWhen(shellQuote(capture) + " --proto spi --follow --report " +
+                                       shellQuote(report) + " >" + shellQuote(out),
+                                   ":", "grep -qs transfer " + shellQuote(out), "INT");
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(r.err, "");
+    EXPECT_NE(readFile(report).find("busdecode report"), std::string::npos);
+}
+
+// The decompressing thread ends the text where the followed file was stopped: read to
+// there, not cut as an interrupted read ("before its header was complete").
+TEST(SignalExit, FollowedCompressedCaptureStillEndsCleanly) {
+    const std::string capture = spiCapture("followed_gz.vcd", 4, 10'000);
+    ASSERT_EQ(runCommand("gzip -f " + shellQuote(capture)).status, 0);
+    const std::string report = tempDir() + "/followed_gz_report.txt";
+    const std::string out = tempDir() + "/followed_gz.out";
+    const RunResult r = signalWhen(shellQuote(capture + ".gz") + " --proto spi --follow --report " +
                                        shellQuote(report) + " >" + shellQuote(out),
                                    ":", "grep -qs transfer " + shellQuote(out), "INT");
     EXPECT_EQ(r.status, 0) << r.err;
