@@ -13,6 +13,8 @@
 #include <thread>
 #include <vector>
 
+#include <unistd.h>
+
 #include "core/session.h"
 
 namespace busdecode::py {
@@ -33,16 +35,48 @@ std::vector<DecoderRequest> requestsFor(const std::vector<std::string>& protos,
                                         const std::vector<std::string>& maps,
                                         const std::vector<std::string>& opts);
 
-// Runs `wait` (which must not touch Python) with the GIL released, in slices of
-// `slice_ms`, until it returns true; between slices, Ctrl-C raises KeyboardInterrupt.
-template <class Wait>
-void waitInterruptibly(Wait&& wait) {
-    for (;;) {
-        bool ready;
-        {
-            pyb::gil_scoped_release nogil;
-            ready = wait();
+// Whether Python has begun to finalize: it then ends a daemon thread that takes the GIL
+// back with pthread_exit, and that unwinding aborts the process at the first C++
+// destructor it meets ("terminate called without an active exception").
+inline bool pythonFinalizing() {
+#if PY_VERSION_HEX >= 0x030D0000
+    return Py_IsFinalizing() != 0;
+#else
+    return _Py_IsFinalizing() != 0;
+#endif
+}
+
+// Runs `f` (which must not touch Python) with the GIL released, then takes it back. A
+// thread that Python finalizes meanwhile instead runs `stop_work` (which ends and joins
+// what it started) and waits for the process to exit, as Python 3.14 does with such
+// threads itself.
+template <class F, class StopWork>
+void withoutGil(F&& f, StopWork&& stop_work) {
+    PyThreadState* saved = PyEval_SaveThread();
+    const auto retake = [&] {
+        if (pythonFinalizing()) {
+            stop_work();
+            for (;;)
+                ::pause();
         }
+        PyEval_RestoreThread(saved);
+    };
+    try {
+        f();
+    } catch (...) {
+        retake();
+        throw;
+    }
+    retake();
+}
+
+// Runs `wait` (which must not touch Python) with the GIL released until it returns true;
+// between its calls, Ctrl-C raises KeyboardInterrupt. `stop_work`: as for withoutGil.
+template <class Wait, class StopWork>
+void waitInterruptibly(Wait&& wait, StopWork&& stop_work) {
+    for (;;) {
+        bool ready = false;
+        withoutGil([&] { ready = wait(); }, stop_work);
         if (ready) return;
         if (PyErr_CheckSignals() != 0) throw pyb::error_already_set();
     }
@@ -69,15 +103,19 @@ void runInterruptibly(Work&& work) {
         done = true;
         cv.notify_all();
     });
-    try {
-        waitInterruptibly([&] {
-            std::unique_lock<std::mutex> lock(mu);
-            return cv.wait_for(lock, std::chrono::milliseconds(100), [&] { return done; });
-        });
-    } catch (...) {
+    const auto stopWork = [&] {
         stop = true;
-        pyb::gil_scoped_release nogil;
-        worker.join();
+        if (worker.joinable()) worker.join();
+    };
+    try {
+        waitInterruptibly(
+            [&] {
+                std::unique_lock<std::mutex> lock(mu);
+                return cv.wait_for(lock, std::chrono::milliseconds(100), [&] { return done; });
+            },
+            stopWork);
+    } catch (...) {
+        withoutGil(stopWork, [] {});
         throw;
     }
     worker.join();

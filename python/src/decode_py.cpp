@@ -34,7 +34,7 @@ class Events {
 public:
     Events(DecodeJob job, bool live)
         : stream_(std::make_unique<EventStream>(std::move(job), live ? 1 : kBatch)) {
-        waitInterruptibly([&] { return stream_->waitStarted(kPollMs); });
+        waitInterruptibly([&] { return stream_->waitStarted(kPollMs); }, [&] { stream_.reset(); });
         dict_.setCaptureStart(stream_->facts().capture_start);
     }
     ~Events() { close(); }
@@ -50,10 +50,12 @@ public:
             EventStream::Got got = EventStream::Got::Waiting;
             busy_ = true;
             try {
-                waitInterruptibly([&] {
-                    got = stream_->next(batch_, kPollMs);
-                    return got != EventStream::Got::Waiting;
-                });
+                waitInterruptibly(
+                    [&] {
+                        got = stream_->next(batch_, kPollMs);
+                        return got != EventStream::Got::Waiting;
+                    },
+                    [&] { stream_.reset(); });
             } catch (...) {
                 busy_ = false;
                 if (closing_) close();
@@ -84,8 +86,7 @@ public:
         // Taken out with the GIL held: another thread's next() then sees no stream.
         std::unique_ptr<EventStream> stream = std::move(stream_);
         facts_ = stream->facts();
-        pyb::gil_scoped_release nogil;
-        stream.reset();  // stops the decode and joins its thread
+        withoutGil([&] { stream.reset(); }, [] {});  // stops the decode, joins its thread
     }
     pyb::dict facts() { return factsToPython(stream_ ? stream_->facts() : facts_); }
 

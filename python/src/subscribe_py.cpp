@@ -56,11 +56,9 @@ public:
         if (busy_) throw pyb::value_error("subscribe(): already being read on another thread");
         while (pending_.empty()) {
             if (ended_ || timedOut()) throw pyb::stop_iteration();
-            {
-                busy_ = true;
-                pyb::gil_scoped_release nogil;  // the handlers touch no Python
-                lc_->handleTimeout(kPollMs);
-            }
+            busy_ = true;
+            // The handlers touch no Python.
+            withoutGil([&] { lc_->handleTimeout(kPollMs); }, [] {});
             busy_ = false;
             if (PyErr_CheckSignals() != 0) throw pyb::error_already_set();
         }
@@ -90,8 +88,8 @@ private:
 
     std::shared_ptr<lcm::LCM> lc_;
     std::optional<double> timeout_s_;
-    pyb::object loads_;
     bool until_end_;
+    pyb::object loads_;
     FeedLosses losses_;
     std::optional<std::regex> wanted_;
     std::deque<std::string> pending_;
