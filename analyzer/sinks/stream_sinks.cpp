@@ -23,8 +23,8 @@ struct Tally {
     std::uint64_t faulty = 0;
 };
 
-// A full disk, a closed pipe (SIGPIPE ignored), a closed stdout: the run ends with an
-// error rather than going on to lose every event and exit 0.
+// A full disk, a closed pipe (where the caller ignores SIGPIPE), a closed stdout: the run
+// ends with an error rather than going on to lose every event and exit 0.
 [[noreturn]] void cannotWrite(std::FILE* out) {
     throw InputError(fmt::format("{}: cannot write: {}",
                                  out == stdout ? "standard output" : "output",
