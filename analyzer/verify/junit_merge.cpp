@@ -194,7 +194,8 @@ void checkSameRules(const std::vector<JunitShardFile>& files) {
 }  // namespace
 
 MergeResult mergeJunit(const std::vector<JunitShardFile>& files,
-                       const std::vector<std::string>& expected, bool list_given) {
+                       const std::vector<std::string>& expected, bool list_given,
+                       const std::vector<UnusableJunitFile>& unusable) {
     MergeResult m;
     checkSameRules(files);
     const std::size_t n = shardCount(files);
@@ -217,6 +218,9 @@ MergeResult mergeJunit(const std::vector<JunitShardFile>& files,
             if (!checked.count(global[i]))
                 addMissing(m, cases, out, expected[i], global[i],
                            "no verdict in any JUnit file given");
+        if (!list_given)
+            for (const auto& u : unusable)
+                addMissing(m, cases, out, u.path, u.path, "no verdict: " + u.why);
     }
     for (std::size_t k = 1; k <= n; ++k) {
         const Shard shard{k, n};
@@ -270,10 +274,17 @@ MergeArgs parseMergeArgs(int argc, char** argv) {
             if (i + 1 >= argc) throw InputError(fmt::format("{}: expected a FILE after it", arg));
             return argv[++i];
         };
+        auto once = [&](std::string& slot) {
+            if (!slot.empty())
+                throw InputError(
+                    fmt::format("{} is given more than once: it takes one value", arg));
+            slot = value();
+            if (slot.empty()) throw InputError(fmt::format("{}: expected a FILE, not ''", arg));
+        };
         if (arg == "-o" || arg == "--output")
-            a.output = value();
+            once(a.output);
         else if (arg == "--from-list")
-            a.from_list = value();
+            once(a.from_list);
         else if (arg.size() > 1 && arg[0] == '-')
             throw InputError(fmt::format("{}: unknown option (see decode --help)", arg));
         else
@@ -300,20 +311,20 @@ int runMergeJunit(int argc, char** argv) {
             a.from_list.empty() ? std::vector<std::string>{} : readCaptureList(a.from_list);
         checkWritable(a.output);
         std::vector<JunitShardFile> files;
-        std::vector<std::string> unusable;
+        std::vector<UnusableJunitFile> unusable;
         for (const auto& in : a.inputs) {
             try {
                 files.push_back(readJunitShard(in));
             } catch (const InputError& e) {
-                unusable.push_back(e.what());  // its shard counts as missing
+                unusable.push_back({in, e.what()});  // its shard counts as missing
             }
         }
-        MergeResult m = mergeJunit(files, expected, !a.from_list.empty());
+        MergeResult m = mergeJunit(files, expected, !a.from_list.empty(), unusable);
         writeFileAtomically(a.output, m.xml);
         std::fputs((m.summary + "\n").c_str(), stdout);
         std::fflush(stdout);
-        for (const auto& p : unusable)
-            std::fprintf(stderr, "decode merge-junit: %s\n", p.c_str());
+        for (const auto& u : unusable)
+            std::fprintf(stderr, "decode merge-junit: %s\n", u.why.c_str());
         for (const auto& p : m.problems)
             std::fprintf(stderr, "decode merge-junit: %s\n", p.c_str());
         return m.any_error || !unusable.empty() ? 2 : m.any_failure ? 1 : 0;

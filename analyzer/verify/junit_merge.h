@@ -29,10 +29,18 @@ struct MergeResult {
     bool any_error = false, any_failure = false;
 };
 
+// A file given that readJunitShard() refused, and its message.
+struct UnusableJunitFile {
+    std::string path, why;
+};
+
 // `files` are the readable ones: a shard among 1..N without one is missing. `expected`
-// is the whole capture list when `list_given` (--from-list).
+// is the whole capture list when `list_given` (--from-list). Of merges of whole runs
+// without the list, each `unusable` file becomes an <error> testcase of its own: whose
+// captures it held is unknown, and a merge of nothing usable is never a pass.
 MergeResult mergeJunit(const std::vector<JunitShardFile>& files,
-                       const std::vector<std::string>& expected, bool list_given);
+                       const std::vector<std::string>& expected, bool list_given,
+                       const std::vector<UnusableJunitFile>& unusable = {});
 
 // The command: exit 0 all pass, 1 any rule failed, 2 any error or missing shard.
 int runMergeJunit(int argc, char** argv);

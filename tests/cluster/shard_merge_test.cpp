@@ -150,6 +150,19 @@ TEST(MergeJunit, EveryShardMissingLeavesEveryCaptureAnError) {
               "23 captures: 0 passed, 0 failed, 23 unreadable; 0 rule checks, 0 failed\n");
 }
 
+TEST(MergeJunit, OnlyUnusableFilesMergeToAnErrorNeverAPass) {
+    ShardedBatch run;
+    test::writeFile(run.shardFile(1), "not xml");
+    const auto merged = run.merge({1}, false);
+    EXPECT_EQ(merged.status, 2);
+    const auto cases = readJunitShard(run.dir + "/all.xml").cases;
+    ASSERT_EQ(cases.size(), 1u);
+    EXPECT_EQ(cases[0].outcome, "error");
+    EXPECT_EQ(cases[0].classname, run.shardFile(1));
+    EXPECT_NE(cases[0].message.find("not well-formed JUnit XML"), std::string::npos)
+        << cases[0].message;
+}
+
 TEST(MergeJunit, ShardsOfAnotherListOrOtherRulesAreNotMergedSilently) {
     ShardedBatch run;
     for (int k = 1; k <= 2; ++k)
@@ -185,7 +198,11 @@ TEST(MergeJunit, BadInputIsOneLineAndExit2WithNoFile) {
              {"merge-junit", run.shardFile(1)},
              {"merge-junit", run.shardFile(1), run.shardFile(2), "-o", run.dir + "/all.xml"},
              {"merge-junit", run.shardFile(1), "-o", run.shardFile(1)},
-             {"merge-junit", run.shardFile(1), "--bogus", "-o", run.dir + "/all.xml"}}) {
+             {"merge-junit", run.shardFile(1), "--bogus", "-o", run.dir + "/all.xml"},
+             {"merge-junit", run.shardFile(1), "-o", run.dir + "/all.xml", "-o",
+              run.dir + "/other.xml"},
+             {"merge-junit", run.shardFile(1), "-o", run.dir + "/all.xml", "--from-list", run.list,
+              "--from-list", run.list}}) {
         const auto r = test::runDecode(args);
         EXPECT_EQ(r.status, 2) << args.back();
         EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
