@@ -81,6 +81,10 @@ public:
             const std::size_t n = c < analog ? 4 : layout_.unitsize;
             if (!take(streams_[c], bytes, n)) {
                 if (c > 0) fail("analog and logic channels of different lengths");
+                // The others read to their ends too: libzip checks a CRC only there.
+                for (std::size_t o = 1; o < streams_.size(); ++o)
+                    if (take(streams_[o], bytes, 1))
+                        fail("analog and logic channels of different lengths");
                 return false;
             }
             if (c < analog)
@@ -119,7 +123,9 @@ private:
                 if (!s.file) return false;
                 s.buf.resize(65536);
                 const zip_int64_t got = zip_fread(s.file, s.buf.data(), s.buf.size());
-                if (got < 0) fail(fmt::format("cannot read {}{}", s.prefix, s.chunk));
+                if (got < 0)
+                    fail(fmt::format("{}{} is corrupt: {}", s.prefix, s.chunk,
+                                     zip_error_strerror(zip_file_get_error(s.file))));
                 s.buf.resize(std::size_t(got));
                 s.at = 0;
                 if (got == 0 && !open(s)) return false;

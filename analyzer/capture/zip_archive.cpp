@@ -1,5 +1,7 @@
 #include "zip_archive.h"
 
+#include <algorithm>
+
 #include <unistd.h>
 #include <zip.h>
 
@@ -48,7 +50,10 @@ std::optional<std::string> ZipArchive::readText(const std::string& member, std::
 }
 
 ZipMember::ZipMember(ZipArchive& archive, const std::string& member)
-    : archive_(archive), member_(member), file_(zip_fopen(archive.handle(), member.c_str(), 0)) {
+    : archive_(archive),
+      member_(member),
+      file_(zip_fopen(archive.handle(), member.c_str(), 0)),
+      left_(archive.size(member).value_or(0)) {
     if (!file_) throw InputError(fmt::format("{}: cannot read {}", archive_.name(), member_));
 }
 
@@ -60,13 +65,20 @@ void ZipMember::readExactly(void* out, std::size_t n) {
     auto* p = static_cast<char*>(out);
     while (n > 0) {
         const zip_int64_t got = zip_fread(file_, p, n);
-        if (got < 0)
-            throw InputError(fmt::format("{}: {} is corrupt: {}", archive_.name(), member_,
-                                         zip_error_strerror(zip_file_get_error(file_))));
+        if (got < 0) throwCorrupt();
         if (got == 0) throw InputError(fmt::format("{}: {} ends early", archive_.name(), member_));
         p += got;
         n -= std::size_t(got);
+        left_ -= std::min<std::uint64_t>(left_, std::uint64_t(got));
     }
+    // libzip checks a member's CRC only on a read at its end: one more, for nothing.
+    char past;
+    if (left_ == 0 && zip_fread(file_, &past, 1) < 0) throwCorrupt();
+}
+
+void ZipMember::throwCorrupt() const {
+    throw InputError(fmt::format("{}: {} is corrupt: {}", archive_.name(), member_,
+                                 zip_error_strerror(zip_file_get_error(file_))));
 }
 
 }  // namespace busdecode

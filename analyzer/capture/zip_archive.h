@@ -40,13 +40,15 @@ public:
     ZipMember(const ZipMember&) = delete;
     ZipMember& operator=(const ZipMember&) = delete;
     // Fills out[0, n) entirely; throws InputError naming file and member if the member
-    // is corrupt or ends first.
+    // is corrupt (its CRC checked once it is read to its end) or ends first.
     void readExactly(void* out, std::size_t n);
 
 private:
+    [[noreturn]] void throwCorrupt() const;
     ZipArchive& archive_;
     std::string member_;
     zip_file* file_ = nullptr;
+    std::uint64_t left_ = 0;  // bytes of the member not read yet
 };
 
 }  // namespace busdecode
