@@ -90,7 +90,9 @@ void MonitorModel::onEncoderRead(const lcm::ReceiveBuffer*, const std::string&,
     BusView& b = bus(m->instance, m->utime);
     frame(b, m->start_ns, m->binary, m->binary, 0);
     b.checked++;
-    if (!m->consistent) b.check_errors++;
+    // The encoder frame's CRC, relayed by the chip, shows only among the errors.
+    const bool crc_bad = std::find(m->errors.begin(), m->errors.end(), "crc") != m->errors.end();
+    if (!m->consistent || crc_bad) b.check_errors++;
 }
 
 void MonitorModel::onTmclReply(const lcm::ReceiveBuffer*, const std::string&,

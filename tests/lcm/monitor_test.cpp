@@ -121,6 +121,24 @@ TEST(MonitorModel, CountsFromTheModelItself) {
     EXPECT_EQ(model.buses().at("ssi#2").events, 10);
 }
 
+TEST(MonitorModel, ATmc8100ReadWithABadEncoderCrcIsACheckError) {
+    MonitorModel model;
+    busdecode_lcm::tmc8100_encoder_read_t m{};
+    m.instance = "tmc8100";
+    m.consistent = true;
+    model.onEncoderRead(nullptr, "DECODE_TMC8100_ENCODER_READ", &m);
+    m.errors = {"crc"};
+    m.num_errors = 1;
+    model.onEncoderRead(nullptr, "DECODE_TMC8100_ENCODER_READ", &m);
+    m.errors.clear();
+    m.num_errors = 0;
+    m.consistent = false;
+    model.onEncoderRead(nullptr, "DECODE_TMC8100_ENCODER_READ", &m);
+    const BusView& b = model.buses().at("tmc8100");
+    EXPECT_EQ(b.checked, 3);
+    EXPECT_EQ(b.check_errors, 2);
+}
+
 TEST(MonitorModel, CountsTheEventsUdpLost) {
     MonitorModel model;
     busdecode_lcm::event_annotation_t a{};
