@@ -222,6 +222,19 @@ void readVerifyAndThreadArgs(const QCommandLineParser& p, DecodeArgs& a) {
 // An option of one value given twice (the last would win without a word), a file option
 // or a capture given as "" (read or written nowhere), or plain decode's outputs given to
 // verify (which prints verdicts and writes JUnit only).
+// Qt names an unknown option without its dashes ("Unknown option 'bogus'."): the
+// argument as it was typed says which one.
+std::string parseErrorText(const QCommandLineParser& p, const QStringList& argv) {
+    const QStringList unknown = p.unknownOptionNames();
+    if (unknown.isEmpty()) return p.errorText().toStdString();
+    for (const QString& arg : argv) {
+        const QString name = arg.section('=', 0, 0);
+        if (name == "-" + unknown.front() || name == "--" + unknown.front())
+            return fmt::format("unknown option '{}' (see decode --help)", name.toStdString());
+    }
+    return fmt::format("unknown option '{}' (see decode --help)", unknown.front().toStdString());
+}
+
 void checkOptionValues(const QCommandLineParser& p, bool verify) {
     for (const char* name :
          {"format", "report", "lcm", "rate", "hysteresis", "rules", "junit", "jobs", "shard",
@@ -232,6 +245,11 @@ void checkOptionValues(const QCommandLineParser& p, bool verify) {
     for (const char* name : {"report", "rules", "junit", "from-list", "save"})
         if (p.isSet(name) && p.value(name).isEmpty())
             throw InputError(fmt::format("--{}: the file name is empty", name));
+    for (const char* name : {"report", "junit", "save"})
+        if (p.isSet(name) && p.value(name) == "-")
+            throw InputError(fmt::format(
+                "--{} -: standard output carries the {}; name a file (/dev/stdout to share it)",
+                name, verify ? "verdicts" : "events"));
     for (const auto& capture : p.positionalArguments())
         if (capture.isEmpty()) throw InputError("a capture's name is empty (\"\")");
     if (p.isSet("shard") && p.value("shard").isEmpty())  // an unset $SLURM_ARRAY_TASK_ID
@@ -262,7 +280,7 @@ void checkCombinations(const Parsed& out, bool verify) {
 Parsed parse(const QStringList& argv, bool verify) {
     QCommandLineParser p;
     addOptions(p);
-    if (!p.parse(argv)) throw InputError(p.errorText().toStdString());
+    if (!p.parse(argv)) throw InputError(parseErrorText(p, argv));
     if (printedHelpOrVersion(p)) return {{}, false, true};
     checkOptionValues(p, verify);
     Parsed out;

@@ -187,8 +187,8 @@ int runMonitor(int argc, char** argv) {
             usage(stdout);
             return 0;
         } else {
-            fmt::print(stderr, "decode monitor: unknown argument '{}'\n", a);
-            usage(stderr);
+            fmt::print(stderr,
+                       "decode monitor: unknown argument '{}' (see decode monitor --help)\n", a);
             return 2;
         }
     }
