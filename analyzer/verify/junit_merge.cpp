@@ -291,6 +291,10 @@ MergeArgs parseMergeArgs(int argc, char** argv) {
             a.inputs.push_back(arg);
     }
     if (a.output.empty()) throw InputError("-o FILE is required");
+    if (a.output == "-")
+        throw InputError(
+            "-o -: standard output carries the summary; name a file (/dev/stdout to "
+            "share it)");
     if (a.inputs.empty() && a.from_list.empty()) throw InputError("no JUnit file given");
     for (const auto& in : a.inputs)
         if (in == a.output) throw InputError(fmt::format("-o {}: is also an input", in));

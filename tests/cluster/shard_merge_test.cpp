@@ -199,6 +199,7 @@ TEST(MergeJunit, BadInputIsOneLineAndExit2WithNoFile) {
              {"merge-junit", run.shardFile(1), run.shardFile(2), "-o", run.dir + "/all.xml"},
              {"merge-junit", run.shardFile(1), "-o", run.shardFile(1)},
              {"merge-junit", run.shardFile(1), "--bogus", "-o", run.dir + "/all.xml"},
+             {"merge-junit", run.shardFile(1), "-o", "-"},
              {"merge-junit", run.shardFile(1), "-o", run.dir + "/all.xml", "-o",
               run.dir + "/other.xml"},
              {"merge-junit", run.shardFile(1), "-o", run.dir + "/all.xml", "--from-list", run.list,
