@@ -46,6 +46,11 @@ inline bool pythonFinalizing() {
 #endif
 }
 
+// The thread Python runs and finalizes on (threading.main_thread()), noted at import:
+// it takes the GIL back while finalizing, as ever (a module global's iterator closes).
+void noteMainThread();
+bool onMainThread();
+
 // Runs `f` (which must not touch Python) with the GIL released, then takes it back. A
 // thread that Python finalizes meanwhile instead runs `stop_work` (which ends and joins
 // what it started) and waits for the process to exit, as Python 3.14 does with such
@@ -54,7 +59,7 @@ template <class F, class StopWork>
 void withoutGil(F&& f, StopWork&& stop_work) {
     PyThreadState* saved = PyEval_SaveThread();
     const auto retake = [&] {
-        if (pythonFinalizing()) {
+        if (pythonFinalizing() && !onMainThread()) {
             stop_work();
             for (;;)
                 ::pause();

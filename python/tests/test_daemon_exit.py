@@ -50,3 +50,24 @@ def test_exit_with_a_daemon_thread_in_the_module(tmp_path, call):
     r = subprocess.run([sys.executable, "-c", program], capture_output=True, text=True,
                        timeout=60)
     assert (r.returncode, r.stderr) == (0, "")
+
+
+# Iterators that the program still holds when it ends: the main thread, finalizing, closes
+# them and goes on to exit.
+HELD = {
+    "decode": "busdecode.decode(CAPTURE, proto='uart')",
+    "follow": "busdecode.follow(CAPTURE, proto='uart')",  # waiting for more
+    "subscribe": "busdecode.subscribe('udpm://239.255.76.67:7689?ttl=0')",
+}
+
+
+@pytest.mark.parametrize("call", HELD)
+def test_exit_holding_an_iterator(call):
+    program = textwrap.dedent(f"""
+        import busdecode
+        CAPTURE = {str(CAPTURES / "uart_rxtx_9600_8n1.vcd")!r}
+        held = {HELD[call]}
+    """)
+    r = subprocess.run([sys.executable, "-c", program], capture_output=True, text=True,
+                       timeout=60)
+    assert (r.returncode, r.stderr) == (0, "")
