@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import contextlib
 import gc
+import importlib
 import os
 from dataclasses import dataclass, field
 from typing import Any, Dict, Iterable, Iterator, List, Mapping, Optional, Sequence, Union
@@ -45,22 +46,73 @@ __all__ = [
 
 Protos = Union[str, Sequence[str]]
 Assignments = Optional[Mapping[str, Any]]
-PathLike = Union[str, "os.PathLike[str]"]
+PathLike = Union[str, bytes, "os.PathLike[str]", "os.PathLike[bytes]"]
+
+_RATE = "expected a positive number of Hz"
+_THREADS = "expected 1 (read and decode on one thread) or 2 (read ahead on a second)"
+_JOBS = "expected a whole number from 0 (all cores) to 256"
+
+
+def _scalar(value: Any) -> Any:
+    """A numpy scalar (np.bool_, np.float32, as pandas hands them out) as the Python one."""
+    if hasattr(value, "item") and callable(value.item) and not isinstance(value, str):
+        return value.item()
+    return value
 
 
 def _text(value: Any) -> str:
     """An option value as the command line writes it (True -> "1")."""
-    if hasattr(value, "item") and callable(value.item) and not isinstance(value, str):
-        value = value.item()  # a numpy scalar (np.bool_, np.float32) as pandas hands it out
+    value = _scalar(value)
     if isinstance(value, bool):
         return "1" if value else "0"
     return str(value)
 
 
-def _path(path: PathLike) -> bytes:
+def _shown(value: Any) -> str:
+    """A wrong argument as a message names it: as typed after the option on the command
+    line, quoted only where that would not read as one word on one line."""
+    if isinstance(value, str):
+        plain = value != "" and value.isprintable() and value.strip() == value
+        return value if plain else repr(value)
+    return str(value)
+
+
+def _path(path: PathLike, what: str = "capture") -> bytes:
     """A path as the file system's bytes: a name that is not UTF-8 (a Latin-1 one from
-    os.listdir or Path.glob) reaches the same file."""
-    return os.fsencode(path)
+    os.listdir or Path.glob) reaches the same file. A NUL byte is refused: the C++ side
+    would open the name cut short at it, another file."""
+    name = os.fsencode(path)
+    if b"\0" in name:
+        raise UsageError(f"{what} {os.fsdecode(name)!r}: contains a NUL byte")
+    return name
+
+
+def _rate(rate: Any) -> Optional[float]:
+    """rate= as Hz. What is no number is refused here, in `decode --rate`'s words; the
+    C++ side refuses the numbers that are no rate (0, negative, inf)."""
+    if rate is None:
+        return None
+    value = _scalar(rate)
+    if not isinstance(value, bool):
+        with contextlib.suppress(TypeError, ValueError, OverflowError):
+            return float(value)
+    raise UsageError(f"--rate {_shown(rate)}: {_RATE}")
+
+
+def _count(option: str, given: Any, expected: str) -> int:
+    """threads= or jobs= as an int: a whole number (2, 2.0, "2", a numpy integer). A bool,
+    a fraction or text that is no number is refused, in the words of `decode OPTION`;
+    so is an int the C++ side could not take (beyond 32 bits). The C++ side checks the
+    range."""
+    value = _scalar(given)
+    if isinstance(value, str):
+        with contextlib.suppress(ValueError):
+            value = int(value)
+    if isinstance(value, float) and value.is_integer():
+        value = int(value)
+    if isinstance(value, int) and not isinstance(value, bool) and -2**31 <= value < 2**31:
+        return value
+    raise UsageError(f"{option} {_shown(given)}: {expected}")
 
 
 def _assignments(what: str, given: Assignments) -> List[str]:
@@ -88,8 +140,7 @@ def _thresholds(threshold: Threshold) -> List[str]:
         return []
     if isinstance(threshold, Mapping):
         return [f"{name}={_text(volts)}" for name, volts in threshold.items()]
-    if hasattr(threshold, "item") and callable(threshold.item):
-        threshold = threshold.item()  # a numpy scalar
+    threshold = _scalar(threshold)
     if isinstance(threshold, (int, float, str)) and not isinstance(threshold, bool):
         return [_text(threshold)]
     raise UsageError("threshold: expected volts (1.5) or a dict of SIGNAL: volts, "
@@ -108,8 +159,8 @@ def _capture_args(path: PathLike, proto: Protos, map: Assignments, opts: Assignm
     args.protos = _protos(proto)
     args.maps = _assignments("map", map)
     args.opts = _assignments("opts", opts)
-    args.rate = None if rate is None else float(rate)
-    args.threads = int(threads)
+    args.rate = _rate(rate)
+    args.threads = _count("--threads", threads, _THREADS)
     args.thresholds = _thresholds(threshold)
     args.hysteresis = _hysteresis(hysteresis)
     return args
@@ -179,19 +230,26 @@ def follow(path_or_stream: Union[PathLike, Any], proto: Protos, map: Assignments
 
     path_or_stream: a file that is still being written (the iterator waits for more of
     it, and ends only when closed), "-" for standard input, or an open pipe or file
-    object (anything with fileno(); the iterator ends when the writer closes it).
+    object (anything with fileno(); the iterator ends when the writer closes it;
+    sys.stdin is "-").
     Each event comes out as soon as it is decoded. Otherwise as decode(); stop with
     close(), a `with` block, or Ctrl-C. The call itself returns once the capture's
     header has arrived (the decoders are bound to its signals then): start the writer
     first, or on another thread.
     """
-    if hasattr(path_or_stream, "fileno"):
-        path = f"/dev/fd/{path_or_stream.fileno()}"
-    else:
-        path = path_or_stream
-    return _busdecode.decode_events(
-        _capture_args(path, proto, map, opts, rate, threads, threshold, hysteresis), True,
-        False)
+    args = _capture_args(_followed(path_or_stream), proto, map, opts, rate, threads,
+                         threshold, hysteresis)
+    return _busdecode.decode_events(args, True, False)
+
+
+def _followed(path_or_stream: Union[PathLike, Any]) -> PathLike:
+    """What follow() opens: a path as it is, an open stream through its descriptor.
+    Standard input is "-", so that messages name it <stdin> as `decode -` does; another
+    descriptor is /dev/fd/N, also in messages (the C++ side takes no separate name)."""
+    if not hasattr(path_or_stream, "fileno"):
+        return path_or_stream
+    fd = path_or_stream.fileno()
+    return "-" if fd == 0 else f"/dev/fd/{fd}"
 
 
 def _pandas_array(pd: Any, kind: str, values: Any, mask: Any) -> Any:
@@ -223,7 +281,8 @@ def read(path: PathLike, proto: Protos, map: Assignments = None, opts: Assignmen
     """
     args = _capture_args(path, proto, map, opts, rate, threads, threshold, hysteresis)
     try:
-        import pandas as pd
+        # By name: pandas ships no type hints, and pandas-stubs may or may not be there.
+        pd = importlib.import_module("pandas")
     except ImportError:
         tables: Dict[str, List[Dict[str, Any]]] = {}
         for ev in _busdecode.decode_events(args, False, False):
@@ -345,10 +404,13 @@ def verify(paths: Union[PathLike, Iterable[PathLike]], rules: PathLike, proto: P
     if isinstance(paths, (str, bytes, os.PathLike)):
         paths = [paths]
     captures = [_path(p) for p in paths]
+    if not captures:
+        raise UsageError("no capture given")
     verdicts, totals = _busdecode.verify_captures(
-        captures, _path(rules), _protos(proto), _assignments("map", map),
-        _assignments("opts", opts), None if rate is None else float(rate), int(jobs),
-        int(threads), _thresholds(threshold), _hysteresis(hysteresis))
+        captures, _path(rules, "rules"), _protos(proto), _assignments("map", map),
+        _assignments("opts", opts), _rate(rate), _count("--jobs", jobs, _JOBS),
+        _count("--threads", threads, _THREADS), _thresholds(threshold),
+        _hysteresis(hysteresis))
     results = []
     for v in verdicts:
         v["rules"] = [RuleResult(**r) for r in v["rules"]]
@@ -375,7 +437,8 @@ def subscribe(url: Optional[str] = None, channels: Union[None, str, Sequence[str
     `ip link set lo multicast on; ip route add 224.0.0.0/4 dev lo`. UDP also drops
     datagrams when a subscriber falls behind: the iterator's .lost counts the events
     known to be missing (gaps in their numbering, and those the publisher's status
-    counted that never came), so a check can assert sub.lost == 0.
+    counted that never came), so a check can assert sub.lost == 0. Stop with close(), a
+    `with` block, or Ctrl-C.
     """
     if isinstance(channels, str):
         channels = [channels]

@@ -51,10 +51,24 @@ public:
 
     std::int64_t lost() const { return losses_.lost(); }
 
+    // Stops receiving and closes LCM's socket; the iteration ends. A reader waiting in
+    // next() on another thread (its handlers filling pending_) does so when it wakes.
+    void close() {
+        closed_ = true;
+        if (busy_) return;
+        pending_.clear();
+        lc_.reset();
+    }
+
     pyb::object next() {
         // As a generator: one reader at a time (the wait below releases the GIL).
         if (busy_) throw pyb::value_error("subscribe(): already being read on another thread");
-        while (pending_.empty()) {
+        for (;;) {
+            if (closed_) {
+                close();
+                throw pyb::stop_iteration();
+            }
+            if (!pending_.empty()) break;
             if (ended_ || timedOut()) throw pyb::stop_iteration();
             busy_ = true;
             // The handlers touch no Python.
@@ -96,6 +110,7 @@ private:
     std::chrono::steady_clock::time_point last_;
     bool ended_ = false;
     bool busy_ = false;  // next() waits in handleTimeout() with the GIL released
+    bool closed_ = false;
 };
 
 }  // namespace
@@ -104,6 +119,9 @@ void bindSubscribe(pyb::module_& m) {
     pyb::class_<Subscription>(m, "Subscription", "Events received from a decode --lcm feed.")
         .def("__iter__", [](Subscription& s) -> Subscription& { return s; })
         .def("__next__", &Subscription::next)
+        .def("close", &Subscription::close, "Stops receiving; the iteration then ends.")
+        .def("__enter__", [](Subscription& s) -> Subscription& { return s; })
+        .def("__exit__", [](Subscription& s, const pyb::args&) { s.close(); })
         .def_property_readonly("lost", &Subscription::lost,
                                "Events of the feed known to be lost so far: gaps in their "
                                "numbering, and events the publisher counted that never came.");

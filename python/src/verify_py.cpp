@@ -43,7 +43,7 @@ pyb::tuple verify(const std::vector<std::string>& captures, const std::string& r
                   const std::vector<std::string>& opts, std::optional<double> rate, int jobs,
                   int threads, const std::vector<std::string>& thresholds,
                   const std::optional<std::string>& hysteresis) {
-    if (captures.empty()) throw UsageError("decode verify: no capture given");
+    if (captures.empty()) throw UsageError("no capture given");
     if (jobs < 0 || jobs > 256)
         throw UsageError("--jobs: expected a whole number from 0 (all cores) to 256");
     if (rate && !(*rate > 0 && std::isfinite(*rate)))

@@ -96,3 +96,63 @@ def test_a_file_name_that_is_not_utf8(tmp_path):
     with pytest.raises(busdecode.InputError) as raised:
         busdecode.decode(missing, proto="bissc")
     assert "caf\ufffd-gone.vcd: cannot open" in str(raised.value)
+
+
+RULES = CAPTURES / "rules_bissc.toml"
+
+
+@pytest.mark.parametrize("call, named", [
+    (lambda: busdecode.decode(str(GOOD) + "\0junk", proto="bissc"),
+     f"capture {str(GOOD) + chr(0) + 'junk'!r}"),
+    (lambda: busdecode.decode("nope\0.vcd", proto="bissc"), r"capture 'nope\x00.vcd'"),
+    (lambda: busdecode.read(b"nope\0.vcd", proto="bissc"), r"capture 'nope\x00.vcd'"),
+    (lambda: busdecode.follow("nope\0.vcd", proto="bissc"), r"capture 'nope\x00.vcd'"),
+    (lambda: busdecode.verify("a\0b", rules=RULES), r"capture 'a\x00b'"),
+    (lambda: busdecode.verify([GOOD, "a\0b"], rules=RULES), r"capture 'a\x00b'"),
+    (lambda: busdecode.verify(GOOD, rules=str(RULES) + "\0x"),
+     f"rules {str(RULES) + chr(0) + 'x'!r}"),
+], ids=["decode of a capture", "decode", "read", "follow", "verify", "verify of several",
+        "verify rules"])
+def test_a_path_with_a_nul_byte_is_refused_before_it_is_opened(call, named):
+    # The C++ side would open the name cut short at the NUL: another file.
+    with pytest.raises(busdecode.UsageError) as raised:
+        call()
+    assert str(raised.value) == named + ": contains a NUL byte"
+
+
+@pytest.mark.parametrize("call, cli", [
+    (dict(rate="abc"), ["--rate", "abc"]),
+    (dict(rate=[1]), ["--rate", "[1]"]),
+    (dict(rate=True), ["--rate", "True"]),
+    (dict(threads="x"), ["--threads", "x"]),
+    (dict(threads=2.7), ["--threads", "2.7"]),
+    (dict(threads=True), ["--threads", "True"]),
+    (dict(threads=2**40), ["--threads", str(2**40)]),
+], ids=["rate text", "rate list", "rate bool", "threads text", "threads fraction",
+        "threads bool", "threads beyond int"])
+def test_a_thread_count_or_rate_that_is_no_number_is_refused_as_the_cli_does(call, cli):
+    want = cli_error([GOOD, "--proto", "bissc"] + cli)
+    for run in (busdecode.decode, busdecode.read, busdecode.follow):
+        with pytest.raises(busdecode.UsageError) as raised:
+            run(GOOD, proto="bissc", **call)
+        assert str(raised.value) == want
+    with pytest.raises(busdecode.UsageError) as raised:
+        busdecode.verify(GOOD, rules=RULES, **call)
+    assert str(raised.value) == want
+
+
+@pytest.mark.parametrize("jobs", ["x", 1.5, True, None, 2**40])
+def test_a_job_count_that_is_no_whole_number_is_a_usage_error_naming_it(jobs):
+    with pytest.raises(busdecode.UsageError) as raised:
+        busdecode.verify(GOOD, rules=RULES, jobs=jobs)
+    # `decode verify --jobs` words it so, without the value.
+    assert str(raised.value) == f"--jobs {jobs}: expected a whole number from 0 (all cores) to 256"
+
+
+def test_whole_numbers_of_any_type_are_counts():
+    np = pytest.importorskip("numpy")
+    want = list(busdecode.decode(GOOD, proto="bissc"))
+    for threads in (1, 2.0, "2", np.int64(1)):
+        assert list(busdecode.decode(GOOD, proto="bissc", threads=threads)) == want
+    for jobs in (1.0, "2", np.int32(1)):
+        assert busdecode.verify(GOOD, rules=RULES, jobs=jobs, opts={"bits": 26}).passed

@@ -1,14 +1,17 @@
 """follow(): a capture still being written, and a pipe, each event out as it is decoded."""
 
 import faulthandler
+import json
 import os
+import subprocess
+import sys
 import threading
 import time
 
 import pytest
 
 import busdecode
-from conftest import CAPTURES, cli_events
+from conftest import BIN, CAPTURES, cli_events, plain_env
 
 CAPTURE = "uart_rxtx_9600_8n1.vcd"
 
@@ -75,3 +78,35 @@ def test_close_from_another_thread_ends_a_waiting_follow(tmp_path):
     got = list(events)  # waits for more input until closed
     assert 0 < len(got) < len(cli_events(CAPTURE, ["uart"]))
 
+
+
+# Follows its standard input, a pipe, given as sys.stdin.
+FOLLOW_STDIN = """
+import json, sys
+import busdecode
+try:
+    with busdecode.follow(sys.stdin, proto=sys.argv[1]) as events:
+        print(json.dumps({"events": list(events), "file": events.facts["file"]}))
+except busdecode.Error as e:
+    print(json.dumps({"error": str(e)}))
+"""
+
+
+def follow_stdin(data, proto):
+    r = subprocess.run([sys.executable, "-c", FOLLOW_STDIN, proto], input=data,
+                       capture_output=True, timeout=60)
+    assert r.returncode == 0, r.stderr
+    return json.loads(r.stdout)
+
+
+def test_follow_standard_input_names_it_as_the_cli_does():
+    garbage = b"garbage\n"
+    r = subprocess.run([str(BIN / "decode"), "-", "--proto", "bissc", "--follow"],
+                       input=garbage, capture_output=True, timeout=60, env=plain_env())
+    assert r.returncode == 2
+    error = follow_stdin(garbage, "bissc")["error"]
+    assert error.startswith("<stdin>:1: ")
+    assert r.stderr.decode() == f"decode: {error}\n"
+    got = follow_stdin((CAPTURES / CAPTURE).read_bytes(), "uart")
+    assert got["events"] == cli_events(CAPTURE, ["uart"])
+    assert got["file"] == "-"  # as follow("-") and decode("-") give it

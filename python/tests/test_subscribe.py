@@ -4,6 +4,8 @@ import json
 import struct
 import subprocess
 import sys
+import threading
+import time
 from pathlib import Path
 
 import pytest
@@ -88,3 +90,26 @@ def test_lost_events_are_counted(tmp_path):
     sub = busdecode.subscribe(f"file://{lossy}?mode=r", until_end=True, timeout=30)
     assert len(list(sub)) == n - 4
     assert sub.lost == 4
+
+
+def test_close_and_with_end_the_iteration():
+    url = "udpm://239.255.76.67:7690?ttl=0"
+    with busdecode.subscribe(url, timeout=30) as sub:
+        pass
+    assert list(sub) == []
+    sub = busdecode.subscribe(url, timeout=30)
+    sub.close()
+    sub.close()
+    assert list(sub) == []
+
+
+def test_close_from_another_thread_ends_a_waiting_iteration():
+    sub = busdecode.subscribe("udpm://239.255.76.67:7691?ttl=0")
+    got = []
+    reader = threading.Thread(target=lambda: got.extend(sub))
+    reader.start()
+    time.sleep(0.3)  # waiting in next()
+    sub.close()
+    reader.join(10)
+    assert not reader.is_alive()
+    assert got == []

@@ -55,3 +55,12 @@ def test_bad_option_value_raises_once_as_decode_verify_says_it():
         busdecode.verify([PASSING, FAILING], rules=RULES, opts={"bits": 999})
     assert err == "decode verify: " + str(raised.value) + "\n"
     assert "option bits=999" in str(raised.value)
+
+
+def test_no_capture_is_a_usage_error_as_decode_verify_says_it():
+    rc, _, err = run_cli([str(BIN / "decode"), "verify", "--rules", str(RULES)])
+    assert rc == 2
+    with pytest.raises(busdecode.UsageError) as raised:
+        busdecode.verify([], rules=RULES)
+    assert str(raised.value) == "no capture given"
+    assert err.startswith("decode: " + str(raised.value))
