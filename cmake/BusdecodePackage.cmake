@@ -23,12 +23,22 @@ set(CPACK_PACKAGING_INSTALL_PREFIX /usr)
 set(CPACK_STRIP_FILES ON)
 set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)
 set(CPACK_DEBIAN_PACKAGE_SECTION electronics)
-# The run-time libraries of Debian 12 that `ldd build/bin/decode` names (toml++ is
-# header-only on some systems, a library on Debian).
-set(CPACK_DEBIAN_PACKAGE_DEPENDS
-    "libc6, libstdc++6, libqt6core6, libfmt9, libzip4, liblcm1, libtomlplusplus3")
+# Debian 12's packages of the libraries the binaries, plugins and Python module load (their
+# NEEDED entries), at the versions dpkg-shlibdeps gives for them; written out, so that a
+# machine without dpkg-dev makes the same package.
+string(CONCAT CPACK_DEBIAN_PACKAGE_DEPENDS
+    "libc6 (>= 2.34), libstdc++6 (>= 12), libgcc-s1 (>= 7), libqt6core6 (>= 6.4.0), "
+    "libfmt9 (>= 9.1.0+ds1), libzip4 (>= 1.7.0), liblcm1, libtomlplusplus3 (>= 3.2.0), "
+    "zlib1g (>= 1:1.2.0), liblzma5 (>= 5.1.1alpha+20120614), libzstd1 (>= 1.5.2)")
 get_property(_live GLOBAL PROPERTY BUSDECODE_LIVE)
 if(_live)  # decode --device (analyzer/CMakeLists.txt)
-  string(APPEND CPACK_DEBIAN_PACKAGE_DEPENDS ", libsigrok4")
+  string(APPEND CPACK_DEBIAN_PACKAGE_DEPENDS
+         ", libsigrok4 (>= 0.5.2), libglib2.0-0 (>= 2.28.0)")
+endif()
+get_property(_python GLOBAL PROPERTY BUSDECODE_PYTHON_VERSION)
+if(_python)  # the module is built for one CPython 3.N (python/CMakeLists.txt)
+  string(REGEX REPLACE "^3\\." "" _minor "${_python}")
+  math(EXPR _next "${_minor} + 1")
+  string(APPEND CPACK_DEBIAN_PACKAGE_DEPENDS ", python3 (>= ${_python}), python3 (<< 3.${_next})")
 endif()
 include(CPack)

@@ -59,4 +59,27 @@ if ls "$build"/lib/busdecode/busdecode_live.so >/dev/null 2>&1; then
     grep -q "file=$root/usr/lib.*busdecode_live.so" "$tmp/scan.err" ||
         fail "the live module was not loaded from the package's root"
 fi
+# Every library a binary, plugin or module of the package loads from the system belongs
+# to a Debian package its Depends names.
+depends="$(dpkg-deb --field "$deb" Depends)"
+named="$(tr ',' '\n' <<<"$depends" | sed 's/^ *//; s/ .*//')"  # the package names alone
+while IFS= read -r elf; do  # its own NEEDED entries, where ldd finds them
+    needed="$(readelf -d "$elf" 2>/dev/null | sed -n 's/.*(NEEDED).*\[\(.*\)\]/\1/p')"
+    ldd "$elf" 2>/dev/null | awk -v needed="$needed" '
+        BEGIN { n = split(needed, list, "\n"); for (i = 1; i <= n; i++) want[list[i]] = 1 }
+        $2 == "=>" && $3 ~ /^\// && ($1 in want) { print $3 }'
+done < <(find "$root" -type f \( -name '*.so*' -o -path '*/bin/*' \)) | sort -u |
+    while IFS= read -r lib; do
+        case "$lib" in "$root"/*) continue ;; esac
+        owner="$(dpkg -S "$(readlink -f "$lib")" 2>/dev/null | head -1 | cut -d: -f1)" ||
+            owner=""
+        [ -n "$owner" ] || owner="$(dpkg -S "$lib" 2>/dev/null | head -1 | cut -d: -f1)"
+        [ -n "$owner" ] || fail "$lib, which the package loads, belongs to no Debian package"
+        grep -qxF "$owner" <<<"$named" ||
+            fail "the package loads $lib (from $owner), which its Depends does not name: $depends"
+    done
+python="$(find "$root" -name '_busdecode*.so' | head -1)"
+if [ -n "$python" ]; then
+    grep -q "python3 (>= " <<<"$depends" || fail "the Python module ships, python3 is not in Depends"
+fi
 echo "deb_install_test: $(basename "$deb") installs, lists and decodes from $root"
