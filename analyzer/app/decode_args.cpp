@@ -3,6 +3,8 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include <map>
+
 #include "core/registry.h"
 #include "plugin_loader.h"
 
@@ -50,6 +52,7 @@ std::vector<DecoderRequest> buildRequests(const std::vector<std::string>& protos
     }
     // A `proto.` prefix scopes a key to one decoder id; otherwise it goes to every
     // requested decoder that declares it.
+    std::map<std::pair<std::size_t, std::string>, std::string> given;  // what set each key
     auto apply = [&](const std::string& what, const std::string& text, bool is_map) {
         auto [key, value] = splitAssignment(what, text);
         std::string scope;
@@ -77,7 +80,15 @@ std::vector<DecoderRequest> buildRequests(const std::vector<std::string>& protos
                 }
                 Options::resolve(*infos[i], {{key, value}});
             }
-            (is_map ? reqs[i].map : reqs[i].options)[key] = value;
+            auto& slot = (is_map ? reqs[i].map : reqs[i].options)[key];
+            auto& first = given[{i, (is_map ? "map " : "opt ") + key}];
+            if (!first.empty())
+                throw InputError(
+                    fmt::format("{} {}: {} is set already for {} ({} {}): it takes "
+                                "one value",
+                                what, text, key, reqs[i].proto, what, first));
+            first = text;
+            slot = value;
             used = true;
         }
         if (!used) {

@@ -37,13 +37,24 @@ std::string keyOf(const std::string& assignment) {
     return eq == std::string::npos ? assignment : assignment.substr(0, eq);
 }
 
+// Whether the command line's `top` sets what the rules file's `base` sets: the same key,
+// for the same decoder or for any (`bits` and `bissc.bits`).
+bool sameSetting(const std::string& top, const std::string& base) {
+    const std::string t = keyOf(top), b = keyOf(base);
+    const auto td = t.find('.'), bd = b.find('.');
+    const bool either_unscoped = td == std::string::npos || bd == std::string::npos;
+    return either_unscoped ? t.substr(td == std::string::npos ? 0 : td + 1) ==
+                                 b.substr(bd == std::string::npos ? 0 : bd + 1)
+                           : t == b;
+}
+
 std::vector<std::string> overlay(const std::vector<std::string>& base,
                                  const std::vector<std::string>& top) {
     std::vector<std::string> out;
     for (const auto& b : base) {
         bool replaced = false;
         for (const auto& t : top)
-            replaced = replaced || keyOf(t) == keyOf(b);
+            replaced = replaced || sameSetting(t, b);
         if (!replaced) out.push_back(b);
     }
     out.insert(out.end(), top.begin(), top.end());

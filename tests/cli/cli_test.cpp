@@ -233,6 +233,11 @@ INSTANTIATE_TEST_SUITE_P(
                  "decode: unknown option '--bogus' (see decode --help)"},
         BadInput{{"@", "--proto", "spi", "--bogus=1"}, "unknown option '--bogus'"},
         BadInput{{"monitor", "--bogus"}, "decode monitor: unknown argument '--bogus'"},
+        BadInput{{"@", "--proto", "spi", "--opt", "bits=8", "--opt", "spi.bits=16"},
+                 "--opt spi.bits=16: bits is set already for spi (--opt bits=8): it takes one "
+                 "value"},
+        BadInput{{"@", "--proto", "spi", "--map", "cs=top.cs", "--map", "cs=top.tx"},
+                 "--map cs=top.tx: cs is set already for spi (--map cs=top.cs)"},
         BadInput{{"@", "--proto", "spi", "--report", "-"},
                  "--report -: standard output carries the events; name a file"},
         BadInput{{"verify", "@", "--rules", "r.toml", "--junit", "-"},

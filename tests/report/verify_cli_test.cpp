@@ -309,6 +309,17 @@ TEST(VerifyCli, DecodeTableInTheRulesPicksTheDecoderAndOptions) {
     EXPECT_NE(r.err.find("bitz"), std::string::npos) << r.err;
 }
 
+TEST(VerifyCli, AnOptionOnTheCommandLineReplacesTheRulesOneScopedOrNot) {
+    const auto caps = capturesOf("ssi");
+    const std::string rules = rulesFile(
+        "ssi_scoped.toml",
+        "[ssi]\nmin_frames = 30\n[decode]\nproto = \"ssi\"\nopt = { \"ssi.bits\" = 7 }\n");
+    // 7 bits cannot hold the fields: the rules' option alone is refused.
+    EXPECT_EQ(test::runDecode({"verify", caps[0].path, "--rules", rules}).status, 2);
+    const auto r = test::runDecode({"verify", caps[0].path, "--rules", rules, "--opt", "bits=25"});
+    EXPECT_EQ(r.status, 0) << r.err;
+}
+
 TEST(VerifyCli, BadOptionValueIsOneUsageLineNotAnErrorPerCapture) {
     const auto caps = capturesOf("bissc");
     const std::string rules = rulesFile("bissc.toml", test::kBisscRules);
