@@ -63,7 +63,7 @@ void printCaptureDescription(std::FILE* out, const std::string& path, const Open
                r->signals().size());
     for (std::size_t i = 0; i < r->signals().size(); ++i) {
         const auto& s = r->signals()[i];
-        fmt::print(out, "  {:>3}  {}{}\n", i, s.full_name, vectorRangeText(s));
+        fmt::print(out, "  {:>3}  {}\n", i, signalText(s));
     }
     for (const auto& note : r->notes())
         fmt::print(out, "  {}\n", note);

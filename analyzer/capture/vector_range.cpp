@@ -56,4 +56,10 @@ std::string vectorRangeText(const SignalInfo& s) {
     return fmt::format("[{}:{}]", s.msb, s.lsb);
 }
 
+std::string signalText(const SignalInfo& s) {
+    const std::string full = s.full_name + vectorRangeText(s);
+    const bool named_by_path = s.full_name == s.name || s.full_name.ends_with("." + s.name);
+    return named_by_path ? full : fmt::format("{} (column '{}')", s.name, full);
+}
+
 }  // namespace busdecode

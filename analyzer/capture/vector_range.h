@@ -29,5 +29,9 @@ std::optional<std::pair<int, int>> parseVectorRange(std::string_view text, int w
 std::optional<int> bitAtIndex(const SignalInfo& s, std::int64_t i);
 // How a vector's bits are named, "[7:0]"; "" for one bit.
 std::string vectorRangeText(const SignalInfo& s);
+// A signal as listings and messages name it: its full name and range ("top.bus[7:0]");
+// a scope column whose title is not its name gives both, the name first ("CH1 (column
+// 'CH 1 (V)')"), since the name is what --map and --threshold take.
+std::string signalText(const SignalInfo& s);
 
 }  // namespace busdecode

@@ -68,11 +68,10 @@ std::string signalList(const CaptureReader& reader, const std::string& wanted) {
     // note says how many it declared.
     if (sigs.empty() && !reader.notes().empty())
         return fmt::format("none kept: {}", fmt::join(reader.notes(), "; "));
-    auto shown = [](const SignalInfo& s) { return s.full_name + vectorRangeText(s); };
     std::vector<std::string> names;
     if (sigs.size() <= kAll) {
         for (const auto& s : sigs)
-            names.push_back(shown(s));
+            names.push_back(signalText(s));
         return names.empty() ? "none" : fmt::format("{}", fmt::join(names, ", "));
     }
     std::vector<std::pair<std::size_t, std::size_t>> by_distance;  // (distance, index)
@@ -83,7 +82,7 @@ std::string signalList(const CaptureReader& reader, const std::string& wanted) {
             i);
     std::partial_sort(by_distance.begin(), by_distance.begin() + kClosest, by_distance.end());
     for (std::size_t k = 0; k < kClosest; ++k)
-        names.push_back(shown(sigs[by_distance[k].second]));
+        names.push_back(signalText(sigs[by_distance[k].second]));
     return fmt::format("{} in all; the closest: {}", sigs.size(), fmt::join(names, ", "));
 }
 

@@ -31,6 +31,21 @@ TEST(FormatsCli, DescribesADsviewSessionAndItsDecoders) {
     EXPECT_NE(r.out.find("\"wordsize\": 8}"), std::string::npos) << r.out;
 }
 
+// A scope column is listed by the name --map takes, its title beside it; a VCD signal
+// by its path, which --map takes too.
+TEST(FormatsCli, ListsAScopeColumnByItsNameAndTitle) {
+    const std::string keysight = sourceDir() + "/tests/data/real/formats/keysight/scope_3.csv";
+    const auto r =
+        runDecode({"--formats", keysight, sourceDir() + "/captures/spi_mode0_lsb16.vcd"});
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.out.find("    0  CH1 (column '1')\n    1  CH2 (column '2')\n"), std::string::npos)
+        << r.out;
+    EXPECT_NE(r.out.find("    1  busdecode.sclk\n"), std::string::npos) << r.out;
+    const auto unbound = runDecode({keysight, "--proto", "uart", "--map", "rx=3"});
+    EXPECT_NE(unbound.err.find("(signals: CH1 (column '1'), CH2 (column '2'))"), std::string::npos)
+        << unbound.err;
+}
+
 TEST(FormatsCli, BadFileIsOneLineExitTwo) {
     const std::string p = tempDir() + "/x.bin";
     writeFile(p, std::string("\x01\x02\x03\x00\x05", 5));
