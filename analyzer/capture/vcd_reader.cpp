@@ -327,7 +327,15 @@ private:
     enum class Stop { Full, Eof, NoData, FirstDone };
 
     // Messages name line_: the line being parsed, in the header and in the value changes.
-    [[noreturn]] void fail(const std::string& what) const { failAt(line_, what); }
+    [[noreturn]] void fail(const std::string& what) const {
+        // A capture cut short while written ends inside a line, whose rest (a time that
+        // lost its last digits) is no fault of the capture as written: say so. (Runs of
+        // value changes end with their newline; only the capture's last line may not.)
+        const bool cut = in_runs_ && e_ && e_[-1] != '\n' && p_ <= e_ &&
+                         !std::memchr(p_, '\n', std::size_t(e_ - p_));
+        failAt(line_, cut ? what + "; the capture ends inside this line (cut short while written?)"
+                          : what);
+    }
     [[noreturn]] void failAt(std::uint64_t line, const std::string& what) const {
         throw InputError(fmt::format("{}:{}: {}", name_, line, what));
     }

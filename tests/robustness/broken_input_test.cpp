@@ -87,6 +87,13 @@ TEST(BrokenInput, VcdTimeGoingBackwards) {
     EXPECT_EQ(failureOf(p), "decode: " + p + ":12: time going backwards (#10 after #20)");
 }
 
+TEST(BrokenInput, VcdCutInsideItsLastTimeSaysSo) {
+    const auto p = writeCase("cut.vcd", std::string(kVcdHeader) + "#0 1! 1\"\n#200 0!\n#21");
+    EXPECT_EQ(failureOf(p), "decode: " + p +
+                                ":12: time going backwards (#21 after #200); the capture ends "
+                                "inside this line (cut short while written?)");
+}
+
 TEST(BrokenInput, VcdVectorChangeForUndeclaredSignal) {
     const auto p =
         writeCase("undeclared.vcd", std::string(kVcdHeader) + "#0 1! 1\"\n#10 b1010 (\n");
