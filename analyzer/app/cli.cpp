@@ -389,6 +389,7 @@ int runLive(const DecodeArgs& a) {
     if (!a.report.empty()) checkWritable(a.report);
     const OutputSinks out(a, a.report, false, lcm.get());
     liveModule("--device").decode(settings, requests, out.sinks, interruptionFlag());
+    if (lcm) closeLcmSink(*lcm);
     return 0;
 }
 
@@ -433,6 +434,7 @@ int runDecode(const DecodeArgs& a) {
                 printError(hintLine(capture, hint));
         if (interrupted()) break;  // a followed capture, ended by Ctrl-C
     }
+    if (lcm) closeLcmSink(*lcm);
     return 0;
 }
 

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cctype>
@@ -16,6 +17,7 @@
 #include <thread>
 #include <variant>
 
+#include "app/output_guard.h"
 #include "busdecode_lcm/decode_status_t.hpp"
 #include "core/options.h"
 #include "lcm_channels.h"
@@ -67,6 +69,36 @@ std::shared_ptr<lcm::LCM> openCatchingItsMessage(const std::string& url, std::st
     while (!message.empty() && std::isspace(static_cast<unsigned char>(message.back())))
         message.pop_back();
     return lc;
+}
+
+// Whether `url` writes a new log file (LCM's file provider, mode=w).
+bool writesLog(const std::string& url) {
+    const auto query = url.find('?');
+    if (lcmLogFile(url).empty() || query == std::string::npos) return false;
+    const std::string params = "&" + url.substr(query + 1) + "&";
+    return params.find("&mode=w&") != std::string::npos;
+}
+
+// LCM 1.3.1's file provider drops fwrite's result and the log's fclose's: a log this run
+// wrote is read back, and one short of the `published` messages is removed. A device or
+// FIFO is written through, as every output is, and not read back.
+void checkLogWritten(const std::string& url, std::uint64_t published) {
+    if (!writesLog(url)) return;
+    const std::string path = lcmLogFile(url);
+    struct stat st {};
+    if (::stat(path.c_str(), &st) != 0 || !S_ISREG(st.st_mode)) return;
+    std::uint64_t found = 0;
+    {
+        lcm::LogFile log(path, "r");
+        while (log.good() && log.readNextEvent())
+            ++found;
+    }
+    if (found >= published) return;
+    std::remove(path.c_str());
+    throw InputError(
+        fmt::format("--lcm: {}: the log holds {} of the {} messages published: "
+                    "writing it failed (disk full?); removed",
+                    path, found, published));
 }
 
 }  // namespace
@@ -130,7 +162,8 @@ struct LcmSink::Impl {
     bool busy = false;  // the publisher holds an item outside the queue
     bool stopping = false;
     LcmSinkCounts counts;
-    LcmSinkCounts reported;  // counts at the previous end(), to report per capture
+    std::uint64_t messages = 0;  // every message LCM took, statuses included
+    LcmSinkCounts reported;      // counts at the previous end(), to report per capture
     std::int64_t next_seq = 0;
     std::string capture_fields;  // the current capture's (captureJsonFields)
     Timebase tb;
@@ -160,7 +193,7 @@ struct LcmSink::Impl {
         m.events = std::int64_t(counts.events);
         m.published = std::int64_t(counts.published);
         m.dropped = std::int64_t(counts.dropped);
-        lc->publish(kLcmStatusChannel, &m);
+        if (lc->publish(kLcmStatusChannel, &m) == 0) ++messages;
     }
 
     void run() {
@@ -182,6 +215,7 @@ struct LcmSink::Impl {
                     publishEventToLcm(*lc, ev->event, ev->tb, ev->seq, capture_fields);
                 std::lock_guard lock(mu);
                 (r.failures ? counts.failed : counts.published)++;
+                messages += std::uint64_t(2 - r.failures);  // the typed one and the annotation
             } else {
                 publishStatus(std::get<StatusItem>(item));
             }
@@ -241,10 +275,16 @@ LcmSink::LcmSink(std::shared_ptr<lcm::LCM> lcm, std::string url, LcmSinkOptions 
     if (impl_->lc->publish(kLcmStatusChannel, &start) != 0)
         throw InputError(
             fmt::format("--lcm: cannot publish on '{}' (is the network up?)", impl_->url));
+    impl_->messages = 1;
     impl_->worker = std::thread([this] { impl_->run(); });
 }
 
 LcmSink::~LcmSink() {
+    finish();
+}
+
+void LcmSink::finish() {
+    if (!impl_->lc) return;
     // Subscribers wait for "done" (subscribe(until_end=True), monitor --once): an
     // interrupted capture is ended first, so they never wait for a run that is over.
     if (impl_->open_capture)
@@ -257,6 +297,16 @@ LcmSink::~LcmSink() {
     }
     impl_->not_empty.notify_all();
     if (impl_->worker.joinable()) impl_->worker.join();
+    impl_->lc.reset();  // a file:// log is closed (flushed) here
+}
+
+void LcmSink::close() {
+    finish();
+    checkLogWritten(impl_->url, impl_->messages);
+}
+
+void closeLcmSink(OutputSink& sink) {
+    static_cast<LcmSink&>(sink).close();
 }
 
 void LcmSink::begin(const CaptureFacts& facts) {

@@ -59,10 +59,16 @@ public:
     // Waits until everything queued is published, then reports drops and failures.
     void end(const CaptureFacts& facts) override;
     LcmSinkCounts counts() const;
+    // Publishes the run's end ("done") and closes LCM. A log this run wrote (file://
+    // mode=w) is read back: LCM's file provider never says a write failed, so a log short
+    // of the messages published (a full disk) is removed and InputError thrown. The
+    // destructor closes too, without that check.
+    void close();
 
     struct Impl;
 
 private:
+    void finish();
     std::unique_ptr<Impl> impl_;
 };
 

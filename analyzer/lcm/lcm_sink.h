@@ -12,5 +12,8 @@ namespace busdecode {
 // unavailable. The sink prints a count of dropped messages at the end, if any.
 // `name_capture`: the annotations' json names its capture (several in one call).
 std::unique_ptr<OutputSink> makeLcmSink(const std::string& url, bool name_capture = false);
+// Ends the run on a sink from makeLcmSink (LcmSink::close): InputError when a log file it
+// wrote does not hold what it published.
+void closeLcmSink(OutputSink& sink);
 
 }  // namespace busdecode

@@ -1,6 +1,7 @@
 // Outputs through the real CLI: --report and --junit replace only a regular file (or
 // create a new one); a character device, a FIFO or a symlink is written through and
-// stays what it was. Reports of several captures get a file each, whatever their names.
+// stays what it was. Reports of several captures get a file each, whatever their names. An
+// LCM log that a full disk cut short is an error and removed.
 // The devices are this test's own nodes (mknod, as root), never /dev/null itself.
 #include <gtest/gtest.h>
 #include <sys/stat.h>
@@ -59,6 +60,26 @@ TEST(OutputSafety, ReportOnFullDeviceIsAWriteError) {
     EXPECT_EQ(r.status, 2);
     EXPECT_EQ(r.err, "decode: " + full + ": cannot write: No space left on device\n");
     EXPECT_EQ(typeOf(full), S_IFCHR);
+}
+
+// LCM's file provider drops its write errors; the log is read back. A file size limit
+// (ulimit -f, SIGXFSZ ignored) fails the writes past 64 KiB as a full disk would.
+TEST(OutputSafety, AnLcmLogCutShortByAFullDiskIsAnErrorAndRemoved) {
+    const std::string capture = spiCapture("lcm_log.vcd", 2000, 10'000);
+    const std::string log = tempDir() + "/full.lcm";
+    const RunResult r =
+        runCommand("trap '' XFSZ; ulimit -f 64; " + decode() + " " + shellQuote(capture) +
+                   " --proto spi --lcm " + shellQuote("file://" + log + "?mode=w") + " >/dev/null");
+    EXPECT_EQ(r.status, 2) << r.err;
+    EXPECT_EQ(r.err.rfind("decode: --lcm: " + log + ": the log holds ", 0), 0u) << r.err;
+    EXPECT_NE(r.err.find("writing it failed (disk full?); removed\n"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(log));
+    // Without the limit the same run writes the whole log.
+    const RunResult whole =
+        runCommand(decode() + " " + shellQuote(capture) + " --proto spi --lcm " +
+                   shellQuote("file://" + log + "?mode=w") + " >/dev/null");
+    EXPECT_EQ(whole.status, 0) << whole.err;
+    EXPECT_GT(fs::file_size(log), 64u << 10);
 }
 
 // Runs `decode ARGS` with a reader on the FIFO `f` and returns what the reader got.
