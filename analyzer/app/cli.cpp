@@ -341,6 +341,13 @@ void bufferStandardOutput(bool live) {
         std::setvbuf(stdout, buffer, _IOFBF, sizeof buffer);
 }
 
+// Text output has the capture's hints in its summary; jsonl's go to stderr.
+void printJsonlHints(const DecodeArgs& a, const std::string& capture, const CaptureFacts& facts) {
+    if (a.format != "jsonl") return;
+    for (const auto& hint : facts.advice)
+        printError(hintLine(capture, hint));
+}
+
 #if BUSDECODE_LIVE
 LiveSettings liveSettings(const DecodeArgs& a) {
     LiveSettings s = parseDeviceSpec(a.device);
@@ -388,7 +395,14 @@ int runLive(const DecodeArgs& a) {
     if (a.lcm_url) lcm = makeLcmSink(*a.lcm_url, false);
     if (!a.report.empty()) checkWritable(a.report);
     const OutputSinks out(a, a.report, false, lcm.get());
-    liveModule("--device").decode(settings, requests, out.sinks, interruptionFlag());
+    const CaptureFacts facts =
+        liveModule("--device").decode(settings, requests, out.sinks, interruptionFlag());
+    printJsonlHints(a, liveCaptureName(settings), facts);
+    // The save comes after the text summary: its note goes to stderr either way.
+    if (a.format != "jsonl")
+        for (const auto& hint : facts.advice)
+            if (hint.rfind("--save ", 0) == 0)
+                printError(hintLine(liveCaptureName(settings), hint));
     if (lcm) closeLcmSink(*lcm);
     return 0;
 }
@@ -429,9 +443,7 @@ int runDecode(const DecodeArgs& a) {
         const OutputSinks out(a, reports[i], a.captures.size() > 1, lcm.get());
         const CaptureFacts facts =
             decodeCapture(capture, requests, open, out.sinks, a.realtime, interruptionFlag());
-        if (a.format == "jsonl")  // text output has them in its summary
-            for (const auto& hint : facts.advice)
-                printError(hintLine(capture, hint));
+        printJsonlHints(a, capture, facts);
         if (interrupted()) break;  // a followed capture, ended by Ctrl-C
     }
     if (lcm) closeLcmSink(*lcm);

@@ -46,15 +46,14 @@ public:
         if (settings.seconds > 0) {
             const auto by_time =
                 std::uint64_t(std::llround(settings.seconds * double(device_.samplerate())));
-            limit = limit ? std::min(limit, std::max<std::uint64_t>(by_time, 1)) : by_time;
+            // At least one sample: 0 would mean no limit at all.
+            limit = limit ? std::min(limit, std::max<std::uint64_t>(by_time, 1))
+                          : std::max<std::uint64_t>(by_time, 1);
         }
         maker_.setLimit(limit);
-        if (!settings.save.empty()) {
-            std::vector<std::string> names = device_.channelNames();
-            for (std::size_t i = 0; i < names.size(); ++i)
-                if (names[i].empty()) names[i] = fmt::format("D{}", i);
-            saver_ = std::make_unique<LiveSaver>(settings.save, names, device_.samplerate());
-        }
+        if (!settings.save.empty())  // the lines not acquired stay unnamed, as in sigrok's
+            saver_ = std::make_unique<LiveSaver>(settings.save, device_.channelNames(),
+                                                 device_.samplerate());
     }
     ~LiveReader() override { stopAndJoin(); }
 
@@ -87,9 +86,11 @@ public:
     // Why the acquisition ended early ("" = it did not), valid after next() = false.
     std::string failure() const { return queue_.error(); }
     LiveCounts counts() const { return queue_.counts(); }
-    // Writes --save's session. Throws InputError.
-    void finishSave() {
-        if (saver_) saver_->finish();
+    // Writes --save's session: the advice when there was nothing to write (stopped before
+    // the first sample), else "". Throws InputError.
+    std::string finishSave() {
+        if (!saver_ || saver_->finish()) return "";
+        return fmt::format("--save {}: no samples acquired, nothing saved", settings_.save);
     }
 
 private:
@@ -206,9 +207,11 @@ CaptureFacts decodeLive(const LiveSettings& settings, const std::vector<DecoderR
         session.addSink(s);
     session.run();
     // What was decoded is kept (the sinks have ended); then the save, then the failure.
-    reader->finishSave();
+    CaptureFacts facts = session.facts();
+    if (const std::string unsaved = reader->finishSave(); !unsaved.empty())
+        facts.advice.push_back(unsaved);
     if (!reader->failure().empty()) throw InputError(reader->failure());
-    return session.facts();
+    return facts;
 }
 
 }  // namespace busdecode

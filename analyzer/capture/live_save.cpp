@@ -54,11 +54,10 @@ void LiveSaver::add(const std::uint8_t* data, std::size_t n, unsigned unit) {
     samples_ += n;
 }
 
-void LiveSaver::finish() {
+bool LiveSaver::finish() {
     if (std::fflush(spool_) != 0 || std::ferror(spool_))
         throw InputError(fmt::format("--save {}: cannot write: {}", path_, std::strerror(errno)));
-    if (samples_ == 0)
-        throw InputError(fmt::format("--save {}: no samples acquired, nothing saved", path_));
+    if (samples_ == 0) return false;
     const int fd = fileno(spool_);
     const std::size_t unit = unit_;
     writeSrSamples(path_, names_, std::int64_t(rate_), samples_,
@@ -72,6 +71,7 @@ void LiveSaver::finish() {
                            got += std::size_t(r);
                        }
                    });
+    return true;
 }
 
 }  // namespace busdecode

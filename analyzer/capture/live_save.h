@@ -19,8 +19,9 @@ public:
 
     // n words of `unit` bytes, as the device sent them (on the acquisition thread).
     void add(const std::uint8_t* data, std::size_t n, unsigned unit);
-    // Writes the session. Throws InputError naming the file (a full disk included).
-    void finish();
+    // Writes the session; false (nothing written) when no sample came. Throws InputError
+    // naming the file (a full disk included).
+    bool finish();
     std::uint64_t samples() const { return samples_; }
 
 private:

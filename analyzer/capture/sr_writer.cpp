@@ -109,8 +109,8 @@ void writeSrSamples(const std::string& path, const std::vector<std::string>& nam
         "[global]\nsigrok version=busdecode\n\n[device 1]\ncapturefile=logic-1\n"
         "total probes={}\nsamplerate={}\ntotal analog=0\n",
         names.size(), sampleRateText(rate));
-    for (std::size_t i = 0; i < names.size(); ++i)
-        meta += fmt::format("probe{}={}\n", i + 1, iniValue(names[i]));
+    for (std::size_t i = 0; i < names.size(); ++i)  // a line not acquired has no name
+        if (!names[i].empty()) meta += fmt::format("probe{}={}\n", i + 1, iniValue(names[i]));
     meta += fmt::format("unitsize={}\n", unit);
 
     int err = 0;

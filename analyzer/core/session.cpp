@@ -71,19 +71,23 @@ std::string signalList(const CaptureReader& reader, const std::string& wanted) {
     std::vector<std::string> names;
     if (sigs.size() <= kAll) {
         for (const auto& s : sigs)
-            names.push_back(signalText(s));
+            if (!s.name.empty())
+                names.push_back(signalText(s));  // unnamed: a live line not acquired
         return names.empty() ? "none" : fmt::format("{}", fmt::join(names, ", "));
     }
     std::vector<std::pair<std::size_t, std::size_t>> by_distance;  // (distance, index)
     by_distance.reserve(sigs.size());
     for (std::size_t i = 0; i < sigs.size(); ++i)
-        by_distance.emplace_back(
-            std::min(editDistance(sigs[i].name, wanted), editDistance(sigs[i].full_name, wanted)),
-            i);
-    std::partial_sort(by_distance.begin(), by_distance.begin() + kClosest, by_distance.end());
-    for (std::size_t k = 0; k < kClosest; ++k)
+        if (!sigs[i].name.empty())
+            by_distance.emplace_back(std::min(editDistance(sigs[i].name, wanted),
+                                              editDistance(sigs[i].full_name, wanted)),
+                                     i);
+    const std::size_t closest = std::min(kClosest, by_distance.size());
+    std::partial_sort(by_distance.begin(), by_distance.begin() + std::ptrdiff_t(closest),
+                      by_distance.end());
+    for (std::size_t k = 0; k < closest; ++k)
         names.push_back(signalText(sigs[by_distance[k].second]));
-    return fmt::format("{} in all; the closest: {}", sigs.size(), fmt::join(names, ", "));
+    return fmt::format("{} in all; the closest: {}", by_distance.size(), fmt::join(names, ", "));
 }
 
 OptionSpec glitchOption() {

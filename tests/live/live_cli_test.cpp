@@ -53,6 +53,30 @@ TEST(LiveCli, TimeEndsTheRunWithItsSummary) {
     EXPECT_NE(r.out.find("demo: 300000 samples at 100 kHz"), std::string::npos) << r.out;
 }
 
+TEST(LiveCli, ATimeShorterThanASampleTakesOne) {
+    const RunResult r = runCommand("timeout 20 " + shellQuote(binDir() + "/decode") +
+                                   " --device demo --samplerate 1M --time 0.0000001 --proto spi "
+                                   "--map sclk=D0 --map mosi=D1");
+    EXPECT_EQ(r.status, 0) << r.err;  // not 124: 0 samples meant no limit
+    EXPECT_NE(r.out.find("demo: 1 samples at 1 MHz"), std::string::npos) << r.out;
+}
+
+// jsonl's hints (the acquisition's counts among them) go to stderr, as a file's do; the
+// lines not acquired are no signals to offer.
+TEST(LiveCli, JsonlHintsAndTheSignalsOffered) {
+    const RunResult r = runDecode(with({"--device", "demo", "--samplerate", "1M", "--channels",
+                                        "D0,D1,D2,D3", "--samples", "1000"},
+                                       kSpi));
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.err.find("decode: demo: hint: demo: 1000 samples at 1 MHz"), std::string::npos)
+        << r.err;
+    const RunResult unbound =
+        runDecode({"--device", "demo", "--samplerate", "1M", "--channels", "D2,D5,D7", "--samples",
+                   "1000", "--proto", "uart", "--map", "rx=D0"});
+    EXPECT_EQ(unbound.status, 2);
+    EXPECT_NE(unbound.err.find("(signals: D2, D5, D7)"), std::string::npos) << unbound.err;
+}
+
 TEST(LiveCli, CtrlCEndsARunWithoutLimitWithItsSummary) {
     const std::string out = tempDir() + "/interrupted.out";
     const std::string report = tempDir() + "/interrupted_report.txt";
