@@ -198,7 +198,7 @@ std::string histogramSvg(const std::string& title, const std::string& key,
         const auto round = niceTicks(sk.min(), sk.max(), 8);
         const double step = std::max(1.0, round.size() > 1 ? round[1] - round[0] : 1.0);
         for (double v = std::ceil(sk.min() / step) * step; v <= sk.max(); v += step)
-            ticks.push_back(v);
+            ticks.push_back(v / fa.scale);  // on the axis, in its unit (ns shown as us)
         plot.xTicksAt(ticks);
     }
     const double bw = (hi - lo) / bins;

@@ -129,6 +129,24 @@ TEST(HtmlReport, SelfContainedWithPositionHistogramAndTimingDiagram) {
     EXPECT_NE(timing.find("#ffcdd2"), std::string::npos);  // faulty segment / field colour
 }
 
+// Whole numbers of ns over a short span, drawn in us (2.000 to 2.039): a bar per value,
+// and ticks on the axis's unit, not at raw ns far off it.
+TEST(HtmlReport, APerValueHistogramInMicrosecondsHasTicks) {
+    CaptureStats s;
+    auto f = test::facts(100'000'000, "us.vcd");
+    s.begin(f);
+    for (int i = 0; i < 200; ++i)
+        s.add(bisscFrame(Tick(i) * 100000, 1000 + i, true, 1, 1, 1e6, 2000 + i % 40));
+    s.end(f);
+    const std::string h = renderHtmlReport(s);
+    const auto at = h.find("frame line_delay_ns (n=200)");
+    ASSERT_NE(at, std::string::npos);
+    const auto from = h.rfind("<svg class=\"histogram\"", at);
+    const std::string svg = h.substr(from, h.find("</svg>", at) - from);
+    EXPECT_GE(countOf(svg, "class=\"tick x\""), 4u) << svg;
+    EXPECT_NE(svg.find(">2.010<"), std::string::npos) << svg;
+}
+
 TEST(FrameLayout, BisscWidthFollowsFromTheClockCount) {
     const Event e = bisscFrame(0, 0x2AAAAAA, false);
     const auto segs = frameLayout(e);
