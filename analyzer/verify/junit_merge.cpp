@@ -214,10 +214,17 @@ MergeResult mergeJunit(const std::vector<JunitShardFile>& files,
     if (n == 0) {
         for (const auto& f : files)
             take(f);
+        std::size_t missing = 0;
         for (std::size_t i = 0; i < expected.size(); ++i)
-            if (!checked.count(global[i]))
+            if (!checked.count(global[i])) {
                 addMissing(m, cases, out, expected[i], global[i],
                            "no verdict in any JUnit file given");
+                ++missing;
+            }
+        if (missing)
+            m.problems.push_back(
+                fmt::format("{} of the list's {} captures have no verdict in any JUnit file given",
+                            missing, expected.size()));
         if (!list_given)
             for (const auto& u : unusable)
                 addMissing(m, cases, out, u.path, u.path, "no verdict: " + u.why);

@@ -148,6 +148,9 @@ TEST(MergeJunit, EveryShardMissingLeavesEveryCaptureAnError) {
     EXPECT_EQ(merged.status, 2);
     EXPECT_EQ(merged.out,
               "23 captures: 0 passed, 0 failed, 23 unreadable; 0 rule checks, 0 failed\n");
+    EXPECT_EQ(merged.err,
+              "decode merge-junit: 23 of the list's 23 captures have no verdict in any JUnit file "
+              "given\n");
 }
 
 TEST(MergeJunit, OnlyUnusableFilesMergeToAnErrorNeverAPass) {
