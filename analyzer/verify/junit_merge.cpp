@@ -56,6 +56,7 @@ void readSuite(QXmlStreamReader& r, JunitShardFile& f) {
                 const std::string name = attr(r, "name");
                 if (name == "rules") f.rules = attr(r, "value");
                 if (name == "shard") f.shard = attr(r, "value");
+                if (name == "checks") f.checks = attr(r, "value");
                 r.skipCurrentElement();
             }
         } else if (tag == "testcase") {
@@ -185,10 +186,19 @@ void renameShardCases(MergeResult& m, const JunitShardFile* f, std::vector<Junit
 
 // Shards checked against other rules are not one run.
 void checkSameRules(const std::vector<JunitShardFile>& files) {
-    for (const auto& f : files)
-        if (f.rules != files.front().rules)
+    for (const auto& f : files) {
+        const JunitShardFile& first = files.front();
+        if (f.rules != first.rules)
             throw InputError(fmt::format("{}: checked against the rules {}, {} against {}", f.path,
-                                         f.rules, files.front().path, files.front().rules));
+                                         f.rules, first.path, first.rules));
+        // The same name, other contents or decoding options (a shard run elsewhere).
+        if (f.checks != first.checks)
+            throw InputError(
+                fmt::format("{}: checked with other rules or decode options than {} "
+                            "(the rules file's contents, --proto, --map, --opt, "
+                            "--rate or --threshold differ)",
+                            f.path, first.path));
+    }
 }
 
 }  // namespace
@@ -250,6 +260,7 @@ MergeResult mergeJunit(const std::vector<JunitShardFile>& files,
     }
     JunitSuiteHead head;
     head.rules_file = files.empty() ? "" : files.front().rules;
+    head.checks = files.empty() ? "" : files.front().checks;
     for (const auto& c : cases) {
         ++head.tests;
         head.failures += c.outcome == "failure";

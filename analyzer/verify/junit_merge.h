@@ -14,7 +14,7 @@ namespace busdecode {
 // What one shard's file holds (the parts a merge keeps).
 struct JunitShardFile {
     std::string path;
-    std::string rules, shard;  // the <property> values ("" if absent)
+    std::string rules, shard, checks;  // the <property> values ("" if absent)
     std::vector<JunitCase> cases;
     std::string out, err;  // <system-out>, <system-err>
 };

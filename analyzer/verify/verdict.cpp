@@ -144,6 +144,8 @@ std::string junitOpening(const JunitSuiteHead& head) {
                      xmlEscape(head.rules_file));
     if (!head.shard.empty())
         x += fmt::format("<property name=\"shard\" value=\"{}\"/>", xmlEscape(head.shard));
+    if (!head.checks.empty())
+        x += fmt::format("<property name=\"checks\" value=\"{}\"/>", xmlEscape(head.checks));
     x += "</properties>\n";
     return x;
 }
@@ -164,8 +166,8 @@ std::string junitClosing(const std::string& out, const std::string& err) {
 }
 
 std::string junitXml(const std::vector<CaptureVerdict>& all, const std::string& rules_file,
-                     const std::string& shard) {
-    JunitSuiteHead head{0, 0, 0, 0, rules_file, shard};
+                     const std::string& shard, const std::string& checks) {
+    JunitSuiteHead head{0, 0, 0, 0, rules_file, shard, checks};
     for (const auto& v : all) {
         head.seconds += v.seconds;
         if (v.input_error) {

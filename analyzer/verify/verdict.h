@@ -33,13 +33,14 @@ std::string summaryLine(const BatchCounts& counts);
 // JUnit XML in the common schema (testsuites > testsuite with properties, testcases,
 // system-out, system-err; a testcase holds at most one failure or error). `shard` ("K/N",
 // or "" for a whole run) becomes a property for `decode merge-junit`.
+// `checks` (VerifyPlan::checks) becomes a property too, "" none.
 std::string junitXml(const std::vector<CaptureVerdict>& all, const std::string& rules_file,
-                     const std::string& shard = "");
+                     const std::string& shard = "", const std::string& checks = "");
 // The pieces junitXml is made of, shared with merge-junit.
 struct JunitSuiteHead {
     std::size_t tests = 0, failures = 0, errors = 0;
     double seconds = 0;
-    std::string rules_file, shard;
+    std::string rules_file, shard, checks;
 };
 std::string junitOpening(const JunitSuiteHead& head);
 struct JunitCase {

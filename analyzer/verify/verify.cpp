@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <fstream>
+#include <iterator>
 
 #include <unistd.h>
 
@@ -40,6 +42,21 @@ void refuseTablesOfDecodersNotRun(const Rules& rules, const std::vector<DecoderR
     }
 }
 
+// FNV-1a, 64 bits: a digest to tell two shards' checks apart, not a security measure.
+std::string checksDigest(const std::string& rules_path, const VerifyPlan& plan) {
+    std::ifstream in(rules_path, std::ios::binary);
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    for (const auto& r : plan.requests)
+        text +=
+            fmt::format("\n{} {} {}", r.proto, fmt::join(r.map, ","), fmt::join(r.options, ","));
+    text += fmt::format("\n{} {} {}", plan.open.rate_hz, plan.open.hysteresis,
+                        fmt::join(plan.open.thresholds, ","));
+    std::uint64_t h = 14695981039346656037ull;
+    for (const unsigned char c : text)
+        h = (h ^ c) * 1099511628211ull;
+    return fmt::format("fnv1a64:{:016x}", h);
+}
+
 }  // namespace
 
 VerifyPlan planVerify(const DecodeArgs& args) {
@@ -56,6 +73,7 @@ VerifyPlan planVerify(const DecodeArgs& args) {
     plan.open.thresholds = args.thresholds;
     plan.open.hysteresis = args.hysteresis;
     plan.open.read_ahead = args.threads > 1;
+    plan.checks = checksDigest(args.rules, plan);
     return plan;
 }
 
@@ -117,7 +135,7 @@ int runVerify(const DecodeArgs& args) {
         std::fputs((summaryLine(verdicts) + "\n").c_str(), stdout);
         checkStandardOutput();
         if (!args.junit.empty())
-            writeFileAtomically(args.junit, junitXml(verdicts, args.rules, shard));
+            writeFileAtomically(args.junit, junitXml(verdicts, args.rules, shard, plan.checks));
 
         bool any_error = false, any_fail = false;
         for (const auto& v : verdicts) {

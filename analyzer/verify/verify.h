@@ -14,6 +14,10 @@ struct VerifyPlan {
     Rules rules;
     std::vector<DecoderRequest> requests;
     OpenOptions open;
+    // What the captures are checked with: the rules file's bytes and the decoding chosen
+    // (decoders, maps, options, rate, thresholds), as a digest for JUnit's `checks`
+    // property, which merge-junit compares between shards.
+    std::string checks;
 };
 VerifyPlan planVerify(const DecodeArgs& args);
 

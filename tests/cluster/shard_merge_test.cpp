@@ -192,6 +192,31 @@ TEST(MergeJunit, ShardsOfAnotherListOrOtherRulesAreNotMergedSilently) {
     EXPECT_FALSE(std::filesystem::exists(run.dir + "/all.xml"));
 }
 
+// The rules file's name alone is no proof: a shard run with the same name but other
+// contents, or other decoding options, is refused too.
+TEST(MergeJunit, ShardsCheckedWithOtherContentsOrOptionsAreNotMerged) {
+    ShardedBatch run;
+    const std::string text = test::readFile(run.rules);
+    run.rules = run.dir + "/rules.toml";  // a copy of its own, edited below
+    test::writeFile(run.rules, text);
+    const std::string refused = "checked with other rules or decode options than ";
+    run.verify({"--shard", "1/2", "--junit", run.shardFile(1)});
+    run.verify({"--shard", "2/2", "--junit", run.shardFile(2), "--opt", "bissc.crc_bits=6"});
+    auto r = run.merge({1, 2}, true);
+    EXPECT_EQ(r.status, 2);
+    EXPECT_NE(r.err.find(run.shardFile(2) + ": " + refused + run.shardFile(1)), std::string::npos)
+        << r.err;
+    test::writeFile(run.rules, text + "\n# edited between the shards\n");
+    run.verify({"--shard", "2/2", "--junit", run.shardFile(2)});
+    r = run.merge({1, 2}, true);
+    EXPECT_NE(r.err.find(refused), std::string::npos) << r.err;
+    test::writeFile(run.rules, text);
+    run.verify({"--shard", "2/2", "--junit", run.shardFile(2)});
+    r = run.merge({1, 2}, true);
+    EXPECT_EQ(r.err.find(refused), std::string::npos) << r.err;  // the same checks merge
+    EXPECT_NE(r.out.find("23 captures: "), std::string::npos) << r.out;
+}
+
 TEST(MergeJunit, BadInputIsOneLineAndExit2WithNoFile) {
     ShardedBatch run;
     run.verify({"--shard", "1/2", "--junit", run.shardFile(1)});
