@@ -18,7 +18,7 @@ CALLS = {
     "decode": "list(busdecode.decode(FIFO, proto='uart'))",
     "verify": "busdecode.verify([FIFO], rules=RULES, proto='uart', jobs=2)",
     "follow": "list(busdecode.follow(HALF, proto='uart'))",
-    "subscribe": "list(busdecode.subscribe('udpm://239.255.76.67:7689?ttl=0'))",
+    "subscribe": "list(busdecode.subscribe('memq://'))",
 }
 
 
@@ -57,7 +57,7 @@ def test_exit_with_a_daemon_thread_in_the_module(tmp_path, call):
 HELD = {
     "decode": "busdecode.decode(CAPTURE, proto='uart')",
     "follow": "busdecode.follow(CAPTURE, proto='uart')",  # waiting for more
-    "subscribe": "busdecode.subscribe('udpm://239.255.76.67:7689?ttl=0')",
+    "subscribe": "busdecode.subscribe('memq://')",
 }
 
 
