@@ -125,3 +125,15 @@ assert errors == captures[n * 2 // 7:n * 3 // 7], errors
 assert len({c.get("classname") for c in cases}) == n
 PY
 echo "PASS: a killed task's captures are errors in the merged JUnit, and the merge exits 2"
+
+# A list of relative paths, submitted from where they hold: the tasks see the same files.
+sed "s|^$caps/||" "$caps/list.txt" | head -n 20 >"$caps/relative.txt"
+(cd "$caps" && DECODE=$bin/decode "$src/contrib/slurm/verify.sbatch" relative.txt "$rules" \
+    "$tmp/relative" 2 --opt bissc.bits=26) || fail "verify.sbatch could not submit"
+for i in $(seq 600); do [ -e "$tmp/relative/merge.status" ] && break; sleep 0.2; done
+[ -e "$tmp/relative/merge.status" ] || fail "the merge job did not end within 120 s"
+single=$(cd "$caps" && "$bin/decode" verify --from-list relative.txt --rules "$rules" \
+    --opt bissc.bits=26 2>/dev/null | tail -n 1)
+[ "$single" = "$(cat "$tmp/relative/summary.txt")" ] ||
+    fail "relative paths: '$single' / '$(cat "$tmp/relative/summary.txt")'"
+echo "PASS: the tasks resolve a list's relative paths where it was submitted"
