@@ -254,6 +254,9 @@ void checkOptionValues(const QCommandLineParser& p, bool verify) {
         if (capture.isEmpty()) throw InputError("a capture's name is empty (\"\")");
     if (p.isSet("shard") && p.value("shard").isEmpty())  // an unset $SLURM_ARRAY_TASK_ID
         throw InputError("--shard: expected K/N (e.g. 2/8), got nothing");
+    for (const char* name : {"device", "samplerate", "channels", "samples", "time"})
+        if (p.isSet(name) && p.value(name).trimmed().isEmpty())  // an unset shell variable
+            throw InputError(fmt::format("--{}: expected a value, got nothing", name));
     if (verify)
         for (const char* name : {"format", "report", "lcm", "follow", "realtime"})
             if (p.isSet(name))
@@ -364,8 +367,12 @@ LiveSettings liveSettings(const DecodeArgs& a) {
         s.samplerate = std::uint64_t(rate.timebase->den);
     }
     if (!a.channels.empty())
-        for (const auto& c : QString::fromStdString(a.channels).split(',', Qt::SkipEmptyParts))
-            s.channels.push_back(c.trimmed().toStdString());
+        for (const auto& c : QString::fromStdString(a.channels).split(',', Qt::SkipEmptyParts)) {
+            const std::string name = c.trimmed().toStdString();
+            if (std::find(s.channels.begin(), s.channels.end(), name) != s.channels.end())
+                throw InputError(fmt::format("--channels {}: {} is named twice", a.channels, name));
+            s.channels.push_back(name);
+        }
     if (!a.samples.empty()) {
         const auto n = parseInteger(a.samples);
         if (!n || *n < 1)

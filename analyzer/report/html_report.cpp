@@ -447,9 +447,11 @@ std::string positionHtml(const CaptureStats& stats, const std::string& inst, con
     if (const auto* p = stats.position(inst)) {
         h += fmt::format("<p>Position: min {:.0f}, max {:.0f}, range {:.0f} over {} values", p->min,
                          p->max, p->max - p->min, p->count);
-        if (p->count > 1)
+        if (p->count > 1 && p->max_jump > 0)
             h += fmt::format("; largest jump {:.0f} at {}", p->max_jump,
                              esc(formatDuration(tb.toNsF(double(p->max_jump_at)))));
+        else if (p->count > 1)
+            h += "; it never changed";
         h += ".</p>\n" + positionSvgs(stats, inst, *p);
     }
     return h;

@@ -75,9 +75,11 @@ void busSection(std::string& out, const CaptureStats& stats, const std::string& 
     if (const auto* p = stats.position(inst)) {
         line(out, fmt::format("  position    min {:.0f}  max {:.0f}  range {:.0f}  ({} values)",
                               p->min, p->max, p->max - p->min, p->count));
-        if (p->count > 1)
+        if (p->count > 1 && p->max_jump > 0)
             line(out, fmt::format("              largest jump {:.0f} at {}", p->max_jump,
                                   formatDuration(tb.toNsF(double(p->max_jump_at)))));
+        else if (p->count > 1)
+            line(out, "              it never changed");
     }
     for (const GroupStats* g : groups) {
         const auto rows = g->timingRows();

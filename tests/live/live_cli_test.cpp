@@ -4,6 +4,8 @@
 // every bad device, rate or channel is one line and exit 2.
 #include <gtest/gtest.h>
 
+#include <fmt/format.h>
+
 #include "robustness/robustness_cli.h"
 #include "support/paths.h"
 
@@ -134,6 +136,13 @@ TEST(LiveCli, BadDevicesRatesAndChannelsAreOneLine) {
               0u);
     EXPECT_EQ(oneLineFailure({"--device", "demo", "--save", "/dev/null", "--proto", "spi"}),
               "decode: --save /dev/null: not a regular file");
+    EXPECT_EQ(oneLineFailure({"--device", "demo", "--channels", "D0,D0,D1", "--proto", "spi"}),
+              "decode: --channels D0,D0,D1: D0 is named twice");
+    EXPECT_EQ(oneLineFailure({"--device", "", "--proto", "spi"}),
+              "decode: --device: expected a value, got nothing");
+    for (const char* option : {"--channels", "--samplerate"})
+        EXPECT_EQ(oneLineFailure({"--device", "demo", option, "", "--proto", "spi"}),
+                  fmt::format("decode: {}: expected a value, got nothing", option));
 }
 
 }  // namespace

@@ -81,6 +81,20 @@ TEST(TextReport, HasFactsCountsTimingPositionAndFaults) {
     EXPECT_NE(r.find("0.012300000 s"), std::string::npos) << r;  // the faulty frame's time
 }
 
+// A position that never changed has no largest jump to place in time.
+TEST(TextReport, APositionThatNeverChangedSaysSo) {
+    CaptureStats s;
+    auto f = test::facts(100'000'000, "still.vcd");
+    s.begin(f);
+    for (int i = 0; i < 5; ++i)
+        s.add(bisscFrame(Tick(i) * 100000, 4242, true, 1, 1, 1e6, 100));
+    s.end(f);
+    const std::string text = renderTextReport(s);
+    EXPECT_NE(text.find("it never changed"), std::string::npos) << text;
+    EXPECT_EQ(text.find("largest jump"), std::string::npos) << text;
+    EXPECT_NE(renderHtmlReport(s).find("; it never changed."), std::string::npos);
+}
+
 TEST(TextReport, TimingHeadingsSitOverTheirColumns) {
     const std::string r = renderTextReport(faultyBiss());
     std::istringstream in(r);
