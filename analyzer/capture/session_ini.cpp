@@ -5,19 +5,9 @@
 
 #include <fmt/format.h>
 
+#include "csv_fields.h"
+
 namespace busdecode {
-
-namespace {
-
-std::string_view trimmed(std::string_view s) {
-    while (!s.empty() && (s.front() == ' ' || s.front() == '\t'))
-        s.remove_prefix(1);
-    while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r'))
-        s.remove_suffix(1);
-    return s;
-}
-
-}  // namespace
 
 void forEachIniLine(std::string_view text, const std::function<void(const IniLine&)>& on) {
     IniLine l;
@@ -27,7 +17,7 @@ void forEachIniLine(std::string_view text, const std::function<void(const IniLin
         const std::string_view raw = text.substr(at, nl - at);
         at = nl + 1;
         ++l.number;
-        const std::string_view line = trimmed(raw);
+        const std::string_view line = trimBlanks(raw);
         if (line.empty() || line.front() == ';' || line.front() == '#') continue;
         if (line.front() == '[') {
             l.section = line;
@@ -35,8 +25,8 @@ void forEachIniLine(std::string_view text, const std::function<void(const IniLin
         }
         const auto eq = line.find('=');
         l.has_value = eq != std::string_view::npos;
-        l.key = l.has_value ? trimmed(line.substr(0, eq)) : line;
-        l.value = l.has_value ? trimmed(line.substr(eq + 1)) : std::string_view();
+        l.key = l.has_value ? trimBlanks(line.substr(0, eq)) : line;
+        l.value = l.has_value ? trimBlanks(line.substr(eq + 1)) : std::string_view();
         l.indented = raw.front() == ' ' || raw.front() == '\t';
         on(l);
     }
