@@ -405,11 +405,6 @@ int runLive(const DecodeArgs& a) {
     const CaptureFacts facts =
         liveModule("--device").decode(settings, requests, out.sinks, interruptionFlag());
     printJsonlHints(a, liveCaptureName(settings), facts);
-    // The save comes after the text summary: its note goes to stderr either way.
-    if (a.format != "jsonl")
-        for (const auto& hint : facts.advice)
-            if (hint.rfind("--save ", 0) == 0)
-                printError(hintLine(liveCaptureName(settings), hint));
     if (lcm) closeLcmSink(*lcm);
     return 0;
 }

@@ -86,11 +86,10 @@ public:
     // Why the acquisition ended early ("" = it did not), valid after next() = false.
     std::string failure() const { return queue_.error(); }
     LiveCounts counts() const { return queue_.counts(); }
-    // Writes --save's session: the advice when there was nothing to write (stopped before
-    // the first sample), else "". Throws InputError.
-    std::string finishSave() {
-        if (!saver_ || saver_->finish()) return "";
-        return fmt::format("--save {}: no samples acquired, nothing saved", settings_.save);
+    // Writes --save's session (nothing when no sample came: notes() says so). Throws
+    // InputError.
+    void finishSave() {
+        if (saver_) saver_->finish();
     }
 
 private:
@@ -191,6 +190,9 @@ std::vector<std::string> LiveReader::notes() const {
             "{}: dropped {} samples ({:.3f} s) in {} packets: decoding fell behind the device",
             liveCaptureName(settings_), c.dropped_samples, double(c.dropped_samples) / rate,
             c.dropped_packets));
+    // Stopped before the first sample: the run's end is no failure, but nothing is saved.
+    if (saver_ && saver_->samples() == 0)
+        out.push_back(fmt::format("--save {}: no samples acquired, nothing saved", settings_.save));
     return out;
 }
 
@@ -207,11 +209,9 @@ CaptureFacts decodeLive(const LiveSettings& settings, const std::vector<DecoderR
         session.addSink(s);
     session.run();
     // What was decoded is kept (the sinks have ended); then the save, then the failure.
-    CaptureFacts facts = session.facts();
-    if (const std::string unsaved = reader->finishSave(); !unsaved.empty())
-        facts.advice.push_back(unsaved);
+    reader->finishSave();
     if (!reader->failure().empty()) throw InputError(reader->failure());
-    return facts;
+    return session.facts();
 }
 
 }  // namespace busdecode
