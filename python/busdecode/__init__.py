@@ -281,7 +281,7 @@ def read(path: PathLike, proto: Protos, map: Assignments = None, opts: Assignmen
     """
     args = _capture_args(path, proto, map, opts, rate, threads, threshold, hysteresis)
     try:
-        # By name: pandas ships no type hints, and pandas-stubs may or may not be there.
+        # Imported by name, so that mypy types it Any with or without pandas-stubs installed.
         pd = importlib.import_module("pandas")
     except ImportError:
         tables: Dict[str, List[Dict[str, Any]]] = {}
