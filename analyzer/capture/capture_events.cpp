@@ -1,5 +1,7 @@
 #include "capture_events.h"
 
+#include <fmt/format.h>
+
 namespace busdecode {
 
 const std::vector<EventTypeSpec>& captureEventTypes() {
@@ -24,8 +26,23 @@ const std::vector<EventTypeSpec>& captureEventTypes() {
         {"pair_fault",
          "a differential pair that stopped being complementary",
          {{"pair", K::Text}, {"wire", K::Text}, {"working", K::Text}, {"kind", K::Text}}},
+        {"samples_dropped",
+         "a live run's samples dropped because decoding fell behind the device",
+         {{"samples", K::Int}}},
     };
     return types;
+}
+
+Event samplesDroppedEvent(Tick first, Tick last, std::uint64_t samples) {
+    Event e;
+    e.proto = "capture";
+    e.type = "samples_dropped";
+    e.start = first;
+    e.end = last;
+    e.add("samples", std::int64_t(samples));
+    e.error("samples_dropped");
+    e.summary = fmt::format("{} samples dropped: decoding fell behind the device", samples);
+    return e;
 }
 
 }  // namespace busdecode

@@ -1,13 +1,20 @@
 #pragma once
 // The events the capture layer makes itself (proto "capture"), declared as decoders declare
 // theirs (core/decoder_info.h), so that read()'s tables type their columns alike.
+#include <cstdint>
 #include <vector>
 
 #include "core/decoder_info.h"
+#include "core/event.h"
 
 namespace busdecode {
 
-// "signal" (signal_quality.cpp) and "pair_fault" (differential_pairs.cpp).
+// "signal" (signal_quality.cpp), "pair_fault" (differential_pairs.cpp) and
+// "samples_dropped" (below).
 const std::vector<EventTypeSpec>& captureEventTypes();
+
+// A live run's samples from `first` to `last`, `samples` of them, dropped because decoding
+// fell behind the device; the session marks every event reaching into them.
+Event samplesDroppedEvent(Tick first, Tick last, std::uint64_t samples);
 
 }  // namespace busdecode

@@ -2,6 +2,8 @@
 
 #include <bit>
 
+#include "capture_events.h"
+
 namespace busdecode {
 
 void LiveEdgeMaker::select(const std::vector<int>& bits) {
@@ -69,8 +71,10 @@ std::size_t LiveEdgeMaker::addPacket(const std::uint8_t* data, std::size_t n, un
     n = take(n);
     if (n == 0) return 0;
     if (!started_) start(sampleWord(data, unit));
-    // After a dropped packet the lines jump to where the device is now, at this tick.
+    // After a dropped packet the lines jump to where the device is now, at this tick,
+    // which no event reaching into the gap can be trusted across.
     if (gap_) {
+        block_.findings.push_back(samplesDroppedEvent(gap_first_, Tick(tick_), gap_samples_));
         emitChanges(delivered_ ^ prev_, prev_, Tick(tick_));
         gap_ = false;
     }
@@ -101,8 +105,13 @@ std::size_t LiveEdgeMaker::dropPacket(const std::uint8_t* data, std::size_t n, u
     n = take(n);
     if (n == 0) return 0;
     if (!started_) start(sampleWord(data, unit));
-    if (!gap_) delivered_ = prev_;
+    if (!gap_) {
+        delivered_ = prev_;
+        gap_first_ = Tick(tick_);
+        gap_samples_ = 0;
+    }
     gap_ = true;
+    gap_samples_ += n;
     prev_ = sampleWord(data + (n - 1) * unit, unit) & mask_;
     tick_ += n;
     queue.countSamples(n);

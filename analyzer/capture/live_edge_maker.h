@@ -49,6 +49,8 @@ private:
     std::uint64_t first_ = 0, prev_ = 0;
     std::uint64_t delivered_ = 0;  // levels as the decoder last saw them (after a drop)
     bool started_ = false, gap_ = false;
+    Tick gap_first_ = 0;             // the gap's first dropped sample
+    std::uint64_t gap_samples_ = 0;  // dropped in the gap so far
     EdgeBlock block_;
 };
 

@@ -18,6 +18,7 @@ void LiveEdgeQueue::push(EdgeBlock& block, std::uint64_t acquired_until) {
         blocks_.emplace_back();
         blocks_.back().known_until = block.known_until;
         blocks_.back().edges.swap(block.edges);
+        blocks_.back().findings.swap(block.findings);
         if (!spares_.empty()) {
             block.edges.swap(spares_.back());
             spares_.pop_back();
@@ -62,6 +63,7 @@ bool LiveEdgeQueue::pop(EdgeBlock& out, const std::atomic<bool>* stop) {
     // The consumer's old vector becomes a spare for the producer.
     out.edges.swap(front.edges);
     out.known_until = until;
+    out.findings = std::move(front.findings);
     if (front.edges.capacity() && spares_.size() < 8) {
         front.edges.clear();
         spares_.push_back(std::move(front.edges));

@@ -2,7 +2,8 @@
 // Between the acquisition thread and the decoding one: a bounded queue of edge blocks.
 // The acquisition side never waits (a device cannot be paused): when the queue is full a
 // whole packet of samples is dropped and counted, and the next block delivered starts with
-// the edges that bring every line to its level after the gap.
+// the edges that bring every line to its level after the gap, and carries the gap as a
+// `samples_dropped` finding (capture_events.h).
 #include <atomic>
 #include <condition_variable>
 #include <cstdint>

@@ -5,6 +5,7 @@
 #include <cctype>
 #include <cmath>
 #include <deque>
+#include <numeric>
 #include <optional>
 
 #include <fmt/format.h>
@@ -192,11 +193,12 @@ struct Session::Impl : EventSink {
         pending_slot.insert(pending_slot.begin() + at, slot);
     }
 
-    // A pair fault's span, and the slots decoding from that pair (their events in it
-    // are marked `pair_fault`).
+    // A pair fault's span and the slots decoding from that pair, or a live run's dropped
+    // samples and every slot: their events reaching into it are marked with `error`.
     struct FaultSpan {
         Tick start, end;
         std::vector<int> slots;
+        const char* error;
     };
     std::deque<FaultSpan> fault_spans;
     Tick findings_from = kNoTick;
@@ -204,7 +206,10 @@ struct Session::Impl : EventSink {
     void takeFindings(EdgeBlock& block) {
         findings_from = block.findings_from;
         for (Event& f : block.findings) {
-            if (f.type == "pair_fault") fault_spans.push_back({f.start, f.end, slotsOf(f)});
+            if (f.type == "pair_fault")
+                fault_spans.push_back({f.start, f.end, slotsOf(f), "pair_fault"});
+            else if (f.type == "samples_dropped")
+                fault_spans.push_back({f.start, f.end, allSlots(), "samples_dropped"});
             f.instance = f.proto;
             insertPending(spare.adopt(std::move(f)), -1);
         }
@@ -220,14 +225,19 @@ struct Session::Impl : EventSink {
                     out.push_back(s);
         return out;
     }
+    std::vector<int> allSlots() const {
+        std::vector<int> out(slots.size());
+        std::iota(out.begin(), out.end(), 0);
+        return out;
+    }
     // Events go out in start order: spans ending before this one's start are done.
-    void markPairFaults(Event& e, int slot) {
+    void markFaultSpans(Event& e, int slot) {
         while (!fault_spans.empty() && fault_spans.front().end < e.start)
             fault_spans.pop_front();
         for (const auto& f : fault_spans)
             if (f.start <= e.end && e.start <= f.end &&
                 std::find(f.slots.begin(), f.slots.end(), slot) != f.slots.end())
-                e.error("pair_fault");
+                e.error(f.error);
     }
 
     Tick watermark() const {
@@ -247,7 +257,7 @@ struct Session::Impl : EventSink {
             slots[slot].decoder->correlate(*e, window);
             window.setPending(nullptr);
         }
-        if (slot >= 0 && !fault_spans.empty()) markPairFaults(*e, slot);
+        if (slot >= 0 && !fault_spans.empty()) markFaultSpans(*e, slot);
         for (auto* s : *sinks)
             s->onEvent(*e, *facts);
         if (keep_window && slot >= 0) {

@@ -164,6 +164,16 @@ TEST(LiveCli, FallingBehindDropsWholePacketsAndSaysSo) {
     const std::size_t at = r.out.find("demo: dropped ");
     ASSERT_NE(at, std::string::npos) << r.out;
     EXPECT_NE(r.out.find("decoding fell behind the device", at), std::string::npos);
+    // In jsonl, each gap is an event of its own.
+    const RunResult j = runCommand(
+        "BUSDECODE_LIVE_QUEUE=2 BUSDECODE_LCM_RATE=20 BUSDECODE_LCM_QUEUE=1 " +
+        shellQuote(binDir() + "/decode") +
+        " --device demo --samplerate 1M --channels D0,D1 --time 1 --proto spi --map sclk=D0 "
+        "--map mosi=D1 --lcm memq:// --format jsonl");
+    EXPECT_EQ(j.status, 0) << j.err;
+    EXPECT_NE(j.out.find(R"("proto":"capture","type":"samples_dropped")"), std::string::npos)
+        << j.out.substr(0, 2000);
+    EXPECT_NE(j.out.find(R"("errors":["samples_dropped"])"), std::string::npos);
     const RunResult bad = runCommand("BUSDECODE_LIVE_QUEUE=0 " + shellQuote(binDir() + "/decode") +
                                      " --device demo --samples 10 --proto spi --map sclk=D0 "
                                      "--map mosi=D1");

@@ -80,6 +80,40 @@ TEST(LiveEdges, AFullQueueDropsWholePacketsCountsThemAndResyncs) {
     EXPECT_GE(q.counts().max_lag_samples, 0u);
 }
 
+TEST(LiveEdges, AGapOfSeveralPacketsIsOneFindingOnTheBlockAfterIt) {
+    LiveEdgeQueue q(1, 1 << 20);
+    LiveEdgeMaker m;
+    m.select({0});
+    const std::vector<std::uint8_t> low(100, 0), high(100, 1);
+    m.addPacket(low.data(), 100, 1, q);
+    m.dropPacket(high.data(), 100, 1, q);
+    m.dropPacket(low.data(), 50, 1, q);
+    EdgeBlock b;
+    std::atomic<bool> stop{true};
+    ASSERT_TRUE(q.pop(b, &stop));
+    EXPECT_TRUE(b.findings.empty());
+    m.addPacket(high.data(), 100, 1, q);
+    ASSERT_TRUE(q.pop(b, &stop));
+    ASSERT_EQ(b.findings.size(), 1u);
+    const Event& gap = b.findings[0];
+    EXPECT_EQ(gap.proto, "capture");
+    EXPECT_EQ(gap.type, "samples_dropped");
+    // Samples 100 to 249 dropped; the lines jump to their levels at 250.
+    EXPECT_EQ(gap.start, 100);
+    EXPECT_EQ(gap.end, 250);
+    ASSERT_NE(gap.get("samples"), nullptr);
+    EXPECT_EQ(asInt(*gap.get("samples")), 150);
+    EXPECT_EQ(gap.errors, std::vector<std::string>{"samples_dropped"});
+    EXPECT_EQ(asTriples(b.edges), (std::vector<std::array<std::uint64_t, 3>>{{250, 0, 1}}));
+    // The next gap is a finding of its own.
+    m.dropPacket(low.data(), 10, 1, q);
+    m.addPacket(low.data(), 10, 1, q);
+    ASSERT_TRUE(q.pop(b, &stop));
+    ASSERT_EQ(b.findings.size(), 1u);
+    EXPECT_EQ(b.findings[0].start, 350);
+    EXPECT_EQ(b.findings[0].end, 360);
+}
+
 TEST(LiveEdges, ManyChangesFillSeveralBlocks) {
     LiveEdgeQueue q(64, 1 << 22);
     LiveEdgeMaker m;
