@@ -122,10 +122,12 @@ void MonitorModel::onStatus(const lcm::ReceiveBuffer*, const std::string&,
     }
     // Buses are kept across runs: several decoders may publish at once, and a capture
     // decoded again simply continues its bus's counts.
-    state_ = m->state == "begin" ? "decoding" : "ended";
+    state_ = m->state == "begin" ? "decoding" : m->state == "live" ? "live" : "ended";
     file_ = m->file;
     capture_ns_ = m->capture_ns;
     dropped_ = m->dropped;
+    live_samples_ = m->live_samples;
+    live_dropped_ = m->live_dropped;
 }
 
 namespace {
@@ -152,6 +154,13 @@ std::string row(const std::string& bus, const std::string& pos, const std::strin
 
 }  // namespace
 
+// A live run's acquisition: the samples taken, and those decoding fell behind on.
+std::string MonitorModel::liveText() const {
+    if (live_samples_ == 0) return "";
+    return fmt::format("   samples {}", live_samples_) +
+           (live_dropped_ ? fmt::format("   SAMPLES DROPPED {}", live_dropped_) : "");
+}
+
 std::vector<std::string> MonitorModel::render(const std::string& url, std::int64_t now_utime,
                                               std::size_t width) const {
     std::vector<std::string> out;
@@ -159,10 +168,10 @@ std::vector<std::string> MonitorModel::render(const std::string& url, std::int64
                                   file_.empty() ? "" : "  capture " + file_),
                       width));
     out.push_back(
-        fit(fmt::format("capture time {}   messages {}{}", formatDuration(double(capture_ns_)),
-                        messages_,
-                        (dropped_ ? fmt::format("   DROPPED {}", dropped_) : "") +
-                            (losses_.lost() ? fmt::format("   LOST {}", losses_.lost()) : "")),
+        fit(fmt::format(
+                "capture time {}   messages {}{}", formatDuration(double(capture_ns_)), messages_,
+                (dropped_ ? fmt::format("   DROPPED {}", dropped_) : "") +
+                    (losses_.lost() ? fmt::format("   LOST {}", losses_.lost()) : "") + liveText()),
             width));
     out.emplace_back();
     out.push_back(fit(row("BUS", "POSITION (MT:ST)", "FRAMES", "FRAME RATE", "CRC ERRORS",

@@ -89,7 +89,10 @@ private:
     std::map<std::string, BusView> buses_;
     std::deque<std::string> recent_registers_;
     std::string file_, state_ = "waiting";
+    std::string liveText() const;
+
     std::int64_t capture_ns_ = 0, runs_ended_ = 0, messages_ = 0, dropped_ = 0;
+    std::int64_t live_samples_ = 0, live_dropped_ = 0;  // decode --device's counts
     FeedLosses losses_;
 };
 

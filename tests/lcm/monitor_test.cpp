@@ -162,6 +162,23 @@ TEST(MonitorModel, CountsTheEventsUdpLost) {
     EXPECT_EQ(model.lost(), 3);
 }
 
+TEST(MonitorModel, ALiveRunShowsItsSamplesAndThoseDropped) {
+    MonitorModel model;
+    busdecode_lcm::decode_status_t live{};
+    live.state = "live";
+    live.file = "demo";
+    live.live_samples = 3'000'000;
+    model.onStatus(nullptr, "DECODE_STATUS", &live);
+    auto text = model.render("memq://", 0, 120);
+    EXPECT_NE(text[0].find("[live]  capture demo"), std::string::npos) << text[0];
+    EXPECT_NE(text[1].find("samples 3000000"), std::string::npos) << text[1];
+    EXPECT_EQ(text[1].find("DROPPED"), std::string::npos) << text[1];
+    live.live_dropped = 45'000;
+    model.onStatus(nullptr, "DECODE_STATUS", &live);
+    text = model.render("memq://", 0, 120);
+    EXPECT_NE(text[1].find("SAMPLES DROPPED 45000"), std::string::npos) << text[1];
+}
+
 TEST(Monitor, DurationEndsAQuietMonitor) {
     auto lc = openLcm("memq://");
     MonitorOptions opt;
