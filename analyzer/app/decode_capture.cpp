@@ -65,6 +65,10 @@ CaptureFacts decodeCapture(const std::string& path, const std::vector<DecoderReq
     Session session(requests, *reader, path);
     session.setPieceSpeculation(open.decode_ahead);
     if (stop) session.setStopFlag(stop);
+    if ((!open.thresholds.empty() || open.hysteresis >= 0) && !reader->readsVoltages())
+        session.addNote(
+            "--threshold and --hysteresis do nothing: the capture's lines are logic levels, not "
+            "voltages");
     // Stopped before its end, a capture that is not followed is not reported at all.
     if (stop && !open.follow) session.abandonWhenStopped();
     for (auto* s : sinks)

@@ -99,6 +99,7 @@ public:
     }
 
     std::vector<std::string> notes() const override;
+    bool readsVoltages() const override { return true; }
 
 private:
     // Pair faults closed so far; at the end, the faults still open and each line's

@@ -70,6 +70,8 @@ public:
     // of analog lines, lines that never crossed them; a DSView session's decoder settings,
     // also shown by `decode --formats FILE`); valid after next() = false.
     virtual std::vector<std::string> notes() const { return {}; }
+    // True for a reader of analog lines: --threshold and --hysteresis apply to it.
+    virtual bool readsVoltages() const { return false; }
 };
 
 // For select(): more lines than an Edge can name is the caller's mistake (Session refuses

@@ -342,6 +342,7 @@ public:
     std::uint64_t bytesTotal() const override { return input_->compressedTotal(); }
     bool changesOnly() const override { return inner_->changesOnly(); }
     std::vector<std::string> notes() const override { return inner_->notes(); }
+    bool readsVoltages() const override { return inner_->readsVoltages(); }
     bool readsAhead() const override { return inner_->readsAhead(); }
 
 private:

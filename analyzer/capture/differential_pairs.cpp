@@ -176,6 +176,7 @@ public:
     std::vector<std::uint8_t> initialLevels() override;
     bool next(EdgeBlock& block) override;
     std::vector<std::string> notes() const override;
+    bool readsVoltages() const override { return in_->readsVoltages(); }
 
 private:
     struct Pair {

@@ -664,6 +664,7 @@ void Session::finishDecoders() {
             facts_.advice.push_back(slot.instance + ": " + a);
     for (const auto& note : im.reader->notes())
         facts_.advice.push_back(note);
+    facts_.advice.insert(facts_.advice.end(), notes_.begin(), notes_.end());
 }
 
 namespace {

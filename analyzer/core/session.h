@@ -93,6 +93,8 @@ public:
     // sinks: for a capture read to its end, whose part is not the whole.
     void abandonWhenStopped();
     const CaptureFacts& facts() const { return facts_; }
+    // A line for the summary's hints, after the decoders' and the reader's. Call before run().
+    void addNote(std::string note) { notes_.push_back(std::move(note)); }
     // Decoding pieces of the capture ahead on the reader's threads (piece_speculation.h),
     // where the reader cuts the file in pieces and the one decoder can be spliced. On by
     // default; the output is the same either way. Call before run().
@@ -117,6 +119,7 @@ private:
     std::unique_ptr<Impl> impl_;
     std::vector<OutputSink*> sinks_;
     CaptureFacts facts_;
+    std::vector<std::string> notes_;  // addNote()
 };
 
 // Test helper: decodes an in-memory capture and returns the events in output order.

@@ -187,6 +187,26 @@ TEST(Cli, StandardInputIsACapture) {
     EXPECT_EQ(countLines(r.out), 2) << r.out;
 }
 
+// The scope options do nothing to logic lines: said, not ignored in silence.
+TEST(Cli, ThresholdOnALogicCaptureIsAHint) {
+    const std::string hint =
+        "# hint: --threshold and --hysteresis do nothing: the capture's lines are logic levels, "
+        "not voltages";
+    const std::string vcd = sourceDir() + "/captures/bissc_1mhz_26bit.vcd";
+    for (const char* option : {"--threshold", "--hysteresis"}) {
+        const auto r = runDecode({vcd, "--proto", "bissc", option, "0.2"});
+        ASSERT_EQ(r.status, 0) << r.err;
+        EXPECT_NE(r.out.find(hint), std::string::npos) << r.out;
+    }
+    auto r = runDecode({vcd, "--proto", "bissc"});
+    EXPECT_EQ(r.out.find("# hint"), std::string::npos) << r.out;
+    const std::string scope = sourceDir() + "/tests/data/real/formats/rigol/DS1054Z-A.csv";
+    r = runDecode({scope, "--proto", "uart", "--map", "rx=CH1", "--threshold", "2.5"});
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.out.find("# hint: CH1: threshold 2.5 V"), std::string::npos) << r.out;
+    EXPECT_EQ(r.out.find("do nothing"), std::string::npos) << r.out;
+}
+
 struct BadInput {
     std::vector<std::string> args;
     std::string expect;  // a piece of the one-line message
