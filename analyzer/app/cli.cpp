@@ -382,8 +382,12 @@ LiveSettings liveSettings(const DecodeArgs& a) {
     }
     if (!a.seconds.empty()) {
         const auto t = parseNumber(a.seconds);
+        // 1e7 s (116 days): past it, Ctrl-C (no --time) is what is meant.
         if (!t || !(*t > 0) || *t > 1e7)
-            throw InputError(fmt::format("--time {}: expected seconds, more than 0", a.seconds));
+            throw InputError(fmt::format(
+                "--time {}: expected seconds, more than 0 and at most 1e7 (leave --time out to "
+                "run until Ctrl-C)",
+                a.seconds));
         s.seconds = *t;
     }
     s.save = a.save;

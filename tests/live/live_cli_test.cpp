@@ -125,6 +125,11 @@ TEST(LiveCli, BadDevicesRatesAndChannelsAreOneLine) {
               "decode: --samplerate, --channels, --samples, --time and --save need --device");
     EXPECT_EQ(oneLineFailure({"--device", "demo", "--samples", "0", "--proto", "spi"}),
               "decode: --samples 0: expected a whole number, 1 or more");
+    for (const char* t : {"0", "1e20"})
+        EXPECT_EQ(oneLineFailure({"--device", "demo", "--time", t, "--proto", "spi"}),
+                  fmt::format("decode: --time {}: expected seconds, more than 0 and at most 1e7 "
+                              "(leave --time out to run until Ctrl-C)",
+                              t));
     EXPECT_EQ(oneLineFailure({"--device", "demo", kRecording, "--proto", "spi"}),
               "decode: --device acquires live: no capture file, --follow or verify with it");
     // A USB analyser that is not plugged in (or not permitted): nothing found.
