@@ -56,6 +56,14 @@ double voltsPerUnit(std::string_view unit) {
                                                                                : 0;
 }
 
+// PicoScope's channel titles, English and German ("Kanal A"): the prefix's length, or 0.
+std::size_t picoChannelPrefix(std::string_view title) {
+    const std::string lower = asciiLower(title);
+    for (std::string_view prefix : {"channel ", "kanal "})
+        if (startsWith(lower, prefix)) return prefix.size();
+    return 0;
+}
+
 // "X(CH2)" -> CH2, "CH 1 (V)" -> CH1, "Channel A" -> A, "1" (Keysight) -> CH1.
 std::string channelName(std::string_view title) {
     std::string_view t = title;
@@ -63,7 +71,8 @@ std::string channelName(std::string_view title) {
         const std::string_view inner = t.substr(open + 1, t.size() - open - 2);
         t = voltsPerUnit(inner) > 0 ? trimField(t.substr(0, open)) : inner;
     }
-    if (startsWith(asciiLower(t), "channel ")) return std::string(trimField(t.substr(8)));
+    if (const std::size_t prefix = picoChannelPrefix(t))
+        return std::string(trimField(t.substr(prefix)));
     std::string out;
     for (char c : t)
         if (c != ' ') out += c;
@@ -238,12 +247,14 @@ std::optional<ScopeLayout> tektronixSpreadsheet(const std::vector<std::string_vi
     return l;
 }
 
-// PicoScope 6: "Time;Channel A" then a units row in parentheses, "(ms);(V)".
+// PicoScope 6 and 7: "Time;Channel A" then a units row in parentheses, "(ms);(V)"; a German
+// export's "Zeit;Kanal A".
 std::optional<ScopeLayout> picoscope(const std::vector<std::string_view>& lines,
                                      const std::string& name) {
     const char sep = lines[0].find(';') != std::string_view::npos ? ';' : ',';
     const Fields f = splitFields(lines[0], sep);
-    if (f[0] != "Time" || f.size() < 2 || !startsWith(f[1], "Channel ")) return std::nullopt;
+    if ((f[0] != "Time" && f[0] != "Zeit") || f.size() < 2 || !picoChannelPrefix(f[1]))
+        return std::nullopt;
     const Fields u = lines.size() > 1 ? splitFields(lines[1], sep) : Fields{};
     if (u.empty() || u[0].size() < 3 || u[0].front() != '(' || u[0].back() != ')')
         broken(name, 2, "expected PicoScope's units row '(ms);(V);...' after 'Time;Channel A;...'");

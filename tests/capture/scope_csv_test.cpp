@@ -171,6 +171,11 @@ TEST(ScopeCsv, LayoutsWithoutARealFileAreRead) {
          "-2e-6,0\n-1e-6,3.3\n0,3.3\n1e-6,0\n",
          "lecroy-csv", "Ampl"},
         {"pico_en.csv", "Time,Channel A\n(us),(V)\n\n0,0\n1,5\n2,5\n3,0\n", "picoscope-csv", "A"},
+        // A German PicoScope: its words, semicolons and decimal commas.
+        {"pico_de.csv",
+         "Zeit;Kanal B\r\n(ms);(V)\r\n\r\n0,000;0,01\r\n0,001;4,98\r\n0,002;5,0\r\n"
+         "0,003;0,02\r\n",
+         "picoscope-csv", "B"},
     };
     for (const auto& k : cases) {
         SCOPED_TRACE(k.name);
