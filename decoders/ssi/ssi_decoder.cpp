@@ -135,6 +135,7 @@ void SsiDecoder::close(bool capture_end) {
     const std::vector<std::uint8_t> samples = sampleBits(timing.delay);
     const SsiWord w = assembleWord(samples, cfg_);
     noteRingWidth(samples, w);
+    noteTail(samples, w);
     pending_ = newEvent("frame", b_.start, last);
     fillFrame(*pending_, w, T, timing.measured, glitches);
     if (timing.late) pending_->error("late_data");
@@ -490,6 +491,28 @@ void SsiDecoder::noteRingWidth(const std::vector<std::uint8_t>& samples, const S
     ++ring_votes_[width < int(ring_votes_.size()) ? std::size_t(width) : 0];
 }
 
+void SsiDecoder::noteTail(const std::vector<std::uint8_t>& samples, const SsiWord& w) {
+    const int past = int(samples.size()) - cfg_.bits;
+    if (cfg_.lead || w.short_frame || w.repeats != 1 || past < 1 || past > cfg_.ring_gap) return;
+    tail_bits_ = tail_frames_++ == 0 || tail_bits_ == past ? past : -1;
+    if (!w.separator_ok) ++tail_ones_;
+}
+
+std::vector<std::string> SsiDecoder::tailAdvice() const {
+    // A master may clock one bit past the word to see the line low; a 1 there in some
+    // frames is the word's own last bit.
+    if (frames_ < 2 || tail_frames_ != frames_ || tail_ones_ == 0 || tail_bits_ <= 0) return {};
+    const int word = cfg_.bits + tail_bits_;
+    return {fmt::format(
+        "every frame was clocked {} bit{} past bits={} with no repeat, and in {} of {} frames "
+        "a 1 came where the 0 after the word belongs: the words look {} bits long (--opt "
+        "bits={}{})",
+        tail_bits_, tail_bits_ == 1 ? "" : "s", cfg_.bits, tail_ones_, frames_, word, word,
+        cfg_.st_bits + cfg_.mt_bits + cfg_.pos_shift <= word
+            ? ""
+            : ", with st_bits and mt_bits to fit")};
+}
+
 int SsiDecoder::ringWidthFound() const {
     // Some words repeat a shorter pattern by chance: three frames in four must agree.
     if (!ring_varied_ || ring_looked_ < 4) return 0;
@@ -510,7 +533,7 @@ std::vector<std::string> SsiDecoder::advice() const {
                 : ", with st_bits and mt_bits to fit")};
     // One short frame is a master that stopped early; all of them, each with the same
     // count, is a word of that length.
-    if (frames_ < 2 || shorts_ != frames_ || short_bits_ <= 0) return {};
+    if (frames_ < 2 || shorts_ != frames_ || short_bits_ <= 0) return tailAdvice();
     const bool fields_fit = cfg_.st_bits + cfg_.mt_bits + cfg_.pos_shift <= short_bits_;
     // One bit short without `lead`: the first clock edge's level may be a bit (POSITAL).
     const bool lead_fits = !cfg_.lead && short_bits_ + 1 == cfg_.bits;

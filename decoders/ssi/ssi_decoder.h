@@ -116,6 +116,12 @@ private:
     std::array<std::int64_t, 65> ring_votes_{};
     std::uint64_t ring_first_raw_ = 0;
     bool ring_varied_ = false;  // the frames looked at held different words
+    // Frames clocked past the word by gap bits only (no repeat), all by the same count,
+    // and how many of them read a 1 there: a word longer than `bits` (tailAdvice()).
+    void noteTail(const std::vector<std::uint8_t>& samples, const SsiWord& w);
+    std::vector<std::string> tailAdvice() const;
+    std::int64_t tail_frames_ = 0, tail_ones_ = 0;
+    int tail_bits_ = 0;  // the bits past the word (-1: they differed)
 };
 
 }  // namespace busdecode

@@ -57,6 +57,19 @@ TEST(SsiAdvice, ThirteenBitWordsReadAsTwentyFiveGetTheirWidth) {
     EXPECT_TRUE(adviceForThirteenBits(26, {{"bits", "13"}, {"st_bits", "13"}}).empty());
 }
 
+// 13-bit words read as 12: the 13th bit sits where the 0 after a 12-bit word belongs.
+// Frames whose last bit is 0 look clean; the hint names the width from those that are 1.
+// A master clocking one bit past a word of the right width reads a 0 there: no hint.
+TEST(SsiAdvice, AWordOneBitLongerThanBitsIsNamedFromItsLastBits) {
+    auto advice = adviceForThirteenBits(14, {{"bits", "12"}, {"st_bits", "12"}});
+    ASSERT_EQ(advice.size(), 1u);
+    EXPECT_EQ(advice[0],
+              "ssi: every frame was clocked 1 bit past bits=12 with no repeat, and in 3 of 6 "
+              "frames a 1 came where the 0 after the word belongs: the words look 13 bits long "
+              "(--opt bits=13)");
+    EXPECT_TRUE(adviceForThirteenBits(15, {{"bits", "13"}, {"st_bits", "13"}}).empty());
+}
+
 TEST(SsiAdvice, NoneWhenTheWidthFitsOrOnlySomeFramesAreShort) {
     EXPECT_TRUE(adviceFor("ssi_tmc8100_gray25.vcd", {}).empty());
     // Two of three frames cut short by the master: faults of the traffic.
