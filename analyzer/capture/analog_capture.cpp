@@ -81,6 +81,7 @@ public:
                block.volts.size() < kVoltBlock) {
             double t;
             if (!nextSample(t)) {
+                if (src_->waiting()) break;  // followed, no new row yet: hand on what is decoded
                 done_ = true;
                 finishLearning();
                 order_.release(kMaxEdgeTick, block.edges);
@@ -201,7 +202,13 @@ private:
 
     void readPrefix() {
         double t;
-        while (prefix_t_.size() < kPrefixRows && nextRow(t)) {
+        while (prefix_t_.size() < kPrefixRows) {
+            if (!nextRow(t)) {
+                // A followed file that stops growing: the levels from what it holds, once
+                // it holds two rows (a period).
+                if (src_->waiting() && prefix_t_.size() < 2) continue;
+                break;
+            }
             prefix_t_.push_back(t);
             prefix_v_.insert(prefix_v_.end(), row_.begin(),
                              row_.begin() + std::ptrdiff_t(src_->slots()));

@@ -34,6 +34,9 @@ public:
     // The next row: its time in seconds and slots() values. False at the end. Throws
     // InputError naming the file and line.
     virtual bool next(double& t, float* values) = 0;
+    // After next() returned false: true when that was no end but a followed file with no
+    // new row for a while; next() may be called again.
+    virtual bool waiting() const { return false; }
     // Throws InputError naming the file and the row last read.
     [[noreturn]] virtual void fail(const std::string& what) const = 0;
     virtual std::uint64_t bytesRead() const { return 0; }

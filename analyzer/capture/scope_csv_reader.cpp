@@ -57,17 +57,25 @@ public:
     // Blank rows and rows whose every value is empty (Keysight's last) are skipped.
     bool next(double& t, float* values) override {
         std::string_view line;
-        while (nextLine(line))
+        while (nextLine(line, opts_.follow))
             if (parseRow(line, t, values)) return true;
         return false;
     }
+    bool waiting() const override { return waiting_; }
 
 private:
-    bool nextLine(std::string_view& line) {
-        for (;;) {
+    // `may_stall`: a followed file that has no new row for kStallMs is `waiting()`.
+    bool nextLine(std::string_view& line, bool may_stall = false) {
+        constexpr int kStallMs = 50;
+        waiting_ = false;
+        for (int waited = 0;; waited += 5) {
             const auto st = src_->nextLine(line);
             if (st == TextSource::Status::Line) return true;
             if (st == TextSource::Status::Eof || (opts_.stop && opts_.stop->load())) return false;
+            if (may_stall && waited >= kStallMs) {
+                waiting_ = true;
+                return false;
+            }
             src_->waitForData(5);
         }
     }
@@ -132,6 +140,7 @@ private:
     std::vector<double> slot_scale_;       // and its volts per unit
     std::vector<std::string_view> fields_;
     std::string wall_clock_;  // LeCroy's first segment's trigger time
+    bool waiting_ = false;
 };
 
 }  // namespace

@@ -11,11 +11,14 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <string>
 #include <thread>
 #include <vector>
+
+#include <fmt/format.h>
 
 #include "decode_process.h"
 #include "support/paths.h"
@@ -146,6 +149,56 @@ TEST(FollowPipe, ThreadsOneReadsAndDecodesOnOneThread) {
     ASSERT_EQ(whole.status, 0) << whole.err;
     EXPECT_EQ(r.out, whole.out);
     EXPECT_EQ(std::size_t(std::count(r.out.begin(), r.out.end(), '\n')), text.size());
+}
+
+// `text` as a PicoScope CSV of one analog line "A" (8N1, 10000 baud, 0 and 3.3 V sampled
+// every 10 us, a byte every 1.5 ms), split in the idle time after byte `split_after`.
+test::UartVcd uartScopeCsv(const std::string& text, std::size_t split_after) {
+    test::UartVcd csv{"Time,Channel A\n(ms),(V)\n\n", ""};
+    auto level = [&](double ms) {
+        const double since = ms - 1.0;
+        const int byte = int(std::floor(since / 1.5)),
+                  bit = int(std::floor((since - 1.5 * byte) * 10));
+        if (since < 0 || byte >= int(text.size()) || bit >= 10) return 1;
+        if (bit == 0) return 0;
+        if (bit == 9) return 1;
+        return (static_cast<unsigned char>(text[std::size_t(byte)]) >> (bit - 1)) & 1;
+    };
+    const double split_ms = 1.0 + 1.5 * double(split_after) - 0.2;
+    for (int k = 0; k * 0.01 < 1.0 + 1.5 * double(text.size()) + 1.0; ++k) {
+        const double ms = k * 0.01;
+        const std::string row = fmt::format("{:.2f},{:.3f}\n", ms, level(ms + 0.005) ? 3.3 : 0.0);
+        (ms < split_ms ? csv.head : csv.tail) += row;
+    }
+    return csv;
+}
+
+// A scope CSV followed through a pipe: its levels are found from the rows there are when
+// the writer pauses, and the bytes come out while it waits, as from a logic capture.
+TEST(FollowPipe, AScopeCsvDecodesWhileTheWriterWaits) {
+    const std::string text = "Scope rows, followed.";
+    const std::size_t split = 12;
+    const test::UartVcd csv = uartScopeCsv(text, split);
+    const std::vector<std::string> args{"--proto", "uart",       "--map",    "rx=A",
+                                        "--opt",   "baud=10000", "--format", "jsonl"};
+    FollowRun r = followPipe(csv, split, args);
+    EXPECT_TRUE(r.written);
+    EXPECT_EQ(r.early, split) << r.out;
+    EXPECT_EQ(r.status, 0);
+    const std::string path = test::tempDir() + "/follow_uart_scope.csv";
+    test::writeFile(path, csv.head + csv.tail);
+    std::vector<std::string> whole_args{path};
+    whole_args.insert(whole_args.end(), args.begin(), args.end());
+    const test::RunResult whole = test::runDecode(whole_args);
+    ASSERT_EQ(whole.status, 0) << whole.err;
+    std::size_t bytes = 0;
+    for (std::size_t i = 0; i < text.size(); ++i) {
+        const std::string value =
+            "\"value\":" + std::to_string(static_cast<unsigned char>(text[i])) + ",";
+        EXPECT_NE(r.out.find(value), std::string::npos) << "byte " << i << "\n" << r.out;
+        bytes += whole.out.find(value) != std::string::npos;
+    }
+    EXPECT_EQ(bytes, text.size()) << whole.out;
 }
 
 // `decode verify -` reads its capture through a pipe as well; it prints only at the end,
