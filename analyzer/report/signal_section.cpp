@@ -55,8 +55,21 @@ bool SignalSection::add(const Event& e, const Timebase& tb) {
                 fmt::format("{} to {}: {}", formatDuration(tb.toNsF(double(e.start))),
                             formatDuration(tb.toNsF(double(e.end))), e.summary));
         ++faults_;
+    } else if (e.type == "samples_dropped") {
+        if (first_gaps_.size() < kMaxFaults)
+            first_gaps_.push_back(fmt::format("{} to {}: {}",
+                                              formatDuration(tb.toNsF(double(e.start))),
+                                              formatDuration(tb.toNsF(double(e.end))), e.summary));
+        ++gaps_;
+        if (const Value* n = e.get("samples"))
+            dropped_samples_ += std::uint64_t(std::max<std::int64_t>(0, asInt(*n)));
     }
     return true;
+}
+
+std::string SignalSection::gapsHeading() const {
+    return fmt::format("Samples dropped (live run, decoding fell behind): {} in {} gaps",
+                       dropped_samples_, gaps_);
 }
 
 std::string SignalSection::text() const {
@@ -75,13 +88,18 @@ std::string SignalSection::text() const {
             s.pop_back();
         return s + "\n";
     };
-    std::string out = "\nSignal quality (analog lines; rise and fall 10-90 %)\n";
+    std::string out =
+        lines_.empty() ? "\nSignal\n" : "\nSignal quality (analog lines; rise and fall 10-90 %)\n";
     if (!lines_.empty()) out += row(kHeads);
     for (const auto& r : lines_)
         out += row(r);
-    out += fmt::format("  pair faults: {}\n", faults_);
+    // A logic capture's live gaps alone: no pair fault to count.
+    if (!lines_.empty() || faults_) out += fmt::format("  pair faults: {}\n", faults_);
     for (const auto& f : first_faults_)
         out += "    " + f + "\n";
+    if (gaps_) out += "  " + gapsHeading() + "\n";
+    for (const auto& g : first_gaps_)
+        out += "    " + g + "\n";
     return out;
 }
 
@@ -101,11 +119,17 @@ std::string SignalSection::html() const {
         }
         h += "</table>\n<p>Rise and fall times between 10 and 90 % of the swing.</p>\n";
     }
-    h += fmt::format("<p>Pair faults: {}</p>\n", faults_);
+    if (!lines_.empty() || faults_) h += fmt::format("<p>Pair faults: {}</p>\n", faults_);
     if (!first_faults_.empty()) {
         h += "<ul>\n";
         for (const auto& f : first_faults_)
             h += fmt::format("<li>{}</li>\n", htmlEscape(f));
+        h += "</ul>\n";
+    }
+    if (gaps_) {
+        h += fmt::format("<p>{}</p>\n<ul>\n", htmlEscape(gapsHeading()));
+        for (const auto& g : first_gaps_)
+            h += fmt::format("<li>{}</li>\n", htmlEscape(g));
         h += "</ul>\n";
     }
     return h;

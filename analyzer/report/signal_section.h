@@ -1,7 +1,8 @@
 #pragma once
 // The reports' signal-quality section: a row per analog line from its `signal` event
-// (levels, swing, threshold, edge times, overshoot, reversals) and the pair faults seen,
-// as text and as HTML. Logic captures have neither: the section is then left out.
+// (levels, swing, threshold, edge times, overshoot, reversals), the pair faults seen and
+// a live run's gaps of dropped samples, as text and as HTML. A logic capture read whole
+// has none of them: the section is then left out.
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -18,7 +19,7 @@ public:
 
     // Takes the capture layer's events (proto "capture"); true if `e` was one.
     bool add(const Event& e, const Timebase& tb);
-    bool empty() const { return lines_.empty() && faults_ == 0; }
+    bool empty() const { return lines_.empty() && faults_ == 0 && gaps_ == 0; }
     std::string text() const;
     std::string html() const;
 
@@ -28,6 +29,9 @@ private:
     std::vector<std::vector<std::string>> lines_;
     std::uint64_t faults_ = 0;
     std::vector<std::string> first_faults_;  // "1.234 ms to 5.678 ms: MA+,MA-: ..."
+    std::uint64_t gaps_ = 0, dropped_samples_ = 0;
+    std::vector<std::string> first_gaps_;  // "1.234 ms to 5.678 ms: 4096 samples dropped"
+    std::string gapsHeading() const;
 };
 
 }  // namespace busdecode
