@@ -17,6 +17,7 @@
 #include <cmath>
 #include <cstring>
 #include <deque>
+#include <optional>
 #include <string>
 #include <unordered_set>
 #include <vector>
@@ -302,18 +303,33 @@ private:
     }
 
     // The signal names and the dialect (format_, timed_, first_col_) the header fields show.
-    std::vector<std::string> columnNames(const std::vector<std::string_view>& f,
-                                         const HeaderComments& c) {
+    std::vector<std::string> columnNames(const std::vector<std::string_view>& f, HeaderComments c) {
         const std::string first = asciiLower(f[0]);
         std::vector<std::string> names;
+        // sigrok-cli's csv:trigger=true: a last column of the trigger's samples.
+        if (!c.channel_names.empty() && f.size() > 1 && asciiLower(f.back()) == "trigger")
+            c.channel_names.push_back(std::string(f.back()));
         // sigrok's header form: a row of channel types, the names only in the comment
-        auto isType = [](std::string_view s) {
+        auto isType = [&](std::string_view s) {
             const std::string l = asciiLower(s);
-            return l == "logic" || l == "analog";
+            return l == "logic" || l == "analog" || (l == "trigger" && s == f.back());
         };
         const bool all_logic = std::all_of(f.begin(), f.end(), isType);
         const bool typed_after_time = f.size() > 1 && std::all_of(f.begin() + 1, f.end(), isType);
-        if (first.rfind("time", 0) == 0) {
+        // "Time" then the channels' names (label=channel) counts in a unit; "Time" then
+        // their types, in seconds (below).
+        const auto sigrok_time =
+            c.channel_names.size() + 1 == f.size() && (first != "time" || !typed_after_time)
+                ? sigrokTimeExp10(first, c)
+                : std::nullopt;
+        if (sigrok_time) {
+            // sigrok-cli's csv:time=true: a time column, then the comment's channels.
+            timed_ = true;
+            first_col_ = 1;
+            format_ = "sigrok-csv";
+            time_exp10_ = *sigrok_time;
+            names = c.channel_names;
+        } else if (first.rfind("time", 0) == 0) {
             timed_ = true;
             first_col_ = 1;
             format_ = first == "times"                            ? "scanastudio-csv"
@@ -339,6 +355,27 @@ private:
             names.assign(f.begin(), f.end());
         }
         return names;
+    }
+
+    // The power of ten of seconds sigrok-cli's time column counts in: its title names the
+    // unit ("microseconds"), or is "Time" (label=channel) in the unit the sample period is
+    // whole in (1 MHz: us, 3 MHz: ns), as sigrok-cli writes it. None for other files.
+    static std::optional<int> sigrokTimeExp10(const std::string& title, const HeaderComments& c) {
+        if (!c.rate || !c.rate->timebase) return std::nullopt;
+        constexpr std::pair<std::string_view, int> kUnits[] = {{"seconds", 0},
+                                                               {"milliseconds", -3},
+                                                               {"microseconds", -6},
+                                                               {"nanoseconds", -9},
+                                                               {"picoseconds", -12}};
+        for (const auto& [word, exp10] : kUnits)
+            if (title == word) return exp10;
+        if (title != "time") return std::nullopt;
+        // label=channel titles the columns with the comment's names.
+        const double period = double(c.rate->timebase->num) / double(c.rate->timebase->den);
+        int exp10 = 0;
+        while (exp10 > -12 && period < std::pow(10.0, exp10) * (1 - 1e-9))
+            exp10 -= 3;
+        return exp10;
     }
 
     void addSignals(const std::vector<std::string>& names) {
@@ -462,7 +499,7 @@ private:
             held_.emplace_back(src_->lineNo(), std::string(line));
             std::string_view tf = trimField(t.substr(0, t.find(sep_)));
             Decimal d;
-            if (parseTime(tf, d)) finest = std::max(finest, -d.exp10);
+            if (parseTime(tf, d)) finest = std::max(finest, -(d.exp10 + time_exp10_));
         }
         resolution_ = std::min(finest, 12);
         std::int64_t den = 1;
@@ -492,6 +529,7 @@ private:
             Decimal d;
             if (!parseTime(fields_[0], d))
                 fail(fmt::format("expected a time in seconds, found '{}'", printable(fields_[0])));
+            d.exp10 += time_exp10_;
             if (!toTicks(d, resolution_, t))
                 fail(fmt::format("time '{}' out of range", printable(fields_[0])));
             if (rows_ > 0 && t < cur_)
@@ -521,6 +559,7 @@ private:
     // errors included, returns false having changed nothing, and row() takes the row the
     // general way: the results are the same.
     bool plainTimedRow(std::string_view line, EdgeBlock* block) {
+        if (time_exp10_) return false;  // times in a unit (sigrok-cli's): the general path
         const char* p = line.data();
         const char* const end = p + line.size();
         const bool neg = p < end && *p == '-';
@@ -637,6 +676,7 @@ private:
     std::size_t first_col_ = 0, ncols_ = 0;
     std::uint64_t header_line_ = 0, line_no_ = 0;
     int resolution_ = 9;
+    int time_exp10_ = 0;  // the time column's unit, a power of ten of seconds (sigrok-cli's)
     std::deque<std::pair<std::uint64_t, std::string>> held_;
     std::string current_, prev_time_;
     std::string last_row_;  // text of the last parsed untimed row
