@@ -120,17 +120,19 @@ std::unique_ptr<CaptureReader> openCompressed(std::unique_ptr<TextSource> src, C
 std::unique_ptr<CaptureReader> openZip(std::unique_ptr<TextSource> src, const std::string& path,
                                        const OpenOptions& opts) {
     const std::string name = src->name();
-    const int fd = path == "-" ? copyToTempFile(*src) : -1;
+    // A pipe (standard input, a FIFO) is copied: a ZIP is read by offset.
+    const bool by_path = path != "-" && std::filesystem::is_regular_file(path);
+    const int fd = by_path ? -1 : copyToTempFile(*src);
     src.reset();
-    auto zip =
-        std::make_unique<ZipArchive>(path, fd, name, "ZIP capture (sigrok .sr or DSView .dsl)");
+    auto zip = std::make_unique<ZipArchive>(by_path ? path : "-", fd, name,
+                                            "ZIP capture (sigrok .sr or DSView .dsl)");
     if (zip->has("header") && !zip->has("metadata")) return openDsl(std::move(zip), opts);
     if (zip->has("meta.json") && !zip->has("metadata"))
         throw InputError(name +
                          ": a Saleae Logic 2 session (.sal): its format is undocumented and "
                          "changes between releases; export the channels as binary files in "
                          "Logic 2 (File > Export Data > Binary) and decode those");
-    if (path != "-") {
+    if (by_path) {
         if (auto analog = openSrAnalogIfAnalog(path, name, opts)) return analog;
     }
     return openSr(std::move(zip), opts);

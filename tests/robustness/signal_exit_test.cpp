@@ -59,6 +59,24 @@ TEST(SignalExit, FifoWithoutWriterEndsOnSigint) {
     EXPECT_EQ(r.err, "decode: " + f + ": interrupted, after reading 0 bytes (SIGINT)\n");
 }
 
+// A sigrok session (a ZIP, read by offset) written into a FIFO is copied and decoded as
+// the file itself is.
+TEST(SignalExit, ASessionThroughAFifoDecodesAsTheFile) {
+    const std::string f = fifo("session.sr");
+    const std::string sr = sourceDir() + "/tests/data/real/sigrok-dumps/spi/spi-count-msb.sr";
+    const std::string args =
+        " --proto spi --map cs=1 --map sclk=0 --map mosi=2 --opt bits=8 --format jsonl";
+    const RunResult direct =
+        runCommand(shellQuote(binDir() + "/decode") + " " + shellQuote(sr) + args);
+    ASSERT_EQ(direct.status, 0) << direct.err;
+    const RunResult piped =
+        runCommand("cat " + shellQuote(sr) + " > " + shellQuote(f) + " & " +
+                   shellQuote(binDir() + "/decode") + " " + shellQuote(f) + args);
+    EXPECT_EQ(piped.status, 0) << piped.err;
+    EXPECT_FALSE(direct.out.empty());
+    EXPECT_EQ(piped.out, direct.out);
+}
+
 TEST(SignalExit, FollowedFifoWithoutWriterEndsOnSigterm) {
     const std::string f = fifo("follow_nowriter.vcd");
     const RunResult r =
