@@ -156,25 +156,26 @@ TEST(LiveCli, BadDevicesRatesAndChannelsAreOneLine) {
 namespace busdecode::test {
 namespace {
 
-TEST(LiveCli, FallingBehindDropsWholePacketsAndSaysSo) {
-    // The decoder held back by a slow LCM publisher (20 events/s, queue of 1, waiting), the
-    // acquisition's queue 2 blocks: most of the demo's packets cannot be taken.
-    const RunResult r = runCommand(
+// The decoder held back by a slow LCM publisher (20 events/s, queue of 1, waiting), the
+// acquisition's queue 2 blocks: most of the demo's packets cannot be taken.
+RunResult fallingBehind(const std::string& more_args) {
+    return runCommand(
         "BUSDECODE_LIVE_QUEUE=2 BUSDECODE_LCM_RATE=20 BUSDECODE_LCM_QUEUE=1 " +
         shellQuote(binDir() + "/decode") +
         " --device demo --samplerate 1M --channels D0,D1 --time 1 --proto spi --map sclk=D0 "
-        "--map mosi=D1 --lcm memq://");
+        "--map mosi=D1 --lcm memq://" +
+        more_args);
+}
+
+TEST(LiveCli, FallingBehindDropsWholePacketsAndSaysSo) {
+    const RunResult r = fallingBehind("");
     EXPECT_EQ(r.status, 0) << r.err;
     EXPECT_NE(r.out.find("demo: 1000000 samples at 1 MHz"), std::string::npos) << r.out;
     const std::size_t at = r.out.find("demo: dropped ");
     ASSERT_NE(at, std::string::npos) << r.out;
     EXPECT_NE(r.out.find("decoding fell behind the device", at), std::string::npos);
     // In jsonl, each gap is an event of its own.
-    const RunResult j = runCommand(
-        "BUSDECODE_LIVE_QUEUE=2 BUSDECODE_LCM_RATE=20 BUSDECODE_LCM_QUEUE=1 " +
-        shellQuote(binDir() + "/decode") +
-        " --device demo --samplerate 1M --channels D0,D1 --time 1 --proto spi --map sclk=D0 "
-        "--map mosi=D1 --lcm memq:// --format jsonl");
+    const RunResult j = fallingBehind(" --format jsonl");
     EXPECT_EQ(j.status, 0) << j.err;
     EXPECT_NE(j.out.find(R"("proto":"capture","type":"samples_dropped")"), std::string::npos)
         << j.out.substr(0, 2000);

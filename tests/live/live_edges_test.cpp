@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cstdint>
+#include <tuple>
 #include <vector>
 
 #include "capture/live_device.h"
@@ -85,9 +86,10 @@ TEST(LiveEdges, AGapOfSeveralPacketsIsOneFindingOnTheBlockAfterIt) {
     LiveEdgeMaker m;
     m.select({0});
     const std::vector<std::uint8_t> low(100, 0), high(100, 1);
-    m.addPacket(low.data(), 100, 1, q);
-    m.dropPacket(high.data(), 100, 1, q);
-    m.dropPacket(low.data(), 50, 1, q);
+    for (const auto& [packet, n, dropped] :
+         {std::tuple{&low, 100, false}, {&high, 100, true}, {&low, 50, true}})
+        dropped ? m.dropPacket(packet->data(), std::size_t(n), 1, q)
+                : m.addPacket(packet->data(), std::size_t(n), 1, q);
     EdgeBlock b;
     std::atomic<bool> stop{true};
     ASSERT_TRUE(q.pop(b, &stop));
