@@ -35,6 +35,25 @@ std::string lower(std::string s) {
 
 // Resolves a user's signal reference: full hierarchical name, last component, a CSV
 // column index, or `name[bit]` for one bit of a vector.
+// A one-bit signal declared with a bit-select (VCD "$var wire 1 ! tx [0] $end", named
+// "tx[0]"), found by its base name alone when no other signal has that base.
+template <class Eq>
+std::optional<LineRef> oneBitDeclaredWithItsIndex(const std::vector<SignalInfo>& sigs,
+                                                  const std::string& ref, const Eq& eq) {
+    if (ref.find('[') != std::string::npos) return std::nullopt;
+    std::optional<LineRef> only;
+    for (int i = 0; i < int(sigs.size()); ++i) {
+        const std::string& n = sigs[i].name;
+        const auto lb = n.rfind('[');
+        if (sigs[i].width != 1 || lb == std::string::npos || n.back() != ']' ||
+            !eq(n.substr(0, lb), ref))
+            continue;
+        if (only) return std::nullopt;  // data[0] and data[1]: the user names which
+        only = LineRef{i, -1};
+    }
+    return only;
+}
+
 std::optional<LineRef> findSignal(const std::vector<SignalInfo>& sigs, const std::string& ref,
                                   bool case_insensitive) {
     auto eq = [&](const std::string& a, const std::string& b) {
@@ -53,6 +72,7 @@ std::optional<LineRef> findSignal(const std::vector<SignalInfo>& sigs, const std
             if (const auto bit = bitAtIndex(sigs[base->signal], *index))
                 return LineRef{base->signal, *bit};
     }
+    if (auto only = oneBitDeclaredWithItsIndex(sigs, ref, eq)) return only;
     if (!case_insensitive) {
         if (auto idx = parseInteger(ref); idx && *idx >= 0 && *idx < std::int64_t(sigs.size()))
             return LineRef{int(*idx), -1};
@@ -390,6 +410,12 @@ struct Session::Impl : EventSink {
         if (auto it = map.find(rs.name); it != map.end()) {
             ref = findSignal(sigs, it->second, false);
             if (!ref) ref = findSignal(sigs, it->second, true);
+            if (ref && ref->bit < 0 && sigs[ref->signal].width > 1)
+                throw InputError(fmt::format(
+                    "{}: decoder {}: --map {}={}: {} is a vector of {} bits: map one of them "
+                    "(--map {}={}[BIT])",
+                    facts->file, info.id, rs.name, it->second, signalText(sigs[ref->signal]),
+                    sigs[ref->signal].width, rs.name, it->second));
             if (ref) return ref;
             // "--map cs=CS,sclk=CLK" reads as one role bound to a signal "CS,sclk=CLK".
             const bool several = it->second.find(',') != std::string::npos &&

@@ -207,6 +207,33 @@ TEST(Cli, ThresholdOnALogicCaptureIsAHint) {
     EXPECT_EQ(r.out.find("do nothing"), std::string::npos) << r.out;
 }
 
+// A vector mapped whole is refused (which bit?); a one-bit signal declared with its index
+// ("tx [0]") answers to its base name, unless another bit shares it.
+TEST(Cli, VectorsAreMappedByTheirBits) {
+    auto vcd = [](const std::string& vars) {
+        return "$timescale 1 us $end\n" + vars +
+               "$enddefinitions $end\n#0 1! b1111 \"\n#100 0! b1110 \"\n#110 1! b1111 \"\n"
+               "#200 1!\n";
+    };
+    const auto bus = writeTemp("vector.vcd", vcd("$var wire 1 ! tx [0] $end\n"
+                                                 "$var wire 4 \" bus [3:0] $end\n"));
+    auto r = runDecode({bus, "--proto", "uart", "--map", "rx=bus", "--opt", "baud=100000"});
+    EXPECT_EQ(r.status, 2);
+    EXPECT_EQ(r.err, "decode: " + bus +
+                         ": decoder uart: --map rx=bus: bus[3:0] is a vector of 4 bits: map "
+                         "one of them (--map rx=bus[BIT])\n");
+    r = runDecode({bus, "--proto", "uart", "--map", "rx=bus[0]", "--opt", "baud=100000"});
+    EXPECT_EQ(r.status, 0) << r.err;
+    r = runDecode({bus, "--proto", "uart", "--opt", "baud=100000"});
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.out.find("uart.tx=tx[0]"), std::string::npos) << r.out;
+    const auto two = writeTemp("two_bits.vcd", vcd("$var wire 1 ! d [0] $end\n"
+                                                   "$var wire 1 \" d [1] $end\n"));
+    r = runDecode({two, "--proto", "uart", "--map", "rx=d", "--opt", "baud=100000"});
+    EXPECT_EQ(r.status, 2);
+    EXPECT_NE(r.err.find("--map rx=d: no such signal"), std::string::npos) << r.err;
+}
+
 struct BadInput {
     std::vector<std::string> args;
     std::string expect;  // a piece of the one-line message
