@@ -281,7 +281,8 @@ def read(path: PathLike, proto: Protos, map: Assignments = None, opts: Assignmen
     """
     args = _capture_args(path, proto, map, opts, rate, threads, threshold, hysteresis)
     try:
-        # Imported by name, so that mypy types it Any with or without pandas-stubs installed.
+        # Imported by name: mypy then types pandas as Any, so the module checks the same
+        # on a machine that has pandas-stubs and on one that lacks them.
         pd = importlib.import_module("pandas")
     except ImportError:
         tables: Dict[str, List[Dict[str, Any]]] = {}
