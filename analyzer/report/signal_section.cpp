@@ -32,6 +32,21 @@ std::string nanoseconds(const Event& e, const char* key) {
     return std::isfinite(x) ? formatDuration(x) : "-";
 }
 
+// "1.234 ms to 5.678 ms: SUMMARY": a pair fault's or a gap's line.
+std::string spanLine(const Event& e, const Timebase& tb) {
+    return fmt::format("{} to {}: {}", formatDuration(tb.toNsF(double(e.start))),
+                       formatDuration(tb.toNsF(double(e.end))), e.summary);
+}
+
+// Items as an HTML list ("" for none).
+std::string htmlList(const std::vector<std::string>& items) {
+    if (items.empty()) return "";
+    std::string h = "<ul>\n";
+    for (const auto& item : items)
+        h += fmt::format("<li>{}</li>\n", htmlEscape(item));
+    return h + "</ul>\n";
+}
+
 std::string fieldText(const Event& e, const char* key) {
     const Value* v = e.get(key);
     if (const auto* s = v ? std::get_if<std::string>(v) : nullptr) return *s;
@@ -50,16 +65,10 @@ bool SignalSection::add(const Event& e, const Timebase& tb) {
                           nanoseconds(e, "fall_median_ns"), nanoseconds(e, "fall_p99_ns"),
                           fieldText(e, "overshoot_pct") + " %", fieldText(e, "reversals")});
     } else if (e.type == "pair_fault") {
-        if (first_faults_.size() < kMaxFaults)
-            first_faults_.push_back(
-                fmt::format("{} to {}: {}", formatDuration(tb.toNsF(double(e.start))),
-                            formatDuration(tb.toNsF(double(e.end))), e.summary));
+        if (first_faults_.size() < kMaxFaults) first_faults_.push_back(spanLine(e, tb));
         ++faults_;
     } else if (e.type == "samples_dropped") {
-        if (first_gaps_.size() < kMaxFaults)
-            first_gaps_.push_back(fmt::format("{} to {}: {}",
-                                              formatDuration(tb.toNsF(double(e.start))),
-                                              formatDuration(tb.toNsF(double(e.end))), e.summary));
+        if (first_gaps_.size() < kMaxFaults) first_gaps_.push_back(spanLine(e, tb));
         ++gaps_;
         if (const Value* n = e.get("samples"))
             dropped_samples_ += std::uint64_t(std::max<std::int64_t>(0, asInt(*n)));
@@ -120,18 +129,8 @@ std::string SignalSection::html() const {
         h += "</table>\n<p>Rise and fall times between 10 and 90 % of the swing.</p>\n";
     }
     if (!lines_.empty() || faults_) h += fmt::format("<p>Pair faults: {}</p>\n", faults_);
-    if (!first_faults_.empty()) {
-        h += "<ul>\n";
-        for (const auto& f : first_faults_)
-            h += fmt::format("<li>{}</li>\n", htmlEscape(f));
-        h += "</ul>\n";
-    }
-    if (gaps_) {
-        h += fmt::format("<p>{}</p>\n<ul>\n", htmlEscape(gapsHeading()));
-        for (const auto& g : first_gaps_)
-            h += fmt::format("<li>{}</li>\n", htmlEscape(g));
-        h += "</ul>\n";
-    }
+    h += htmlList(first_faults_);
+    if (gaps_) h += fmt::format("<p>{}</p>\n", htmlEscape(gapsHeading())) + htmlList(first_gaps_);
     return h;
 }
 
