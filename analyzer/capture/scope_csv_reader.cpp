@@ -3,6 +3,7 @@
 // one value per channel column; the logic analyser byte columns of a mixed-signal Rigol
 // are values whose bits are the lines.
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 
@@ -64,15 +65,17 @@ public:
     bool waiting() const override { return waiting_; }
 
 private:
-    // `may_stall`: a followed file that has no new row for kStallMs is `waiting()`.
+    // `may_stall`: a followed file that has no new row for kStall is `waiting()`.
     bool nextLine(std::string_view& line, bool may_stall = false) {
-        constexpr int kStallMs = 50;
+        constexpr auto kStall = std::chrono::milliseconds(50);
         waiting_ = false;
-        for (int waited = 0;; waited += 5) {
+        // A writer may add bytes without ending a row: the stall is timed, not counted.
+        const auto since = std::chrono::steady_clock::now();
+        for (;;) {
             const auto st = src_->nextLine(line);
             if (st == TextSource::Status::Line) return true;
             if (st == TextSource::Status::Eof || (opts_.stop && opts_.stop->load())) return false;
-            if (may_stall && waited >= kStallMs) {
+            if (may_stall && std::chrono::steady_clock::now() - since >= kStall) {
                 waiting_ = true;
                 return false;
             }
