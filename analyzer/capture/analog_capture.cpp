@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "analog_lines.h"
+#include "capture_events.h"
 #include "core/options.h"
 #include "differential_pairs.h"
 #include "signal_quality.h"
@@ -111,6 +112,9 @@ private:
             if (done_) l.watch->finish(end_tick_);
             addPairFindings(signals_[l.channel].name, *l.watch, block);
         }
+        for (auto& f : gap_findings_)
+            block.findings.push_back(std::move(f));
+        gap_findings_.clear();
         if (!done_) return;
         for (const auto& l : lines_) {
             if (l.bit >= 0) continue;
@@ -189,6 +193,7 @@ private:
 
     bool nextRow(double& t) {
         if (!src_->next(t, row_.data())) return false;
+        holdNoData();
         computePairs();
         // A value beyond float's range (or a pair's difference) would poison the levels.
         for (const float v : row_)
@@ -200,6 +205,31 @@ private:
         return true;
     }
 
+    // A sample of 9.9e37 (over range, or no data) is no voltage: each takes the value of
+    // the sample before it on its channel, so that it makes no edge and no overshoot;
+    // notes() counts them. Those before a channel's first voltage take that voltage
+    // (fillLeadingNoData()), or 0 V beyond the prefix.
+    void holdNoData() {
+        if (held_.empty()) held_.assign(src_->slots(), {});
+        for (std::size_t s = 0; s < held_.size(); ++s) {
+            Held& h = held_[s];
+            if (std::abs(row_[s]) > kNoDataVolts) {
+                row_[s] = h.value;
+                ++h.count;
+            } else {
+                h.value = row_[s];
+                if (!h.seen) h.leading = h.count;
+                h.seen = true;
+            }
+        }
+    }
+    void fillLeadingNoData() {
+        const std::size_t n = src_->slots();
+        for (std::size_t s = 0; s < held_.size(); ++s)
+            for (std::size_t r = 0; held_[s].seen && r < held_[s].leading; ++r)
+                prefix_v_[r * n + s] = prefix_v_[held_[s].leading * n + s];
+    }
+
     void readPrefix() {
         double t;
         while (prefix_t_.size() < kPrefixRows) {
@@ -209,10 +239,13 @@ private:
                 if (src_->waiting() && prefix_t_.size() < 2) continue;
                 break;
             }
+            if (const std::uint64_t k = src_->segmentBegun())
+                prefix_segments_.push_back({prefix_t_.size(), k});
             prefix_t_.push_back(t);
             prefix_v_.insert(prefix_v_.end(), row_.begin(),
                              row_.begin() + std::ptrdiff_t(src_->slots()));
         }
+        fillLeadingNoData();
     }
 
     void chooseTimebase() {
@@ -228,22 +261,34 @@ private:
     }
 
     void start();
+    const std::string& channelOfSlot(std::size_t slot) const {
+        for (const auto& c : channels_)
+            if (c.slot == slot && c.bit < 0) return c.name;
+        return channels_.front().name;
+    }
     SchmittSettings settingsFor(const Line& l, SchmittSettings s) const;
 
-    // The prefix first, then the rest.
+    // The prefix first, then the rest; segment_begun_ as SampleSource::segmentBegun().
     bool nextSample(double& t) {
+        segment_begun_ = 0;
         if (prefix_at_ < prefix_t_.size()) {
             t = prefix_t_[prefix_at_];
             const std::size_t n = src_->slots();
             std::memcpy(row_.data(), &prefix_v_[prefix_at_ * n], n * sizeof(float));
             computePairs();
+            if (!prefix_segments_.empty() && prefix_segments_.front().first == prefix_at_) {
+                segment_begun_ = prefix_segments_.front().second;
+                prefix_segments_.erase(prefix_segments_.begin());
+            }
             if (++prefix_at_ == prefix_t_.size()) {
                 prefix_t_ = {};
                 prefix_v_ = {};
             }
             return true;
         }
-        return nextRow(t);
+        if (!nextRow(t)) return false;
+        segment_begun_ = src_->segmentBegun();
+        return true;
     }
 
     Tick toTick(double t) const {
@@ -254,9 +299,10 @@ private:
     }
 
     void takeSample(double t_s, std::vector<Edge>& out) {
+        const double t = t_s * ticks_per_s_;
+        if (segment_begun_) startSegment(t);
         for (auto& l : lines_)
             if (l.bit < 0 && !l.learning) l.quality.feed(t_s, row_[l.slot]);
-        const double t = t_s * ticks_per_s_;
         end_tick_ = toTick(t);
         double bound = t;
         for (std::size_t i = 0; i < lines_.size(); ++i) {
@@ -283,6 +329,31 @@ private:
         }
         bound_ = std::max(Tick(std::floor(bound)), start_tick_);
         order_.release(bound_, out);
+    }
+
+    // The first sample of a sequence capture's next segment, after dead time that was not
+    // recorded: a gap finding, and each analog line starts afresh here, a level that
+    // changed in the gap an edge at this sample, with no crossing fitted through the gap.
+    void startSegment(double t) {
+        gap_findings_.push_back(segmentGapEvent(end_tick_, toTick(t), segment_begun_));
+        for (std::size_t i = 0; i < lines_.size(); ++i) {
+            Line& l = lines_[i];
+            if (l.bit >= 0 || l.learning) continue;
+            double et;
+            if (l.trigger.flushPending(et)) pushEdge(l, i, et);
+            l.quality.restart();
+            const std::uint8_t level = l.trigger.start(t, row_[l.slot]);
+            if (level != l.level) {
+                l.level = level;
+                pushEdge(l, i, t);
+            }
+            for (int w = 0; l.watch && w < 2; ++w) {
+                if (l.wire[w].flushPending(et)) l.watch->edge(toTick(et), w, l.wire[w].level());
+                const std::uint8_t wl = l.wire[w].level();
+                if (l.wire[w].start(t, row_[l.pair.slot[w]]) != wl)
+                    l.watch->edge(toTick(t), w, l.wire[w].level());
+            }
+        }
     }
 
     void pushEdge(Line& l, std::size_t i, double t) {
@@ -349,6 +420,16 @@ private:
     std::vector<double> prefix_t_;
     std::vector<float> prefix_v_;
     std::size_t prefix_at_ = 0;
+    std::vector<std::pair<std::size_t, std::uint64_t>> prefix_segments_;  // (row, segment)
+    std::uint64_t segment_begun_ = 0;
+    std::vector<Event> gap_findings_;  // segment gaps not yet handed out
+    struct Held {
+        float value = 0;
+        std::uint64_t count = 0;    // samples of 9.9e37 replaced
+        std::uint64_t leading = 0;  // of them, before the first voltage
+        bool seen = false;          // a voltage so far
+    };
+    std::vector<Held> held_;  // per slot: holdNoData()
     std::vector<Line> lines_;
     EdgeOrderer order_;
     Timebase tb_;
@@ -476,6 +557,14 @@ std::vector<std::string> AnalogReader::notes() const {
         if (l.watch)
             for (auto& n : pairFaultNotes(name, *l.watch, tb_))
                 out.push_back(std::move(n));
+        const bool pair = l.slot >= src_->slots();
+        for (const std::size_t slot :
+             pair ? std::vector{l.pair.slot[0], l.pair.slot[1]} : std::vector{l.slot})
+            if (slot < held_.size() && held_[slot].count)
+                out.push_back(fmt::format(
+                    "{}: {} samples of 9.9e37 (over range, or no data) each taken as the "
+                    "sample before",
+                    channelOfSlot(slot), held_[slot].count));
     }
     return out;
 }

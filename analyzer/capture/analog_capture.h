@@ -34,6 +34,9 @@ public:
     // The next row: its time in seconds and slots() values. False at the end. Throws
     // InputError naming the file and line.
     virtual bool next(double& t, float* values) = 0;
+    // After next(): the number (2, 3, ...) of the segment of a sequence capture that the
+    // row just read begins, after dead time the scope did not record; 0 for any other row.
+    virtual std::uint64_t segmentBegun() const { return 0; }
     // After next() returned false: true when that was no end but a followed file with no
     // new row for a while; next() may be called again.
     virtual bool waiting() const { return false; }

@@ -24,6 +24,9 @@ struct SchmittSettings {
     std::optional<std::pair<double, double>> levels;  // (low, high) volts, when the data showed two
 };
 
+// Scopes write an over-range or missing sample as 9.9e37: beyond this, a value is no voltage.
+inline constexpr double kNoDataVolts = 1e30;
+
 // What a line's first samples show: its trigger settings and its two main levels.
 struct LevelEstimate {
     // Threshold at the midpoint of the two levels, hysteresis a tenth of their swing. A
@@ -36,9 +39,8 @@ struct LevelEstimate {
 // The two main levels of a line from a histogram of its first samples.
 class LevelEstimator {
 public:
-    // Scopes write an over-range or missing sample as 9.9e37: no level.
     void add(double v) {
-        if (std::abs(v) <= 1e30) values_.push_back(float(v));
+        if (std::abs(v) <= kNoDataVolts) values_.push_back(float(v));
     }
     std::size_t size() const { return values_.size(); }
     LevelEstimate estimate() const;  // one histogram of the samples added
@@ -109,6 +111,15 @@ public:
             if (!inside) fit_ = {};
             return false;
         }
+        edge_t = fit_.crossing(thr_, fallback_t_);
+        pending_ = false;
+        fit_ = {};
+        return true;
+    }
+    // The edge whose window was still open, handed out now (false: none was): the samples
+    // that would have closed it were not recorded. start() then takes the next sample.
+    bool flushPending(double& edge_t) {
+        if (!pending_) return false;
         edge_t = fit_.crossing(thr_, fallback_t_);
         pending_ = false;
         fit_ = {};

@@ -29,6 +29,9 @@ const std::vector<EventTypeSpec>& captureEventTypes() {
         {"samples_dropped",
          "a live run's samples dropped because decoding fell behind the device",
          {{"samples", K::Int}}},
+        {"segment_gap",
+         "the dead time between two segments of a sequence capture, not recorded",
+         {{"segment", K::Int}}},
     };
     return types;
 }
@@ -42,6 +45,18 @@ Event samplesDroppedEvent(Tick first, Tick last, std::uint64_t samples) {
     e.add("samples", std::int64_t(samples));
     e.error("samples_dropped");
     e.summary = fmt::format("{} samples dropped: decoding fell behind the device", samples);
+    return e;
+}
+
+Event segmentGapEvent(Tick last_sample, Tick first_sample, std::uint64_t segment) {
+    Event e;
+    e.proto = "capture";
+    e.type = "segment_gap";
+    e.start = last_sample;
+    e.end = first_sample;
+    e.add("segment", std::int64_t(segment));
+    e.error("segment_gap");
+    e.summary = fmt::format("not recorded: the dead time before segment {}", segment);
     return e;
 }
 

@@ -9,12 +9,17 @@
 
 namespace busdecode {
 
-// "signal" (signal_quality.cpp), "pair_fault" (differential_pairs.cpp) and
-// "samples_dropped" (below).
+// "signal" (signal_quality.cpp), "pair_fault" (differential_pairs.cpp), "samples_dropped"
+// and "segment_gap" (below).
 const std::vector<EventTypeSpec>& captureEventTypes();
 
 // A live run's samples from `first` to `last`, `samples` of them, dropped because decoding
 // fell behind the device; the session marks every event reaching into them.
 Event samplesDroppedEvent(Tick first, Tick last, std::uint64_t samples);
+
+// The stretch from `last_sample` to `first_sample` that a sequence capture did not record,
+// before its segment number `segment` (2, 3, ...); the session marks every event reaching
+// into it.
+Event segmentGapEvent(Tick last_sample, Tick first_sample, std::uint64_t segment);
 
 }  // namespace busdecode

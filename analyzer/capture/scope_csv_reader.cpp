@@ -57,12 +57,14 @@ public:
 
     // Blank rows and rows whose every value is empty (Keysight's last) are skipped.
     bool next(double& t, float* values) override {
+        begun_ = 0;
         std::string_view line;
         while (nextLine(line, opts_.follow))
             if (parseRow(line, t, values)) return true;
         return false;
     }
     bool waiting() const override { return waiting_; }
+    std::uint64_t segmentBegun() const override { return begun_; }
 
 private:
     // `may_stall`: a followed file that has no new row for kStall is `waiting()`.
@@ -127,7 +129,9 @@ private:
 
     // The trigger time of the segment this data row belongs to.
     double segmentStart() {
-        const std::size_t k = rows_++ / lay_.segment_rows;
+        const std::uint64_t k = rows_ / lay_.segment_rows;
+        if (k > 0 && rows_ % lay_.segment_rows == 0) begun_ = k + 1;
+        ++rows_;
         if (k >= lay_.segment_starts.size())
             fail(fmt::format("more rows than {} segments of {}", lay_.segment_starts.size(),
                              lay_.segment_rows));
@@ -137,6 +141,7 @@ private:
     std::unique_ptr<TextSource> src_;
     ScopeLayout lay_;
     std::uint64_t rows_ = 0;
+    std::uint64_t begun_ = 0;  // segmentBegun()
     OpenOptions opts_;
     std::vector<AnalogChannel> channels_;
     std::vector<std::size_t> slot_field_;  // the field of each value slot

@@ -45,6 +45,11 @@ public:
         prev_v_ = v;
         have_ = true;
     }
+    // The next sample follows a stretch not recorded: no edge is measured across it.
+    void restart() {
+        have_ = false;
+        rise_from_ = fall_from_ = -1;
+    }
     // "low 0.02 V, high 3.28 V, swing 3.26 V, rise (10-90 %) median 41 ns p99 55 ns, ..."
     // with the trigger's count of reversals inside its band.
     std::string summary(std::uint64_t reversals) const;

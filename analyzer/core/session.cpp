@@ -214,7 +214,8 @@ struct Session::Impl : EventSink {
     }
 
     // A pair fault's span and the slots decoding from that pair, or a live run's dropped
-    // samples and every slot: their events reaching into it are marked with `error`.
+    // samples or a sequence capture's unrecorded dead time and every slot: their events
+    // reaching into it are marked with `error`.
     struct FaultSpan {
         Tick start, end;
         std::vector<int> slots;
@@ -230,6 +231,8 @@ struct Session::Impl : EventSink {
                 fault_spans.push_back({f.start, f.end, slotsOf(f), "pair_fault"});
             else if (f.type == "samples_dropped")
                 fault_spans.push_back({f.start, f.end, allSlots(), "samples_dropped"});
+            else if (f.type == "segment_gap")
+                fault_spans.push_back({f.start, f.end, allSlots(), "segment_gap"});
             f.instance = f.proto;
             insertPending(spare.adopt(std::move(f)), -1);
         }

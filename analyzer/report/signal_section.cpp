@@ -72,8 +72,15 @@ bool SignalSection::add(const Event& e, const Timebase& tb) {
         ++gaps_;
         if (const Value* n = e.get("samples"))
             dropped_samples_ += std::uint64_t(std::max<std::int64_t>(0, asInt(*n)));
+    } else if (e.type == "segment_gap") {
+        if (first_segment_gaps_.size() < kMaxFaults) first_segment_gaps_.push_back(spanLine(e, tb));
+        ++segment_gaps_;
     }
     return true;
+}
+
+std::string SignalSection::segmentGapsHeading() const {
+    return fmt::format("Not recorded (dead time between segments): {} gaps", segment_gaps_);
 }
 
 std::string SignalSection::gapsHeading() const {
@@ -109,6 +116,9 @@ std::string SignalSection::text() const {
     if (gaps_) out += "  " + gapsHeading() + "\n";
     for (const auto& g : first_gaps_)
         out += "    " + g + "\n";
+    if (segment_gaps_) out += "  " + segmentGapsHeading() + "\n";
+    for (const auto& g : first_segment_gaps_)
+        out += "    " + g + "\n";
     return out;
 }
 
@@ -131,6 +141,9 @@ std::string SignalSection::html() const {
     if (!lines_.empty() || faults_) h += fmt::format("<p>Pair faults: {}</p>\n", faults_);
     h += htmlList(first_faults_);
     if (gaps_) h += fmt::format("<p>{}</p>\n", htmlEscape(gapsHeading())) + htmlList(first_gaps_);
+    if (segment_gaps_)
+        h += fmt::format("<p>{}</p>\n", htmlEscape(segmentGapsHeading())) +
+             htmlList(first_segment_gaps_);
     return h;
 }
 

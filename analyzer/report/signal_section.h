@@ -1,7 +1,8 @@
 #pragma once
 // The reports' signal-quality section: a row per analog line from its `signal` event
-// (levels, swing, threshold, edge times, overshoot, reversals), the pair faults seen and
-// a live run's gaps of dropped samples, as text and as HTML. A logic capture read whole
+// (levels, swing, threshold, edge times, overshoot, reversals), the pair faults seen, a
+// live run's gaps of dropped samples and a sequence capture's dead times between its
+// segments, as text and as HTML. A logic capture read whole
 // has none of them: the section is then left out.
 #include <cstdint>
 #include <string>
@@ -19,7 +20,9 @@ public:
 
     // Takes the capture layer's events (proto "capture"); true if `e` was one.
     bool add(const Event& e, const Timebase& tb);
-    bool empty() const { return lines_.empty() && faults_ == 0 && gaps_ == 0; }
+    bool empty() const {
+        return lines_.empty() && faults_ == 0 && gaps_ == 0 && segment_gaps_ == 0;
+    }
     std::string text() const;
     std::string html() const;
 
@@ -32,6 +35,9 @@ private:
     std::uint64_t gaps_ = 0, dropped_samples_ = 0;
     std::vector<std::string> first_gaps_;  // "1.234 ms to 5.678 ms: 4096 samples dropped"
     std::string gapsHeading() const;
+    std::uint64_t segment_gaps_ = 0;
+    std::vector<std::string> first_segment_gaps_;  // "...: not recorded: ... segment 2"
+    std::string segmentGapsHeading() const;
 };
 
 }  // namespace busdecode

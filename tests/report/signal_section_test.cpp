@@ -1,6 +1,6 @@
 // The reports' signal section from the capture layer's events: a live run's gaps of
-// dropped samples are listed with their times, and a logic capture that has only those
-// counts no pair faults.
+// dropped samples and a sequence capture's dead times are listed with their times, and a
+// logic capture that has only those counts no pair faults.
 #include <gtest/gtest.h>
 
 #include "capture/capture_events.h"
@@ -32,6 +32,20 @@ TEST(SignalSection, LiveGapsAreListedWithTheirTimesAndCount) {
     EXPECT_NE(html.find("<li>4.000 ms to 4.100 ms: 100 samples dropped"), std::string::npos)
         << html;
     EXPECT_EQ(html.find("Pair faults"), std::string::npos) << html;
+}
+
+TEST(SignalSection, SegmentGapsAreListedWithTheirTimes) {
+    SignalSection s;
+    const Timebase ns{1, 1'000'000'000};
+    EXPECT_TRUE(s.add(segmentGapEvent(24'950, 1'000'000'000, 2), ns));
+    const std::string text = s.text();
+    EXPECT_NE(
+        text.find("  Not recorded (dead time between segments): 1 gaps\n"
+                  "    24.950 us to 1.000000 s: not recorded: the dead time before segment 2\n"),
+        std::string::npos)
+        << text;
+    EXPECT_NE(s.html().find("<li>24.950 us to 1.000000 s: not recorded"), std::string::npos)
+        << s.html();
 }
 
 }  // namespace

@@ -1,0 +1,130 @@
+// Stretches of a scope capture that hold no voltage, as decode reports them: Keysight's
+// 9.9E+37 samples (over range, or no data) and the dead time between the segments of a
+// LeCroy sequence capture. Neither makes an edge, a byte or an overshoot of its own.
+#include <gtest/gtest.h>
+
+#include <QJsonArray>
+#include <QJsonDocument>
+#include <QJsonObject>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "support/paths.h"
+
+using namespace busdecode::test;
+
+namespace {
+
+constexpr int kSamplesPerBit = 20;  // 1 Mbaud at 50 ns a sample
+
+// Levels (0 or 1) of an idle-high UART line: `idle` bits, then each byte as 8N1.
+std::vector<int> uartBits(int idle, const std::vector<int>& bytes) {
+    std::vector<int> bits(std::size_t(idle), 1);
+    for (const int b : bytes) {
+        bits.push_back(0);
+        for (int i = 0; i < 8; ++i)
+            bits.push_back(b >> i & 1);
+        bits.push_back(1);
+    }
+    return bits;
+}
+
+std::string volts(int level) {
+    return level ? "5.00000E+00" : "2.00000E-02";
+}
+
+std::vector<QJsonObject> jsonl(const std::string& out) {
+    std::vector<QJsonObject> events;
+    for (const auto& line : splitLines(out))
+        events.push_back(QJsonDocument::fromJson(QByteArray::fromStdString(line)).object());
+    return events;
+}
+
+std::string errorsOf(const QJsonObject& e) {
+    return QJsonDocument(e["errors"].toArray()).toJson(QJsonDocument::Compact).toStdString();
+}
+
+TEST(ScopeNoData, KeysightOverRangeSamplesMakeNoEdgeAndNoOvershoot) {
+    // Every 97th sample, the first among them, is 9.9E+37, on both levels.
+    const std::vector<int> bits = uartBits(3, {0x41, 0x5A, 0x00, 0xFF});
+    int changes = 0;
+    for (std::size_t i = 1; i < bits.size(); ++i)
+        changes += bits[i] != bits[i - 1];
+    std::string csv = "x-axis,1\nsecond,Volt\n";
+    for (std::size_t k = 0; k < (bits.size() + 3) * kSamplesPerBit; ++k) {
+        const int level = k / kSamplesPerBit < bits.size() ? bits[k / kSamplesPerBit] : 1;
+        csv += fmt::format("{:.8E},{}\n", double(k) * 50e-9,
+                           k % 97 == 0 ? "+9.900000E+37" : volts(level));
+    }
+    const std::string path = tempDir() + "/overrange.csv";
+    writeFile(path, csv);
+    const auto r = runDecode(
+        {path, "--proto", "uart", "--map", "tx=1", "--opt", "baud=1000000", "--format", "jsonl"});
+    ASSERT_EQ(r.status, 0) << r.err;
+    std::vector<int> values;
+    for (const auto& e : jsonl(r.out)) {
+        if (e["type"] == "byte") {
+            values.push_back(e["value"].toInt());
+            EXPECT_EQ(errorsOf(e), "[]") << values.size();
+        } else if (e["type"] == "signal") {
+            EXPECT_LT(e["overshoot_pct"].toDouble(), 1.0);
+            EXPECT_EQ(e["rises"].toInt() + e["falls"].toInt(), changes);
+        }
+    }
+    EXPECT_EQ(values, (std::vector<int>{0x41, 0x5A, 0x00, 0xFF}));
+    const std::size_t samples = (bits.size() + 3) * kSamplesPerBit;
+    EXPECT_NE(r.err.find(fmt::format("1: {} samples of 9.9e37 (over range, or no data) each "
+                                     "taken as the sample before",
+                                     (samples + 96) / 97)),
+              std::string::npos)
+        << r.err;
+}
+
+TEST(ScopeNoData, ALeCroySegmentGapIsAnEventAndMarksTheByteCutByIt) {
+    // Segment 1: 'A' and idle. Segment 2, a second later, starts inside a byte's low
+    // bits, then sends 'Z'. Each segment holds 500 samples.
+    const std::vector<int> one = uartBits(2, {0x41});
+    std::vector<int> two(4, 0);
+    for (const int b : uartBits(10, {0x5A}))
+        two.push_back(b);
+    std::string csv =
+        "LECROYWR204M,51184,Waveform\nSegments,2,SegmentSize,500\n"
+        "Segment,TrigTime,TimeSinceSegment1\n#1,22-Jan-2015 11:35:11,0\n"
+        "#2,22-Jan-2015 11:35:12,1.0\nTime,Ampl\n";
+    for (const auto& bits : {one, two})
+        for (std::size_t k = 0; k < 500; ++k) {
+            const std::size_t bit = k / kSamplesPerBit;
+            csv += fmt::format("{:e},{}\n", double(k) * 50e-9,
+                               volts(bit < bits.size() ? bits[bit] : 1));
+        }
+    const std::string path = tempDir() + "/sequence.csv";
+    writeFile(path, csv);
+    const auto r = runDecode({path, "--proto", "uart", "--map", "tx=Ampl", "--opt", "baud=1000000",
+                              "--format", "jsonl"});
+    ASSERT_EQ(r.status, 0) << r.err;
+    std::vector<std::string> seen;
+    for (const auto& e : jsonl(r.out)) {
+        const std::string type = e["type"].toString().toStdString();
+        if (type == "signal") {
+            // No fall measured across the gap (it would take the better part of a second).
+            EXPECT_LT(e["fall_p99_ns"].toDouble(), 100.0);
+            continue;
+        }
+        seen.push_back(fmt::format(
+            "{} {} {} {}", type, e["start_ns"].toInteger(),
+            type == "segment_gap" ? e["segment"].toInt() : e["value"].toInt(-1), errorsOf(e)));
+    }
+    // A falling edge is timed halfway between the samples around it: 25 ns before its bit.
+    const std::vector<std::string> want = {
+        "byte 1975 65 []",
+        "segment_gap 24950 2 [\"segment_gap\"]",
+        // The line was low when segment 2 began: what it carries was not all recorded.
+        "byte 1000000000 248 [\"segment_gap\"]",
+        fmt::format("byte {} 90 []", 1000000000 + (4 + 10) * 1000 - 25),
+    };
+    EXPECT_EQ(seen, want) << r.out;
+}
+
+}  // namespace
