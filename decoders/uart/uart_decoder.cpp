@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include "core/options.h"
 #include "core/registry.h"
 
 namespace busdecode {
@@ -45,6 +46,14 @@ void UartDecoder::start(const DecoderContext& ctx) {
         l.sampler.reset(l.level);
     }
     if (!auto_baud_) bit_ticks_ = tb().fromSeconds(1.0 / fmt_.baud);
+    // With fewer than two ticks a bit, no sample point lies inside each bit: every byte
+    // would come out wrong, with no fault to show it.
+    if (!auto_baud_ && bit_ticks_ < 2)
+        throw InputError(fmt::format(
+            "decoder uart: option baud={:g}: a bit lasts {:g} s, less than two ticks of the "
+            "capture's time base ({:g} s a tick): its bits cannot be told apart (capture with a "
+            "finer time base)",
+            fmt_.baud, 1.0 / fmt_.baud, tb().secondsPerTick()));
 }
 
 void UartDecoder::edge(Tick t, int role, bool level) {

@@ -297,6 +297,10 @@ INSTANTIATE_TEST_SUITE_P(
                  "decode: --report belongs to plain 'decode', not to 'decode verify'"},
         BadInput{{"verify", "@", "--format", "jsonl"},
                  "decode: --format belongs to plain 'decode', not to 'decode verify'"},
+        // A bit shorter than two ticks of the capture (1 ns): no sample point per bit.
+        BadInput{{"@", "--proto", "uart", "--opt", "baud=600000000"},
+                 "decoder uart: option baud=6e+08: a bit lasts 1.66667e-09 s, less than two "
+                 "ticks of the capture's time base (1e-09 s a tick)"},
         BadInput{{"@", "--proto", "spi", "--lcm", "nosuch://x"},
                  "--lcm: cannot open LCM URL 'nosuch://x': LCM provider \"nosuch\" not found"},
         BadInput{{"@", "--proto", "spi", "--lcm", "udpm://239.255.76.67:99999"},
@@ -328,7 +332,9 @@ TEST(Cli, TimesPastWhatNanosecondsHoldAreAnError) {
     const auto path = writeTemp("centuries.vcd",
                                 "$timescale 1 s $end\n$var wire 1 ! tx $end\n$enddefinitions $end\n"
                                 "#0 1!\n#5 0!\n#10000000000 1!\n");
-    auto r = runDecode({path, "--proto", "uart", "--format", "jsonl"});
+    // SPI: its bits are clocked, so a tick of 1 s does not stop it decoding.
+    auto r = runDecode(
+        {path, "--proto", "spi", "--map", "sclk=tx", "--map", "mosi=tx", "--format", "jsonl"});
     EXPECT_EQ(r.status, 2);
     EXPECT_EQ(countLines(r.err), 1) << r.err;
     EXPECT_NE(r.err.find(path + ":6: time beyond 4611686018 ticks"), std::string::npos) << r.err;

@@ -28,8 +28,7 @@ TEST(FstCorruptBlocks, EachExitsTwoWithOneLineNamingFileAndBlock) {
     ASSERT_GE(files.size(), 3u);
     for (const std::string& f : files) {
         SCOPED_TRACE(f);
-        const std::string err =
-            oneLineFailure({"--proto", "uart", "--map", "rx=top.clk", "--opt", "baud=1", f});
+        const std::string err = oneLineFailure({"--proto", "ssi", "--map", "clk=top.clk", f});
         EXPECT_EQ(err.rfind("decode: " + f + ": FST block ", 0), 0u) << err;
     }
 }
@@ -37,16 +36,14 @@ TEST(FstCorruptBlocks, EachExitsTwoWithOneLineNamingFileAndBlock) {
 TEST(FstCorruptBlocks, TheInvalidFreeIsInTheBlockItCorrupts) {
     const std::string f =
         (fs::path(ROBUSTNESS_REGRESSIONS_DIR) / "fst" / "invalid_free_chain_table").string();
-    const std::string err =
-        oneLineFailure({"--proto", "uart", "--map", "rx=top.clk", "--opt", "baud=1", f});
+    const std::string err = oneLineFailure({"--proto", "ssi", "--map", "clk=top.clk", f});
     EXPECT_EQ(err.rfind("decode: " + f + ": FST block 1 at byte 330: ", 0), 0u) << err;
 }
 
 TEST(FstCorruptBlocks, TheHeapCorruptionEndsOnlyFstapisProcess) {
     const std::string f =
         (fs::path(ROBUSTNESS_REGRESSIONS_DIR) / "fst" / "invalid_free_chain_table").string();
-    const std::string err =
-        oneLineFailure({"--proto", "uart", "--map", "rx=top.clk", "--opt", "baud=1", f});
+    const std::string err = oneLineFailure({"--proto", "ssi", "--map", "clk=top.clk", f});
     EXPECT_NE(err.find("fstapi failed unpacking it ("), std::string::npos) << err;
 }
 
