@@ -252,6 +252,9 @@ void checkOptionValues(const QCommandLineParser& p, bool verify) {
                 name, verify ? "verdicts" : "events"));
     for (const auto& capture : p.positionalArguments())
         if (capture.isEmpty()) throw InputError("a capture's name is empty (\"\")");
+    // The second would find standard input already read to its end.
+    if (p.positionalArguments().count("-") > 1)
+        throw InputError("standard input (-) is given as a capture twice: it can be read once");
     if (p.isSet("shard") && p.value("shard").isEmpty())  // an unset $SLURM_ARRAY_TASK_ID
         throw InputError("--shard: expected K/N (e.g. 2/8), got nothing");
     for (const char* name : {"device", "samplerate", "channels", "samples", "time"})

@@ -86,6 +86,9 @@ BisscSettings BisscSettings::from(const Options& o) {
     s.bits = int(o.integer("bits"));
     s.mt_bits = int(o.integer("mt_bits"));
     s.st_bits = o.isAuto("st_bits") ? std::max(0, s.bits - s.mt_bits) : int(o.integer("st_bits"));
+    if (s.mt_bits > s.bits)  // st_bits=auto would be negative: name only what was given
+        throw InputError(
+            fmt::format("decoder bissc: mt_bits ({}) exceeds bits ({})", s.mt_bits, s.bits));
     if (s.st_bits + s.mt_bits > s.bits)
         throw InputError(fmt::format("decoder bissc: st_bits ({}) + mt_bits ({}) exceed bits ({})",
                                      s.st_bits, s.mt_bits, s.bits));
