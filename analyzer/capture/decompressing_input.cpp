@@ -105,6 +105,26 @@ private:
     bool member_done_ = false;
 };
 
+// liblzma has no message for its codes: these are what its documentation says of them.
+std::string lzmaErrorText(lzma_ret rc) {
+    switch (rc) {
+        case LZMA_MEM_ERROR:
+            return "out of memory";
+        case LZMA_MEMLIMIT_ERROR:
+            return "memory limit reached";
+        case LZMA_FORMAT_ERROR:
+            return "not in the xz format";
+        case LZMA_OPTIONS_ERROR:
+            return "unsupported compression options";
+        case LZMA_DATA_ERROR:
+            return "compressed data is corrupt";
+        case LZMA_UNSUPPORTED_CHECK:
+            return "unsupported integrity check";
+        default:
+            return fmt::format("liblzma error {}", int(rc));
+    }
+}
+
 class XzCodec : public Codec {
 public:
     XzCodec() {
@@ -135,7 +155,7 @@ private:
         else if (rc == LZMA_BUF_ERROR && action == LZMA_FINISH)
             ended_ = false;  // truncated: finish() says so
         else if (rc != LZMA_OK && rc != LZMA_BUF_ERROR)
-            throw StreamError{fmt::format("corrupt xz stream (liblzma error {})", int(rc))};
+            throw StreamError{fmt::format("corrupt xz stream ({})", lzmaErrorText(rc))};
         return cap - s_.avail_out;
     }
     lzma_stream s_ = LZMA_STREAM_INIT;
@@ -152,10 +172,10 @@ public:
         ZSTD_inBuffer ib{in.data(), in.size(), 0};
         ZSTD_outBuffer ob{out, cap, 0};
         const std::size_t rc = ZSTD_decompressStream(d_, &ob, &ib);
+        in.remove_prefix(ib.pos);
         if (ZSTD_isError(rc))
             throw StreamError{fmt::format("corrupt zstd stream ({})", ZSTD_getErrorName(rc))};
         frame_done_ = rc == 0;
-        in.remove_prefix(ib.pos);
         return ob.pos;
     }
     std::size_t finish(char*, std::size_t, bool& whole) override {
@@ -299,8 +319,13 @@ void DecompressingInput::decompress() {
     for (std::string_view in = take(); !in.empty(); in = take()) {
         std::size_t n;
         do {
-            at_ = raw_read_.load(std::memory_order_relaxed) - in.size();
-            n = codec->run(in, out.data(), out.size());
+            try {
+                n = codec->run(in, out.data(), out.size());
+            } catch (const StreamError&) {
+                // A codec takes its input up to where it found the fault: that is where.
+                at_ = raw_read_.load(std::memory_order_relaxed) - in.size();
+                throw;
+            }
             if (!put(out.data(), n)) return;
         } while (!in.empty() || n == out.size());
     }
