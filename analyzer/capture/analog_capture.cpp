@@ -541,6 +541,10 @@ std::vector<std::string> AnalogReader::notes() const {
     for (const auto& l : lines_) {
         if (l.bit >= 0) continue;
         const std::string& name = signals_[l.channel].name;
+        if (!(l.trigger.minSeen() <= l.trigger.maxSeen())) {  // not one sample: no levels
+            out.push_back(fmt::format("{}: the capture holds no samples", name));
+            continue;
+        }
         const SchmittSettings& s = l.settings;
         std::string how = s.flat        ? "one level only in its first samples: a guess"
                           : s.from_data ? fmt::format("from the data{}: levels {} and {}",

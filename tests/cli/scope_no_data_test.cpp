@@ -1,6 +1,7 @@
 // Stretches of a scope capture that hold no voltage, as decode reports them: Keysight's
-// 9.9E+37 samples (over range, or no data) and the dead time between the segments of a
-// LeCroy sequence capture. Neither makes an edge, a byte or an overshoot of its own.
+// 9.9E+37 samples (over range, or no data), the dead time between the segments of a
+// LeCroy sequence capture, and a file with no samples at all. None makes an edge, a byte
+// or an overshoot of its own.
 #include <gtest/gtest.h>
 
 #include <QJsonArray>
@@ -125,6 +126,15 @@ TEST(ScopeNoData, ALeCroySegmentGapIsAnEventAndMarksTheByteCutByIt) {
         fmt::format("byte {} 90 []", 1000000000 + (4 + 10) * 1000 - 25),
     };
     EXPECT_EQ(seen, want) << r.out;
+}
+
+TEST(ScopeNoData, AFileOfHeadersAloneSaysItHoldsNoSamples) {
+    const std::string path = tempDir() + "/headers.csv";
+    writeFile(path, "X,CH1,Start,Increment,\nSequence,Volt,0.000000e+00,2.000000e-08\n");
+    const auto r = runDecode({path, "--proto", "uart", "--map", "tx=CH1"});
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.out.find("# hint: CH1: the capture holds no samples"), std::string::npos) << r.out;
+    EXPECT_EQ(r.out.find("threshold"), std::string::npos) << r.out;
 }
 
 }  // namespace
