@@ -32,6 +32,7 @@ const std::vector<EventTypeSpec>& captureEventTypes() {
         {"segment_gap",
          "the dead time between two segments of a sequence capture, not recorded",
          {{"segment", K::Int}}},
+        {"no_data", "a stretch where the capture holds no data for a line", {{"line", K::Text}}},
     };
     return types;
 }
@@ -57,6 +58,18 @@ Event segmentGapEvent(Tick last_sample, Tick first_sample, std::uint64_t segment
     e.add("segment", std::int64_t(segment));
     e.error("segment_gap");
     e.summary = fmt::format("not recorded: the dead time before segment {}", segment);
+    return e;
+}
+
+Event noDataEvent(Tick from, Tick to, const std::string& line) {
+    Event e;
+    e.proto = "capture";
+    e.type = "no_data";
+    e.start = from;
+    e.end = to;
+    e.add("line", line);
+    e.error("no_data");
+    e.summary = fmt::format("{}: no data in the capture", line);
     return e;
 }
 

@@ -9,8 +9,8 @@
 
 namespace busdecode {
 
-// "signal" (signal_quality.cpp), "pair_fault" (differential_pairs.cpp), "samples_dropped"
-// and "segment_gap" (below).
+// "signal" (signal_quality.cpp), "pair_fault" (differential_pairs.cpp), "samples_dropped",
+// "segment_gap" and "no_data" (below).
 const std::vector<EventTypeSpec>& captureEventTypes();
 
 // A live run's samples from `first` to `last`, `samples` of them, dropped because decoding
@@ -21,5 +21,10 @@ Event samplesDroppedEvent(Tick first, Tick last, std::uint64_t samples);
 // before its segment number `segment` (2, 3, ...); the session marks every event reaching
 // into it.
 Event segmentGapEvent(Tick last_sample, Tick first_sample, std::uint64_t segment);
+
+// A stretch from `from` to `to` where the capture holds no data for `line` (a signal's full
+// name; a Saleae CSV's `X`); the session marks every event of a decoder reading that line
+// that reaches into it.
+Event noDataEvent(Tick from, Tick to, const std::string& line);
 
 }  // namespace busdecode

@@ -24,6 +24,7 @@
 
 #include <fmt/format.h>
 
+#include "capture_events.h"
 #include "core/options.h"
 #include "core/own_cache_lines.h"
 #include "core/sample_rate.h"
@@ -169,6 +170,8 @@ public:
             sel_.push_back(std::size_t(lines[i].signal) + first_col_);
         }
         level_.assign(sel_.size(), 1);
+        no_data_from_.assign(sel_.size(), kNoTick);
+        x_in_row_.assign(sel_.size(), 0);
     }
 
     std::vector<std::uint8_t> initialLevels() override {
@@ -185,19 +188,21 @@ public:
         for (;;) {
             if (block.edges.size() + sel_.size() > kEdgeBlockSize) {
                 block.known_until = cur_;
-                return true;
+                return handNoData(block), true;
             }
             std::string_view line;
             auto st = nextRow(line);
             if (st == TextSource::Status::Eof) {
                 done_ = true;
                 block.known_until = cur_;
-                return !block.edges.empty();
+                if (open_no_data_) closeNoData(cur_, true);
+                handNoData(block);
+                return !block.edges.empty() || !block.findings.empty();
             }
             if (st == TextSource::Status::NoData) {
                 if (!block.edges.empty() || ++idle_rounds > 20) {
                     block.known_until = cur_;
-                    return true;
+                    return handNoData(block), true;
                 }
                 src_->waitForData(5);
                 continue;
@@ -540,10 +545,15 @@ private:
         } else {
             t = Tick(rows_);
         }
-        for (const std::size_t col : sel_) {
+        for (std::size_t i = 0; i < sel_.size(); ++i) {
+            const std::size_t col = sel_[i];
             std::string_view v = fields_[col];
+            if (v == "X") {  // no data (Saleae's 2025 export): the level stays
+                openNoData(i, t);
+                continue;
+            }
             if (v.size() != 1 || (v[0] != '0' && v[0] != '1'))
-                fail(fmt::format("expected 0 or 1 in column '{}', found '{}'",
+                fail(fmt::format("expected 0 or 1 (or X: no data) in column '{}', found '{}'",
                                  signals_[col - first_col_].full_name, printable(v)));
             col_level_[col] = std::uint8_t(v[0] - '0');
         }
@@ -631,6 +641,8 @@ private:
     // A row whose values are in col_level_: its time, and an edge per selected line that
     // changed.
     void takeRow(Tick t, EdgeBlock* block) {
+        if (open_no_data_) [[unlikely]]
+            closeNoData(t, false);
         cur_ = t;
         ++rows_;
         const std::uint8_t* const vals = col_level_.data();
@@ -642,6 +654,38 @@ private:
             }
         }
     }
+    // Line i's `X` (no data) at t: a `no_data` stretch opens, closed by its next value.
+    void openNoData(std::size_t i, Tick t) {
+        x_in_row_[i] = 1;
+        if (no_data_from_[i] != kNoTick) return;
+        no_data_from_[i] = t;
+        ++open_no_data_;
+    }
+    // The stretches of no data that end at t, where their lines have values again (all
+    // of them: the capture ends).
+    void closeNoData(Tick t, bool all) {
+        for (std::size_t i = 0; i < sel_.size(); ++i) {
+            if (no_data_from_[i] != kNoTick && (all || !x_in_row_[i])) {
+                no_data_.push_back(
+                    noDataEvent(no_data_from_[i], t, signals_[sel_[i] - first_col_].full_name));
+                no_data_from_[i] = kNoTick;
+                --open_no_data_;
+            }
+            x_in_row_[i] = 0;
+        }
+    }
+    // The stretches closed so far, and the start of the earliest still open (the session
+    // holds later events back until it closes).
+    void handNoData(EdgeBlock& block) {
+        for (auto& e : no_data_)
+            block.findings.push_back(std::move(e));
+        no_data_.clear();
+        for (std::size_t i = 0; open_no_data_ && i < sel_.size(); ++i)
+            if (no_data_from_[i] != kNoTick &&
+                (block.findings_from == kNoTick || no_data_from_[i] < block.findings_from))
+                block.findings_from = no_data_from_[i];
+    }
+
     // The time of the previous row as written, for "time going backwards": the general
     // path keeps its text in prev_time_; plainTimedRow() keeps its parts, from which its
     // text is made again only for the message (no copy of the text per row).
@@ -688,6 +732,12 @@ private:
     std::uint64_t rows_ = 0;
     Tick start_ = 0, cur_ = 0;
     bool started_ = false, done_ = false;
+    // Stretches of `X` (no data): where each selected line's began (kNoTick: none open),
+    // whether the row being read has X there, how many are open, those closed.
+    std::vector<Tick> no_data_from_;
+    std::vector<std::uint8_t> x_in_row_;
+    std::size_t open_no_data_ = 0;
+    std::vector<Event> no_data_;
 };
 
 }  // namespace

@@ -213,13 +213,14 @@ struct Session::Impl : EventSink {
         pending_slot.insert(pending_slot.begin() + at, slot);
     }
 
-    // A pair fault's span and the slots decoding from that pair, or a live run's dropped
-    // samples or a sequence capture's unrecorded dead time and every slot: their events
-    // reaching into it are marked with `error`.
+    // A pair fault's or a line's no-data span and the slots decoding from that signal, or
+    // a live run's dropped samples or a sequence capture's unrecorded dead time and every
+    // slot: their events reaching into it are marked with `error`.
     struct FaultSpan {
         Tick start, end;
         std::vector<int> slots;
         const char* error;
+        std::string signal;  // the one signal it is about; "": every line of the slots
     };
     std::deque<FaultSpan> fault_spans;
     Tick findings_from = kNoTick;
@@ -228,7 +229,11 @@ struct Session::Impl : EventSink {
         findings_from = block.findings_from;
         for (Event& f : block.findings) {
             if (f.type == "pair_fault")
-                fault_spans.push_back({f.start, f.end, slotsOf(f), "pair_fault"});
+                fault_spans.push_back(
+                    {f.start, f.end, slotsOf(f, "pair"), "pair_fault", textOf(f, "pair")});
+            else if (f.type == "no_data")
+                fault_spans.push_back(
+                    {f.start, f.end, slotsOf(f, "line"), "no_data", textOf(f, "line")});
             else if (f.type == "samples_dropped")
                 fault_spans.push_back({f.start, f.end, allSlots(), "samples_dropped"});
             else if (f.type == "segment_gap")
@@ -238,15 +243,30 @@ struct Session::Impl : EventSink {
         }
         block.findings.clear();
     }
-    std::vector<int> slotsOf(const Event& fault) const {
+    // The slots decoding from the signal that the finding's field `key` names.
+    std::vector<int> slotsOf(const Event& fault, const char* key) const {
         std::vector<int> out;
-        const Value* pair = fault.get("pair");
+        const Value* signal = fault.get(key);
         for (const auto& b : facts->bindings)
             for (int s = 0; s < int(slots.size()); ++s)
-                if (pair && slots[s].instance == b.instance &&
-                    std::get<std::string>(*pair) == b.signal)
+                if (signal && slots[s].instance == b.instance &&
+                    std::get<std::string>(*signal) == b.signal)
                     out.push_back(s);
         return out;
+    }
+    static std::string textOf(const Event& e, const char* key) {
+        const Value* v = e.get(key);
+        const auto* text = v ? std::get_if<std::string>(v) : nullptr;
+        return text ? *text : std::string();
+    }
+    // False when the event names its line (field `line`: a role, as UART's bytes do) and
+    // that role of the slot's decoder reads another signal than `signal`.
+    bool mayReadFrom(const Event& e, int slot, const std::string& signal) const {
+        const std::string role = textOf(e, "line");
+        if (role.empty()) return true;
+        for (const auto& b : facts->bindings)
+            if (b.instance == slots[slot].instance && b.role == role) return b.signal == signal;
+        return true;
     }
     std::vector<int> allSlots() const {
         std::vector<int> out(slots.size());
@@ -259,7 +279,8 @@ struct Session::Impl : EventSink {
             fault_spans.pop_front();
         for (const auto& f : fault_spans)
             if (f.start <= e.end && e.start <= f.end &&
-                std::find(f.slots.begin(), f.slots.end(), slot) != f.slots.end())
+                std::find(f.slots.begin(), f.slots.end(), slot) != f.slots.end() &&
+                (f.signal.empty() || mayReadFrom(e, slot, f.signal)))
                 e.error(f.error);
     }
 

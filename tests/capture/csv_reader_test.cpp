@@ -198,16 +198,17 @@ TEST(CsvReaderErrors, Messages) {
     check("nan.csv", "Time [s],A\n0,1\nabc,0\n", ":3: expected a time in seconds, found 'abc'");
     check("dup.csv", "; comment\nTime [s],A,B,A\n0,1,1,1\n", ":2: duplicate column name 'A'");
     check("back.csv", "Time [s],A\n0.5,1\n0.25,0\n", ":3: time going backwards (0.25 after 0.5)");
-    check("value.csv", "A,B\n0,1\n1,x\n", ":3: expected 0 or 1 in column 'B', found 'x'");
+    check("value.csv", "A,B\n0,1\n1,x\n",
+          ":3: expected 0 or 1 (or X: no data) in column 'B', found 'x'");
     // after repeated rows, which are counted without being returned one by one
     check("repeats.csv", "A,B\n0,1\n0,1\n0,1\n0,1\n0,1\n0,1\n0,1\n0,1\n0,1\n1,x\n",
-          ":11: expected 0 or 1 in column 'B', found 'x'");
+          ":11: expected 0 or 1 (or X: no data) in column 'B', found 'x'");
     check("repeats_crlf.csv", "A,B\r\n0,1\r\n0,1\r\n0,1\r\n0,1\r\n0,1\r\n0,1\r\n1,x\r\n",
-          ":8: expected 0 or 1 in column 'B', found 'x'");
+          ":8: expected 0 or 1 (or X: no data) in column 'B', found 'x'");
     check("repeats_long.csv",
           "A,B,C,D,E\n0,1,0,1,0\n0,1,0,1,0\n0,1,0,1,0\n0,1,0,1,0\n0,1,0,1,0\n0,1,0,1,0\n"
           "0,1,0,1,0\n0,1,0,1,0\n0,1,0,1,0\n0,1,0,1,0\n1,x,0,1,0\n",
-          ":12: expected 0 or 1 in column 'B', found 'x'");
+          ":12: expected 0 or 1 (or X: no data) in column 'B', found 'x'");
     check("unit.csv", "Time [s],A\n0,1\n5 parsecs,0\n",
           ":3: expected a time in seconds, found '5 parsecs'");
     check("nohdr.csv", "; only a comment\n", ": no CSV header (only comment lines)");

@@ -1,12 +1,14 @@
-// Stretches of a scope capture that hold no voltage, as decode reports them: Keysight's
-// 9.9E+37 samples (over range, or no data), the dead time between the segments of a
-// LeCroy sequence capture, and a file with no samples at all. None makes an edge, a byte
-// or an overshoot of its own.
+// Stretches of a capture that hold no data, as decode reports them: Keysight's 9.9E+37
+// samples (over range, or no data), the dead time between the segments of a LeCroy
+// sequence capture, a scope file with no samples at all, and a Saleae CSV's `X` cells.
+// None makes an edge, a byte or an overshoot of its own, and what reaches into them is
+// marked.
 #include <gtest/gtest.h>
 
 #include <QJsonArray>
 #include <QJsonDocument>
 #include <QJsonObject>
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -47,7 +49,7 @@ std::string errorsOf(const QJsonObject& e) {
     return QJsonDocument(e["errors"].toArray()).toJson(QJsonDocument::Compact).toStdString();
 }
 
-TEST(ScopeNoData, KeysightOverRangeSamplesMakeNoEdgeAndNoOvershoot) {
+TEST(NoData, KeysightOverRangeSamplesMakeNoEdgeAndNoOvershoot) {
     // Every 97th sample, the first among them, is 9.9E+37, on both levels.
     const std::vector<int> bits = uartBits(3, {0x41, 0x5A, 0x00, 0xFF});
     int changes = 0;
@@ -83,7 +85,7 @@ TEST(ScopeNoData, KeysightOverRangeSamplesMakeNoEdgeAndNoOvershoot) {
         << r.err;
 }
 
-TEST(ScopeNoData, ALeCroySegmentGapIsAnEventAndMarksTheByteCutByIt) {
+TEST(NoData, ALeCroySegmentGapIsAnEventAndMarksTheByteCutByIt) {
     // Segment 1: 'A' and idle. Segment 2, a second later, starts inside a byte's low
     // bits, then sends 'Z'. Each segment holds 500 samples.
     const std::vector<int> one = uartBits(2, {0x41});
@@ -128,13 +130,46 @@ TEST(ScopeNoData, ALeCroySegmentGapIsAnEventAndMarksTheByteCutByIt) {
     EXPECT_EQ(seen, want) << r.out;
 }
 
-TEST(ScopeNoData, AFileOfHeadersAloneSaysItHoldsNoSamples) {
+TEST(NoData, AFileOfHeadersAloneSaysItHoldsNoSamples) {
     const std::string path = tempDir() + "/headers.csv";
     writeFile(path, "X,CH1,Start,Increment,\nSequence,Volt,0.000000e+00,2.000000e-08\n");
     const auto r = runDecode({path, "--proto", "uart", "--map", "tx=CH1"});
     ASSERT_EQ(r.status, 0) << r.err;
     EXPECT_NE(r.out.find("# hint: CH1: the capture holds no samples"), std::string::npos) << r.out;
     EXPECT_EQ(r.out.find("threshold"), std::string::npos) << r.out;
+}
+
+TEST(NoData, ASaleaeXStretchIsAnEventAndMarksTheByteOnItsLineOnly) {
+    // rx and tx each send 0x55 and 0x0F at 100 kbaud; tx has no data through the middle of
+    // its first byte.
+    std::string csv = "Time [s],rx,tx\n";
+    std::vector<std::pair<double, std::string>> rows;  // (us, "rx,tx")
+    const std::vector<int> bits = uartBits(1, {0x55, 0x0F});
+    int rx = 1, tx = 1;
+    for (std::size_t b = 0; b < bits.size(); ++b) {
+        const double us = double(b) * 10;
+        rx = tx = bits[b];
+        const std::string txt = us >= 25 && us < 55 ? "X" : std::to_string(tx);
+        csv += fmt::format("{:.9f},{},{}\n", us * 1e-6, rx, txt);
+    }
+    csv += fmt::format("{:.9f},1,1\n", double(bits.size()) * 10e-6);
+    const std::string path = tempDir() + "/saleae_x.csv";
+    writeFile(path, csv);
+    const auto r =
+        runDecode({path, "--proto", "uart", "--opt", "baud=100000", "--format", "jsonl"});
+    ASSERT_EQ(r.status, 0) << r.err;
+    std::vector<std::string> seen;
+    for (const auto& e : jsonl(r.out))
+        seen.push_back(fmt::format("{} {} {} {}", e["type"].toString().toStdString(),
+                                   e["start_ns"].toInteger(), e["line"].toString().toStdString(),
+                                   errorsOf(e)));
+    std::vector<std::string> want = {
+        "byte 10000 rx []",  "byte 10000 tx [\"no_data\"]", "no_data 30000 tx [\"no_data\"]",
+        "byte 110000 rx []", "byte 110000 tx []",
+    };
+    std::sort(seen.begin(), seen.end());  // rx and tx bytes start together
+    std::sort(want.begin(), want.end());
+    EXPECT_EQ(seen, want) << r.out;
 }
 
 }  // namespace
