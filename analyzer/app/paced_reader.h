@@ -38,6 +38,7 @@ public:
     Tick endTick() const override { return in_->endTick(); }
     std::vector<std::string> notes() const override { return in_->notes(); }
     bool readsVoltages() const override { return in_->readsVoltages(); }
+    bool endsAtLastChange() const override { return in_->endsAtLastChange(); }
     std::uint64_t bytesRead() const override { return in_->bytesRead(); }
     std::uint64_t bytesTotal() const override { return in_->bytesTotal(); }
 

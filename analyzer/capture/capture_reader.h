@@ -72,6 +72,9 @@ public:
     virtual std::vector<std::string> notes() const { return {}; }
     // True for a reader of analog lines: --threshold and --hysteresis apply to it.
     virtual bool readsVoltages() const { return false; }
+    // True when the capture's end is only its last change: the file records changes but
+    // not where the acquisition stopped (a Saleae CSV).
+    virtual bool endsAtLastChange() const { return false; }
 };
 
 // For select(): more lines than an Edge can name is the caller's mistake (Session refuses

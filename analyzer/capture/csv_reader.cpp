@@ -224,6 +224,8 @@ public:
     std::uint64_t bytesRead() const override { return src_->bytesRead(); }
     std::uint64_t bytesTotal() const override { return src_->bytesTotal(); }
     bool changesOnly() const override { return true; }  // row() compares with level_
+    // Saleae writes a row per change and none where the capture stopped.
+    bool endsAtLastChange() const override { return format_ == "saleae-csv"; }
 
 private:
     [[noreturn]] void fail(const std::string& what) const {

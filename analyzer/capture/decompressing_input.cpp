@@ -368,6 +368,7 @@ public:
     bool changesOnly() const override { return inner_->changesOnly(); }
     std::vector<std::string> notes() const override { return inner_->notes(); }
     bool readsVoltages() const override { return inner_->readsVoltages(); }
+    bool endsAtLastChange() const override { return inner_->endsAtLastChange(); }
     bool readsAhead() const override { return inner_->readsAhead(); }
 
 private:

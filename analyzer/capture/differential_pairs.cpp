@@ -177,6 +177,7 @@ public:
     bool next(EdgeBlock& block) override;
     std::vector<std::string> notes() const override;
     bool readsVoltages() const override { return in_->readsVoltages(); }
+    bool endsAtLastChange() const override { return in_->endsAtLastChange(); }
 
 private:
     struct Pair {

@@ -73,6 +73,7 @@ public:
     // Valid once next() has returned false (the worker has finished by then).
     std::vector<std::string> notes() const override { return in_->notes(); }
     bool readsVoltages() const override { return in_->readsVoltages(); }
+    bool endsAtLastChange() const override { return in_->endsAtLastChange(); }
     Tick endTick() const override { return in_->endTick(); }
     std::uint64_t bytesRead() const override { return bytes_read_.load(std::memory_order_relaxed); }
     std::uint64_t bytesTotal() const override { return in_->bytesTotal(); }

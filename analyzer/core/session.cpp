@@ -224,6 +224,9 @@ struct Session::Impl : EventSink {
     };
     std::deque<FaultSpan> fault_spans;
     Tick findings_from = kNoTick;
+    // Set at the capture's end: a decoded event cut by it (short_frame) was seen.
+    Tick cut_from = std::numeric_limits<Tick>::max();
+    bool cut_at_end = false;
 
     void takeFindings(EdgeBlock& block) {
         findings_from = block.findings_from;
@@ -302,6 +305,7 @@ struct Session::Impl : EventSink {
             window.setPending(nullptr);
         }
         if (slot >= 0 && !fault_spans.empty()) markFaultSpans(*e, slot);
+        if (slot >= 0 && e->end >= cut_from && e->hasError("short_frame")) cut_at_end = true;
         for (auto* s : *sinks)
             s->onEvent(*e, *facts);
         if (keep_window && slot >= 0) {
@@ -707,6 +711,7 @@ void Session::finishDecoders() {
         slot.decoder->advance(facts_.end);
         slot.decoder->finish(facts_.end);
     }
+    im.cut_from = facts_.end;
     im.release(true);
     facts_.advice.clear();
     for (const auto& slot : im.slots)
@@ -714,6 +719,11 @@ void Session::finishDecoders() {
             facts_.advice.push_back(slot.instance + ": " + a);
     for (const auto& note : im.reader->notes())
         facts_.advice.push_back(note);
+    if (im.cut_at_end && im.reader->endsAtLastChange())
+        facts_.advice.push_back(fmt::format(
+            "the last frame is cut by the capture's end (short_frame), but a {} records no end: "
+            "it ends at its last change, and the traffic may have gone on past it",
+            im.reader->formatName()));
     facts_.advice.insert(facts_.advice.end(), notes_.begin(), notes_.end());
 }
 

@@ -1,8 +1,8 @@
 // Stretches of a capture that hold no data, as decode reports them: Keysight's 9.9E+37
 // samples (over range, or no data), the dead time between the segments of a LeCroy
-// sequence capture, a scope file with no samples at all, and a Saleae CSV's `X` cells.
-// None makes an edge, a byte or an overshoot of its own, and what reaches into them is
-// marked.
+// sequence capture, a scope file with no samples at all, a Saleae CSV's `X` cells, and
+// what follows a Saleae CSV's last change. None makes an edge, a byte or an overshoot of
+// its own, and what reaches into them is marked or named.
 #include <gtest/gtest.h>
 
 #include <QJsonArray>
@@ -170,6 +170,30 @@ TEST(NoData, ASaleaeXStretchIsAnEventAndMarksTheByteOnItsLineOnly) {
     std::sort(seen.begin(), seen.end());  // rx and tx bytes start together
     std::sort(want.begin(), want.end());
     EXPECT_EQ(seen, want) << r.out;
+}
+
+TEST(NoData, ASaleaeCsvEndingAtAStopBitsEdgeSaysTheFrameMayHaveGoneOn) {
+    // 0x0D at 100 kbaud: its last data bit is 0, so the last change is the stop bit's rise.
+    std::string csv = "Time [s],tx\n0.000000000,1\n";
+    const std::vector<int> bits = uartBits(1, {0x0D});
+    for (std::size_t b = 1; b + 1 < bits.size(); ++b)
+        if (bits[b] != bits[b - 1]) csv += fmt::format("{:.9f},{}\n", double(b) * 10e-6, bits[b]);
+    csv += fmt::format("{:.9f},1\n", double(bits.size() - 1) * 10e-6);
+    const std::string path = tempDir() + "/saleae_end.csv";
+    writeFile(path, csv);
+    const std::string hint =
+        "the last frame is cut by the capture's end (short_frame), but a saleae-csv records "
+        "no end: it ends at its last change, and the traffic may have gone on past it";
+    auto r = runDecode({path, "--proto", "uart", "--opt", "baud=100000"});
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.out.find("!short_frame"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("# hint: " + hint), std::string::npos) << r.out;
+    // The same rows and one more, the idle line's last: the frame is whole, no hint.
+    writeFile(path, csv + fmt::format("{:.9f},1\n", double(bits.size() + 2) * 10e-6));
+    r = runDecode({path, "--proto", "uart", "--opt", "baud=100000"});
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(r.out.find("short_frame"), std::string::npos) << r.out;
+    EXPECT_EQ(r.out.find("records no end"), std::string::npos) << r.out;
 }
 
 }  // namespace
