@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include <fmt/format.h>
 
@@ -72,12 +73,14 @@ private:
         constexpr auto kStall = std::chrono::milliseconds(50);
         waiting_ = false;
         // A writer may add bytes without ending a row: the stall is timed, not counted.
-        const auto since = std::chrono::steady_clock::now();
+        // The clock is read only once a row is not there (not once a row).
+        std::optional<std::chrono::steady_clock::time_point> since;
         for (;;) {
             const auto st = src_->nextLine(line);
             if (st == TextSource::Status::Line) return true;
             if (st == TextSource::Status::Eof || (opts_.stop && opts_.stop->load())) return false;
-            if (may_stall && std::chrono::steady_clock::now() - since >= kStall) {
+            if (!since) since = std::chrono::steady_clock::now();
+            if (may_stall && std::chrono::steady_clock::now() - *since >= kStall) {
                 waiting_ = true;
                 return false;
             }
