@@ -119,9 +119,14 @@ SampleRate sampleRateOf(double hz) {
 }
 
 double rateArgument(const std::string& option, const std::string& text) {
-    const auto hz = parseNumber(text);
+    auto hz = parseNumber(text);
+    if (!hz) {  // with a unit, as --samplerate takes it ("1MHz", "24 MHz")
+        const SampleRate rate = parseSampleRate(text, true);
+        if (rate.timebase) hz = double(rate.timebase->den) / double(rate.timebase->num);
+    }
     if (!hz || *hz <= 0)
-        throw InputError(fmt::format("{} {}: expected a positive number of Hz", option, text));
+        throw InputError(fmt::format(
+            "{} {}: expected a positive number of Hz (like 24 MHz, 2.5 Hz or 1e6)", option, text));
     const SampleRate rate = sampleRateOf(*hz);
     if (!rate.timebase) throw InputError(fmt::format("{} {}: {}", option, text, rate.problem));
     return *hz;

@@ -25,8 +25,8 @@ SampleRate parseSampleRate(std::string_view text, bool units);
 // A rate already read as a number (--rate, rules): its shortest decimal form, exactly.
 SampleRate sampleRateOf(double hz);
 
-// `option TEXT` (--rate, or a rules key) as Hz: a positive number in range, else an
-// InputError naming the option and the text.
+// `option TEXT` (--rate, or a rules key) as Hz: a positive number in range, bare or with
+// a unit as parseSampleRate() takes it, else an InputError naming the option and the text.
 double rateArgument(const std::string& option, const std::string& text);
 
 }  // namespace busdecode

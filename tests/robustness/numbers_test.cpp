@@ -29,6 +29,22 @@ TEST(Numbers, RateTooLargeIsAnErrorNotANegativeTimebase) {
               "decode: --rate 9.2e18: is out of range (0.001 Hz to 1e+15 Hz)");
 }
 
+TEST(Numbers, RateTakesAUnitAsSampleRateDoes) {
+    const auto p = caseFile("units.csv", kPlainCsv);
+    const auto plain = runDecode({p, "--proto", "spi", "--map", "sclk=a", "--map", "mosi=b",
+                                  "--format", "jsonl", "--rate", "1000000"});
+    ASSERT_EQ(plain.status, 0) << plain.err;
+    for (const char* given : {"1MHz", "1 MHz", "1000 kHz", "1e6 Hz"}) {
+        const auto r = runDecode({p, "--proto", "spi", "--map", "sclk=a", "--map", "mosi=b",
+                                  "--format", "jsonl", "--rate", given});
+        EXPECT_EQ(r.status, 0) << given << r.err;
+        EXPECT_EQ(r.out, plain.out) << given;
+    }
+    EXPECT_EQ(
+        oneLineFailure({p, "--proto", "uart", "--map", "rx=a", "--rate", "0 MHz"}),
+        "decode: --rate 0 MHz: expected a positive number of Hz (like 24 MHz, 2.5 Hz or 1e6)");
+}
+
 TEST(Numbers, RulesRateOutOfRangeNamesFileAndLine) {
     const auto cap = caseFile("rules_rate.csv", kPlainCsv);
     const auto rules = caseFile("rate.toml",
