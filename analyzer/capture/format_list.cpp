@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include "core/options.h"
 #include "vector_range.h"
 
 namespace busdecode {
@@ -56,11 +57,36 @@ void printFormatList(std::FILE* out) {
         fmt::print(out, "  {:<22} {}\n  {:<22}   {}\n", f.name, f.recognised_by, "", f.notes);
 }
 
+// A capture that has no time of its own (a plain CSV, a sample list) opens only with
+// --rate: without one, it is opened again at 1 Hz to say what it is. A file opens twice;
+// standard input, read once, does not.
+std::unique_ptr<CaptureReader> openToDescribe(const std::string& path, const OpenOptions& opts,
+                                              bool& needs_rate) {
+    needs_rate = false;
+    try {
+        return openCapture(path, opts);
+    } catch (const InputError&) {
+        if (opts.rate_hz > 0 || path == "-") throw;
+        OpenOptions at_1hz = opts;
+        at_1hz.rate_hz = 1;
+        std::unique_ptr<CaptureReader> r;
+        try {
+            r = openCapture(path, at_1hz);
+        } catch (const InputError&) {
+        }
+        if (!r) throw;  // the first error: the rate was not what it lacked
+        needs_rate = true;
+        return r;
+    }
+}
+
 void printCaptureDescription(std::FILE* out, const std::string& path, const OpenOptions& opts) {
-    const auto r = openCapture(path, opts);
+    bool needs_rate = false;
+    const auto r = openToDescribe(path, opts, needs_rate);
     const Timebase tb = r->timebase();
-    fmt::print(out, "{}: {}, timebase {}/{} s, {} signals\n", path, r->formatName(), tb.num, tb.den,
-               r->signals().size());
+    const std::string time = needs_rate ? "no time of its own (decode it with --rate HZ)"
+                                        : fmt::format("timebase {}/{} s", tb.num, tb.den);
+    fmt::print(out, "{}: {}, {}, {} signals\n", path, r->formatName(), time, r->signals().size());
     for (std::size_t i = 0; i < r->signals().size(); ++i) {
         const auto& s = r->signals()[i];
         fmt::print(out, "  {:>3}  {}\n", i, signalText(s));

@@ -56,5 +56,19 @@ TEST(FormatsCli, BadFileIsOneLineExitTwo) {
                          "session\n");
 }
 
+// A capture with no time of its own is described without --rate, saying it needs one.
+TEST(FormatsCli, DescribesAPlainCsvThatNeedsARate) {
+    const std::string p = tempDir() + "/plain.csv";
+    writeFile(p, "clk,data\n0,1\n1,0\n");
+    auto r = runDecode({"--formats", p});
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(r.out, p + ": plain-csv, no time of its own (decode it with --rate HZ), 2 signals\n"
+                         "    0  clk\n    1  data\n");
+    r = runDecode({"--formats", p, "--rate", "1MHz"});
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.out.find(": plain-csv, timebase 1/1000000 s, 2 signals"), std::string::npos)
+        << r.out;
+}
+
 }  // namespace
 }  // namespace busdecode::test
