@@ -579,13 +579,20 @@ std::string timeTooLate(const std::string& file, Tick t, Tick last) {
 
 }  // namespace
 
-void Session::run() {
+void Session::start() {
+    if (started_) return;
+    started_ = true;
     Impl& im = *impl_;
-    CaptureReader& reader = *im.reader;
-    im.levels = reader.initialLevels();
-    facts_.start = reader.startTick();
+    im.levels = im.reader->initialLevels();
+    facts_.start = im.reader->startTick();
     im.now = facts_.start;
     startDecoders();
+}
+
+void Session::run() {
+    start();
+    Impl& im = *impl_;
+    CaptureReader& reader = *im.reader;
     for (auto* s : sinks_)
         s->begin(facts_);
     // Pieces decoded ahead on the reader's threads, where that applies.

@@ -83,6 +83,10 @@ public:
             std::string file_name = "");
     ~Session();
     void addSink(OutputSink* sink) { sinks_.push_back(sink); }
+    // Reads the capture's first levels and starts the decoders, after the sinks are added
+    // (run() does it first): an InputError here is a capture or an option refused before
+    // any edge is decoded (a bit shorter than the capture's tick).
+    void start();
     // Reads the whole capture (or follows it) and decodes. Input errors throw InputError.
     void run();
     // Asks a running follow loop to stop at the next block boundary (signal-safe).
@@ -120,6 +124,7 @@ private:
     std::vector<OutputSink*> sinks_;
     CaptureFacts facts_;
     std::vector<std::string> notes_;  // addNote()
+    bool started_ = false;            // start()
 };
 
 // Test helper: decodes an in-memory capture and returns the events in output order.

@@ -343,6 +343,12 @@ DecodeStats decodeChecked(const Waveform& w, const DecoderRequest& req, bool rea
     sink.reads_fields = reads_fields;
     session->addSink(&sink);
     try {
+        session->start();
+    } catch (const InputError&) {
+        stats.refused = true;  // a capture the decoder refuses before its first edge: fine
+        return stats;
+    }
+    try {
         session->run();
     } catch (const HarnessFailure&) {
         throw;
