@@ -124,9 +124,7 @@ double rateArgument(const std::string& option, const std::string& text) {
         const SampleRate rate = parseSampleRate(text, true);
         if (rate.timebase) hz = double(rate.timebase->den) / double(rate.timebase->num);
     }
-    if (!hz || *hz <= 0)
-        throw InputError(fmt::format(
-            "{} {}: expected a positive number of Hz (like 24 MHz, 2.5 Hz or 1e6)", option, text));
+    if (!hz || *hz <= 0) throw InputError(fmt::format("{} {}: {}", option, text, kRateExpected));
     const SampleRate rate = sampleRateOf(*hz);
     if (!rate.timebase) throw InputError(fmt::format("{} {}: {}", option, text, rate.problem));
     return *hz;

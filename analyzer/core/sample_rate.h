@@ -25,6 +25,10 @@ SampleRate parseSampleRate(std::string_view text, bool units);
 // A rate already read as a number (--rate, rules): its shortest decimal form, exactly.
 SampleRate sampleRateOf(double hz);
 
+// What rateArgument() says of a text that is no rate (the Python module says it too).
+inline constexpr const char* kRateExpected =
+    "expected a positive number of Hz (like 24 MHz, 2.5 Hz or 1e6)";
+
 // `option TEXT` (--rate, or a rules key) as Hz: a positive number in range, bare or with
 // a unit as parseSampleRate() takes it, else an InputError naming the option and the text.
 double rateArgument(const std::string& option, const std::string& text);

@@ -48,7 +48,7 @@ Protos = Union[str, Sequence[str]]
 Assignments = Optional[Mapping[str, Any]]
 PathLike = Union[str, bytes, "os.PathLike[str]", "os.PathLike[bytes]"]
 
-_RATE = "expected a positive number of Hz"
+_RATE = "expected a positive number of Hz (like 24 MHz, 2.5 Hz or 1e6)"
 _THREADS = "expected 1 (read and decode on one thread) or 2 (read ahead on a second)"
 _JOBS = "expected a whole number from 0 (all cores) to 256"
 

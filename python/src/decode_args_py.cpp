@@ -7,12 +7,13 @@
 #include "bindings.h"
 #include "capture/analog_lines.h"
 #include "core/options.h"
+#include "core/sample_rate.h"
 
 namespace busdecode::py {
 
 DecodeJob jobFor(const CaptureArgs& a, bool follow) {
     if (a.rate && !(*a.rate > 0 && std::isfinite(*a.rate)))
-        throw UsageError(fmt::format("--rate {}: expected a positive number of Hz", *a.rate));
+        throw UsageError(fmt::format("--rate {}: {}", *a.rate, kRateExpected));
     if (a.threads != 1 && a.threads != 2)
         throw UsageError(fmt::format(
             "--threads {}: expected 1 (read and decode on one thread) or 2 (read ahead on a "

@@ -8,6 +8,7 @@
 
 #include "bindings.h"
 #include "core/options.h"
+#include "core/sample_rate.h"
 #include "decode_args_py.h"
 #include "event_dict.h"
 #include "verify/batch.h"
@@ -47,7 +48,7 @@ pyb::tuple verify(const std::vector<std::string>& captures, const std::string& r
     if (jobs < 0 || jobs > 256)
         throw UsageError("--jobs: expected a whole number from 0 (all cores) to 256");
     if (rate && !(*rate > 0 && std::isfinite(*rate)))
-        throw UsageError(fmt::format("--rate {}: expected a positive number of Hz", *rate));
+        throw UsageError(fmt::format("--rate {}: {}", *rate, kRateExpected));
     if (threads != 1 && threads != 2)
         throw UsageError(fmt::format(
             "--threads {}: expected 1 (read and decode on one thread) or 2 (read ahead on a "
