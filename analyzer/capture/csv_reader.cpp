@@ -420,9 +420,27 @@ private:
         // ",0,0,0,0" in memory order, with this file's separator.
         sep_zero_ =
             std::uint64_t(std::uint8_t(sep_)) * 0x0001000100010001ULL + 0x3000300030003000ULL;
-        addSignals(columnNames(f, comments));
+        if (headerless(f, comments)) {
+            // sigrok-cli's label=off: the comment names the columns, and this line is
+            // the first sample (read again as a row).
+            format_ = "sigrok-csv";
+            addSignals(comments.channel_names);
+            held_.push_back({line_no_, std::string(line)});
+        } else {
+            addSignals(columnNames(f, comments));
+        }
         if (timed_) chooseResolution();  // the timebase is known before the first row
         if (!timed_) denseTimebase(comments.rate, comments.rate_line);
+    }
+
+    // A first line of samples only (each field 0 or 1) under a sigrok comment naming as
+    // many channels.
+    static bool headerless(const std::vector<std::string_view>& f, const HeaderComments& c) {
+        return c.channel_names.size() == f.size() &&
+               std::all_of(f.begin(), f.end(), [](std::string_view v) {
+                   v = trimField(v);
+                   return v == "0" || v == "1";
+               });
     }
 
     static bool looksLikeVcdChange(std::string_view line) {
