@@ -37,40 +37,38 @@ const std::vector<EventTypeSpec>& captureEventTypes() {
     return types;
 }
 
-Event samplesDroppedEvent(Tick first, Tick last, std::uint64_t samples) {
+namespace {
+
+// A stretch whose decoded events are marked: its type is also the error it carries.
+Event stretchEvent(const char* type, Tick start, Tick end, const char* key, Value value,
+                   std::string summary) {
     Event e;
     e.proto = "capture";
-    e.type = "samples_dropped";
-    e.start = first;
-    e.end = last;
-    e.add("samples", std::int64_t(samples));
-    e.error("samples_dropped");
-    e.summary = fmt::format("{} samples dropped: decoding fell behind the device", samples);
+    e.type = type;
+    e.start = start;
+    e.end = end;
+    e.add(key, std::move(value));
+    e.error(type);
+    e.summary = std::move(summary);
     return e;
+}
+
+}  // namespace
+
+Event samplesDroppedEvent(Tick first, Tick last, std::uint64_t samples) {
+    return stretchEvent(
+        "samples_dropped", first, last, "samples", std::int64_t(samples),
+        fmt::format("{} samples dropped: decoding fell behind the device", samples));
 }
 
 Event segmentGapEvent(Tick last_sample, Tick first_sample, std::uint64_t segment) {
-    Event e;
-    e.proto = "capture";
-    e.type = "segment_gap";
-    e.start = last_sample;
-    e.end = first_sample;
-    e.add("segment", std::int64_t(segment));
-    e.error("segment_gap");
-    e.summary = fmt::format("not recorded: the dead time before segment {}", segment);
-    return e;
+    return stretchEvent("segment_gap", last_sample, first_sample, "segment", std::int64_t(segment),
+                        fmt::format("not recorded: the dead time before segment {}", segment));
 }
 
 Event noDataEvent(Tick from, Tick to, const std::string& line) {
-    Event e;
-    e.proto = "capture";
-    e.type = "no_data";
-    e.start = from;
-    e.end = to;
-    e.add("line", line);
-    e.error("no_data");
-    e.summary = fmt::format("{}: no data in the capture", line);
-    return e;
+    return stretchEvent("no_data", from, to, "line", line,
+                        fmt::format("{}: no data in the capture", line));
 }
 
 }  // namespace busdecode
