@@ -213,13 +213,14 @@ struct Session::Impl : EventSink {
         pending_slot.insert(pending_slot.begin() + at, slot);
     }
 
-    // A pair fault's or a line's no-data span and the slots decoding from that signal, or
-    // a live run's dropped samples or a sequence capture's unrecorded dead time and every
-    // slot: their events reaching into it are marked with `error`.
+    // A stretch the capture layer found (a finding that carries an error: a pair fault, a
+    // line's no data, a live run's dropped samples, a sequence capture's dead time): the
+    // events reaching into it of the slots it concerns are marked with that error. One that
+    // names its signal (field `pair` or `line`) concerns the slots decoding from it alone.
     struct FaultSpan {
         Tick start, end;
         std::vector<int> slots;
-        const char* error;
+        std::string error;
         std::string signal;  // the one signal it is about; "": every line of the slots
     };
     std::deque<FaultSpan> fault_spans;
@@ -231,16 +232,11 @@ struct Session::Impl : EventSink {
     void takeFindings(EdgeBlock& block) {
         findings_from = block.findings_from;
         for (Event& f : block.findings) {
-            if (f.type == "pair_fault")
-                fault_spans.push_back(
-                    {f.start, f.end, slotsOf(f, "pair"), "pair_fault", textOf(f, "pair")});
-            else if (f.type == "no_data")
-                fault_spans.push_back(
-                    {f.start, f.end, slotsOf(f, "line"), "no_data", textOf(f, "line")});
-            else if (f.type == "samples_dropped")
-                fault_spans.push_back({f.start, f.end, allSlots(), "samples_dropped"});
-            else if (f.type == "segment_gap")
-                fault_spans.push_back({f.start, f.end, allSlots(), "segment_gap"});
+            if (!f.errors.empty()) {
+                const char* key = f.has("pair") ? "pair" : f.has("line") ? "line" : nullptr;
+                fault_spans.push_back({f.start, f.end, key ? slotsOf(f, key) : allSlots(),
+                                       f.errors.front(), key ? textOf(f, key) : ""});
+            }
             f.instance = f.proto;
             insertPending(spare.adopt(std::move(f)), -1);
         }
