@@ -38,10 +38,19 @@ std::string spanLine(const Event& e, const Timebase& tb) {
                        formatDuration(tb.toNsF(double(e.end))), e.summary);
 }
 
-// Items as an HTML list ("" for none).
-std::string htmlList(const std::vector<std::string>& items) {
-    if (items.empty()) return "";
-    std::string h = "<ul>\n";
+// A heading and its items, as the text report's indented lines.
+std::string textList(const std::string& heading, const std::vector<std::string>& items) {
+    std::string out = "  " + heading + "\n";
+    for (const auto& item : items)
+        out += "    " + item + "\n";
+    return out;
+}
+
+// A heading and its items as HTML: a paragraph and a list (none for no items).
+std::string htmlList(const std::string& heading, const std::vector<std::string>& items) {
+    std::string h = fmt::format("<p>{}</p>\n", htmlEscape(heading));
+    if (items.empty()) return h;
+    h += "<ul>\n";
     for (const auto& item : items)
         h += fmt::format("<li>{}</li>\n", htmlEscape(item));
     return h + "</ul>\n";
@@ -65,27 +74,29 @@ bool SignalSection::add(const Event& e, const Timebase& tb) {
                           nanoseconds(e, "fall_median_ns"), nanoseconds(e, "fall_p99_ns"),
                           fieldText(e, "overshoot_pct") + " %", fieldText(e, "reversals")});
     } else if (e.type == "pair_fault") {
-        if (first_faults_.size() < kMaxFaults) first_faults_.push_back(spanLine(e, tb));
-        ++faults_;
+        faults_.add(e, tb);
     } else if (e.type == "samples_dropped") {
-        if (first_gaps_.size() < kMaxFaults) first_gaps_.push_back(spanLine(e, tb));
-        ++gaps_;
+        gaps_.add(e, tb);
         if (const Value* n = e.get("samples"))
             dropped_samples_ += std::uint64_t(std::max<std::int64_t>(0, asInt(*n)));
     } else if (e.type == "segment_gap") {
-        if (first_segment_gaps_.size() < kMaxFaults) first_segment_gaps_.push_back(spanLine(e, tb));
-        ++segment_gaps_;
+        segment_gaps_.add(e, tb);
     }
     return true;
 }
 
+void SignalSection::Stretches::add(const Event& e, const Timebase& tb) {
+    if (first.size() < kMaxFaults) first.push_back(spanLine(e, tb));
+    ++count;
+}
+
 std::string SignalSection::segmentGapsHeading() const {
-    return fmt::format("Not recorded (dead time between segments): {} gaps", segment_gaps_);
+    return fmt::format("Not recorded (dead time between segments): {} gaps", segment_gaps_.count);
 }
 
 std::string SignalSection::gapsHeading() const {
     return fmt::format("Samples dropped (live run, decoding fell behind): {} in {} gaps",
-                       dropped_samples_, gaps_);
+                       dropped_samples_, gaps_.count);
 }
 
 std::string SignalSection::text() const {
@@ -110,15 +121,10 @@ std::string SignalSection::text() const {
     for (const auto& r : lines_)
         out += row(r);
     // A logic capture's live gaps alone: no pair fault to count.
-    if (!lines_.empty() || faults_) out += fmt::format("  pair faults: {}\n", faults_);
-    for (const auto& f : first_faults_)
-        out += "    " + f + "\n";
-    if (gaps_) out += "  " + gapsHeading() + "\n";
-    for (const auto& g : first_gaps_)
-        out += "    " + g + "\n";
-    if (segment_gaps_) out += "  " + segmentGapsHeading() + "\n";
-    for (const auto& g : first_segment_gaps_)
-        out += "    " + g + "\n";
+    if (!lines_.empty() || faults_.count)
+        out += textList("pair faults: " + std::to_string(faults_.count), faults_.first);
+    if (gaps_.count) out += textList(gapsHeading(), gaps_.first);
+    if (segment_gaps_.count) out += textList(segmentGapsHeading(), segment_gaps_.first);
     return out;
 }
 
@@ -138,12 +144,10 @@ std::string SignalSection::html() const {
         }
         h += "</table>\n<p>Rise and fall times between 10 and 90 % of the swing.</p>\n";
     }
-    if (!lines_.empty() || faults_) h += fmt::format("<p>Pair faults: {}</p>\n", faults_);
-    h += htmlList(first_faults_);
-    if (gaps_) h += fmt::format("<p>{}</p>\n", htmlEscape(gapsHeading())) + htmlList(first_gaps_);
-    if (segment_gaps_)
-        h += fmt::format("<p>{}</p>\n", htmlEscape(segmentGapsHeading())) +
-             htmlList(first_segment_gaps_);
+    if (!lines_.empty() || faults_.count)
+        h += htmlList("Pair faults: " + std::to_string(faults_.count), faults_.first);
+    if (gaps_.count) h += htmlList(gapsHeading(), gaps_.first);
+    if (segment_gaps_.count) h += htmlList(segmentGapsHeading(), segment_gaps_.first);
     return h;
 }
 

@@ -21,7 +21,7 @@ public:
     // Takes the capture layer's events (proto "capture"); true if `e` was one.
     bool add(const Event& e, const Timebase& tb);
     bool empty() const {
-        return lines_.empty() && faults_ == 0 && gaps_ == 0 && segment_gaps_ == 0;
+        return lines_.empty() && faults_.count == 0 && gaps_.count == 0 && segment_gaps_.count == 0;
     }
     std::string text() const;
     std::string html() const;
@@ -30,13 +30,16 @@ private:
     // The table's cells, formatted once: line, low, high, swing, threshold, hysteresis,
     // rise median/p99, fall median/p99, overshoot, reversals.
     std::vector<std::vector<std::string>> lines_;
-    std::uint64_t faults_ = 0;
-    std::vector<std::string> first_faults_;  // "1.234 ms to 5.678 ms: MA+,MA-: ..."
-    std::uint64_t gaps_ = 0, dropped_samples_ = 0;
-    std::vector<std::string> first_gaps_;  // "1.234 ms to 5.678 ms: 4096 samples dropped"
+    // Stretches of one kind: how many, and the first kMaxFaults as lines
+    // ("1.234 ms to 5.678 ms: SUMMARY").
+    struct Stretches {
+        std::uint64_t count = 0;
+        std::vector<std::string> first;
+        void add(const Event& e, const Timebase& tb);
+    };
+    Stretches faults_, gaps_, segment_gaps_;  // pair faults, live gaps, segment gaps
+    std::uint64_t dropped_samples_ = 0;
     std::string gapsHeading() const;
-    std::uint64_t segment_gaps_ = 0;
-    std::vector<std::string> first_segment_gaps_;  // "...: not recorded: ... segment 2"
     std::string segmentGapsHeading() const;
 };
 
