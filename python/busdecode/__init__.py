@@ -281,8 +281,8 @@ def read(path: PathLike, proto: Protos, map: Assignments = None, opts: Assignmen
     """
     args = _capture_args(path, proto, map, opts, rate, threads, threshold, hysteresis)
     try:
-        # Imported by name: mypy then types pandas as Any, so the module checks the same
-        # on a machine that has pandas-stubs and on one that lacks them.
+        # Imported by name: mypy then types pandas as Any, so the module type-checks alike
+        # whichever pandas type packages a machine has installed.
         pd = importlib.import_module("pandas")
     except ImportError:
         tables: Dict[str, List[Dict[str, Any]]] = {}
